@@ -1,0 +1,268 @@
+//! Engagement geometry of 2.5-D side milling (MODEL.md §2, from seed 002 Fig. 4 and
+//! seed 003): engagement angle, engagement arc length, feed at the cutting point and
+//! maximum undeformed chip thickness.
+//!
+//! Lengths are in mm, angles in radians (the API converts to degrees).
+
+use crate::core::error::require_positive;
+use crate::core::CoreError;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+
+/// The shape of the machined surface at the cutting point.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Contour {
+    /// A straight cut.
+    Straight,
+    /// An inner (concave) arc of machined-surface radius `R` > tool radius.
+    Concave { surface_radius_mm: f64 },
+    /// An outer (convex) arc of machined-surface radius `R`.
+    Convex { surface_radius_mm: f64 },
+}
+
+/// The engagement of the tool at one point.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Engagement {
+    /// Engagement angle α (rad), 0..=π.
+    pub angle_rad: f64,
+    /// Engagement arc length `L = r·α` (mm).
+    pub arc_length_mm: f64,
+    /// `fz_p / fz_c`: feed per tooth at the cutting point over feed per tooth at the
+    /// tool centre (1 on a straight cut).
+    pub cutting_point_feed_ratio: f64,
+}
+
+/// Engagement angle of a straight cut, `α = acos(1 − Rd/r)` (MODEL.md §2).
+/// A radial depth of a full diameter or more is a full slot, α = π.
+pub fn straight_engagement_angle_rad(radial_depth_mm: f64, tool_radius_mm: f64) -> f64 {
+    let cos_alpha = 1.0 - radial_depth_mm / tool_radius_mm;
+    cos_alpha.clamp(-1.0, 1.0).acos()
+}
+
+/// Engagement angle on a concave arc (MODEL.md §2, seed 002 Fig. 4):
+/// `cos α = ((R − Rd)² − Rc² − r²) / (2·Rc·r)` with `Rc = R − r`.
+pub fn concave_engagement_angle_rad(
+    surface_radius_mm: f64,
+    radial_depth_mm: f64,
+    tool_radius_mm: f64,
+) -> f64 {
+    let centre_radius = surface_radius_mm - tool_radius_mm;
+    let previous = surface_radius_mm - radial_depth_mm;
+    let cos_alpha =
+        (previous * previous - centre_radius * centre_radius - tool_radius_mm * tool_radius_mm)
+            / (2.0 * centre_radius * tool_radius_mm);
+    cos_alpha.clamp(-1.0, 1.0).acos()
+}
+
+/// Engagement angle on a convex arc (MODEL.md §2):
+/// `cos α = ((R + Rd)² − Rc² − r²) / (−2·Rc·r)` with `Rc = R + r`.
+pub fn convex_engagement_angle_rad(
+    surface_radius_mm: f64,
+    radial_depth_mm: f64,
+    tool_radius_mm: f64,
+) -> f64 {
+    let centre_radius = surface_radius_mm + tool_radius_mm;
+    let previous = surface_radius_mm + radial_depth_mm;
+    let cos_alpha =
+        (previous * previous - centre_radius * centre_radius - tool_radius_mm * tool_radius_mm)
+            / (-2.0 * centre_radius * tool_radius_mm);
+    cos_alpha.clamp(-1.0, 1.0).acos()
+}
+
+/// Feed-per-tooth ratio at the cutting point, `fz_p / fz_c = |PO| / Rc` (MODEL.md §2;
+/// seed 000 Eq. 1 read per tooth). Concave: `|PO| = Rc + r = R`; convex: `|PO| = Rc − r = R`.
+pub fn cutting_point_feed_ratio(contour: Contour, tool_radius_mm: f64) -> f64 {
+    match contour {
+        Contour::Straight => 1.0,
+        Contour::Concave { surface_radius_mm } => {
+            surface_radius_mm / (surface_radius_mm - tool_radius_mm)
+        }
+        Contour::Convex { surface_radius_mm } => {
+            surface_radius_mm / (surface_radius_mm + tool_radius_mm)
+        }
+    }
+}
+
+/// Maximum undeformed chip thickness of a down cut (MODEL.md §2):
+/// `t_m = fz_p·sin α` for α ≤ 90°, else `t_m = fz_p` (mm, as `fz_p`).
+pub fn max_chip_thickness_mm(cutting_point_fz_mm: f64, engagement_angle_rad: f64) -> f64 {
+    if engagement_angle_rad <= PI / 2.0 {
+        cutting_point_fz_mm * engagement_angle_rad.sin()
+    } else {
+        cutting_point_fz_mm
+    }
+}
+
+/// Engagement arc length `L = r·α` (MODEL.md §2), mm.
+pub fn engagement_arc_length_mm(tool_radius_mm: f64, engagement_angle_rad: f64) -> f64 {
+    tool_radius_mm * engagement_angle_rad
+}
+
+/// The full engagement of a tool of radius `r` cutting `contour` at radial depth `Rd`.
+pub fn engagement(
+    contour: Contour,
+    tool_radius_mm: f64,
+    radial_depth_mm: f64,
+) -> Result<Engagement, CoreError> {
+    let r = require_positive("tool_radius_mm", tool_radius_mm)?;
+    let rd = require_positive("rd_mm", radial_depth_mm)?;
+    let angle_rad = match contour {
+        Contour::Straight => straight_engagement_angle_rad(rd, r),
+        Contour::Concave { surface_radius_mm } => {
+            let big_r = require_positive("surface_radius_mm", surface_radius_mm)?;
+            if big_r <= r {
+                return Err(CoreError::invalid(
+                    "surface_radius_mm",
+                    format!("a concave surface of radius {big_r} mm cannot be cut by a tool of radius {r} mm"),
+                ));
+            }
+            concave_engagement_angle_rad(big_r, rd, r)
+        }
+        Contour::Convex { surface_radius_mm } => {
+            let big_r = require_positive("surface_radius_mm", surface_radius_mm)?;
+            convex_engagement_angle_rad(big_r, rd, r)
+        }
+    };
+    Ok(Engagement {
+        angle_rad,
+        arc_length_mm: engagement_arc_length_mm(r, angle_rad),
+        cutting_point_feed_ratio: cutting_point_feed_ratio(contour, r),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::tolerance::approx_eq;
+
+    fn deg(rad: f64) -> f64 {
+        rad.to_degrees()
+    }
+
+    #[test]
+    fn standard_conditions_give_the_chip_thickness_and_arc_length_of_seed_001_table_2() {
+        // (D, Rd, fz, t_m µm, L mm) — MODEL.md §2 check numbers.
+        for (d, rd, fz, t_um, l_mm) in [
+            (6.0, 0.3, 0.04, 17.4, 1.35),
+            (8.0, 0.4, 0.07, 30.5, 1.80),
+            (10.0, 0.5, 0.10, 43.6, 2.26),
+        ] {
+            let e = engagement(Contour::Straight, d / 2.0, rd).unwrap();
+            let t_m = max_chip_thickness_mm(fz * e.cutting_point_feed_ratio, e.angle_rad) * 1000.0;
+            assert!(approx_eq(t_m, t_um, 0.05), "D{d}: t_m {t_m}");
+            assert!(
+                approx_eq(e.arc_length_mm, l_mm, 0.005),
+                "D{d}: L {}",
+                e.arc_length_mm
+            );
+        }
+    }
+
+    #[test]
+    fn the_10_mm_standard_straight_cut_engages_25_8_degrees() {
+        let e = engagement(Contour::Straight, 5.0, 0.5).unwrap();
+        assert!(approx_eq(deg(e.angle_rad), 25.84, 0.01));
+    }
+
+    #[test]
+    fn concave_arcs_give_the_angles_and_lengths_of_model_section_3() {
+        // R/r, α deg, L mm for the 10 mm tool at Rd 0.5.
+        for (ratio, alpha, l) in [
+            (3.0, 31.5, 2.75),
+            (2.0, 36.4, 3.18),
+            (1.6, 42.1, 3.68),
+            (1.3, 54.3, 4.74),
+            (1.2, 64.8, 5.66),
+        ] {
+            let e = engagement(
+                Contour::Concave {
+                    surface_radius_mm: 5.0 * ratio,
+                },
+                5.0,
+                0.5,
+            )
+            .unwrap();
+            assert!(
+                approx_eq(deg(e.angle_rad), alpha, 0.05),
+                "R/r {ratio}: α {}",
+                deg(e.angle_rad)
+            );
+            assert!(
+                approx_eq(e.arc_length_mm, l, 0.01),
+                "R/r {ratio}: L {}",
+                e.arc_length_mm
+            );
+        }
+    }
+
+    #[test]
+    fn convex_and_concave_arcs_tend_to_the_straight_cut_as_the_radius_grows() {
+        let straight = straight_engagement_angle_rad(0.5, 5.0);
+        let concave = concave_engagement_angle_rad(1e6, 0.5, 5.0);
+        let convex = convex_engagement_angle_rad(1e6, 0.5, 5.0);
+        assert!(approx_eq(concave, straight, 1e-5));
+        assert!(approx_eq(convex, straight, 1e-5));
+        assert!(convex_engagement_angle_rad(10.0, 0.5, 5.0) < straight);
+        assert!(concave_engagement_angle_rad(10.0, 0.5, 5.0) > straight);
+    }
+
+    #[test]
+    fn a_full_slot_engages_half_the_tool() {
+        assert!(approx_eq(
+            straight_engagement_angle_rad(10.0, 5.0),
+            PI,
+            1e-12
+        ));
+        assert!(approx_eq(
+            straight_engagement_angle_rad(25.0, 5.0),
+            PI,
+            1e-12
+        ));
+    }
+
+    #[test]
+    fn past_ninety_degrees_the_chip_is_as_thick_as_the_feed_per_tooth() {
+        assert!(approx_eq(max_chip_thickness_mm(0.1, 2.0), 0.1, 1e-15));
+        assert!(approx_eq(max_chip_thickness_mm(0.1, PI / 6.0), 0.05, 1e-12));
+    }
+
+    #[test]
+    fn a_concave_surface_tighter_than_the_tool_is_refused_naming_the_field() {
+        let err = engagement(
+            Contour::Concave {
+                surface_radius_mm: 4.0,
+            },
+            5.0,
+            0.5,
+        )
+        .unwrap_err();
+        assert!(
+            matches!(err, CoreError::InvalidInput { ref field, .. } if field == "surface_radius_mm")
+        );
+    }
+
+    #[test]
+    fn the_cutting_point_moves_slower_inside_and_faster_outside() {
+        assert!(approx_eq(
+            cutting_point_feed_ratio(
+                Contour::Concave {
+                    surface_radius_mm: 10.0
+                },
+                5.0
+            ),
+            2.0,
+            1e-12
+        ));
+        assert!(approx_eq(
+            cutting_point_feed_ratio(
+                Contour::Convex {
+                    surface_radius_mm: 10.0
+                },
+                5.0
+            ),
+            10.0 / 15.0,
+            1e-12
+        ));
+    }
+}

@@ -1,0 +1,16 @@
+//! The planning core: geometry, cutting models and planners as pure functions on plain data.
+//!
+//! Nothing in here knows about HTTP, SQL, async runtimes or OpenAPI; a test
+//! (`core_is_pure` in `tests/architecture.rs`) fails if a file under `src/core/` names them.
+
+pub mod conditions;
+pub mod engagement;
+pub mod error;
+pub mod force_fit;
+pub mod force_model;
+pub mod operation;
+pub mod progress;
+pub mod tolerance;
+pub mod tool;
+
+pub use error::CoreError;

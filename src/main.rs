@@ -1,0 +1,64 @@
+//! The `dieplan` command: `serve` runs the service; `openapi` prints its OpenAPI document.
+
+use clap::{Parser, Subcommand};
+use dieplan::service::app;
+use dieplan::service::config::Config;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "dieplan",
+    version,
+    about = "Die and mold milling planner: overload analysis, trochoids, constant-force feeds, tool life and cost"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run the HTTP service.
+    Serve(Config),
+    /// Print the OpenAPI document (as committed in openapi/openapi.json).
+    Openapi,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Openapi => {
+            print!("{}", dieplan::service::openapi::document_json());
+            ExitCode::SUCCESS
+        }
+        Command::Serve(config) => serve(config),
+    }
+}
+
+fn serve(config: Config) -> ExitCode {
+    app::init_tracing(&config);
+    let runtime = match tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()
+    {
+        Ok(rt) => rt,
+        Err(e) => {
+            eprintln!("dieplan: cannot start the async runtime: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    runtime.block_on(async move {
+        match app::start(config).await {
+            Ok(server) => {
+                app::shutdown_signal().await;
+                server.stop().await;
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                tracing::error!(error = %e, "dieplan could not start");
+                eprintln!("dieplan: {e}");
+                ExitCode::FAILURE
+            }
+        }
+    })
+}

@@ -1,0 +1,251 @@
+//! Builds the HTTP application, starts it and stops it gracefully.
+
+use crate::service::config::{Config, LogFormat};
+use crate::service::error::{problem_response, ApiError, PROBLEM_JSON};
+use crate::service::jobs::queue::JobQueue;
+use crate::service::openapi::api_router;
+use crate::service::state::AppState;
+use axum::body::Body;
+use axum::extract::DefaultBodyLimit;
+use axum::http::{header, HeaderName, HeaderValue, Method, Request, Response, StatusCode};
+use axum::Router;
+use std::net::SocketAddr;
+use std::sync::Arc;
+use std::time::Duration;
+use thiserror::Error;
+use tokio::net::TcpListener;
+use tokio::sync::oneshot;
+use tokio::task::JoinHandle;
+use tower_http::catch_panic::CatchPanicLayer;
+use tower_http::compression::CompressionLayer;
+use tower_http::cors::{AllowOrigin, CorsLayer};
+use tower_http::limit::RequestBodyLimitLayer;
+use tower_http::request_id::{MakeRequestUuid, PropagateRequestIdLayer, SetRequestIdLayer};
+use tower_http::timeout::TimeoutLayer;
+use tower_http::trace::TraceLayer;
+use utoipa_swagger_ui::SwaggerUi;
+
+/// The header carrying the request id, echoed in every response.
+pub const REQUEST_ID: &str = "x-request-id";
+
+/// Why the service could not start.
+#[derive(Debug, Error)]
+pub enum StartError {
+    #[error("database {path}: {source}")]
+    Database { path: String, source: sqlx::Error },
+    #[error("cannot listen on {addr}: {source}")]
+    Bind {
+        addr: SocketAddr,
+        source: std::io::Error,
+    },
+}
+
+/// Sets up `tracing` output as configured. Safe to call more than once.
+pub fn init_tracing(config: &Config) {
+    let filter = tracing_subscriber::EnvFilter::try_new(&config.log)
+        .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("info"));
+    let builder = tracing_subscriber::fmt().with_env_filter(filter);
+    let _ = match config.log_format {
+        LogFormat::Json => builder.json().try_init(),
+        LogFormat::Text => builder.try_init(),
+    };
+}
+
+/// The application router with every layer.
+pub fn router(state: AppState) -> Router {
+    let config = state.config.clone();
+    let (api, openapi) = api_router().split_for_parts();
+    let request_id = HeaderName::from_static(REQUEST_ID);
+    api.merge(SwaggerUi::new("/docs").url("/openapi.json", openapi))
+        .fallback(not_found)
+        .method_not_allowed_fallback(method_not_allowed)
+        .with_state(state)
+        .layer(axum::middleware::map_response(problem_for_bare_errors))
+        .layer(DefaultBodyLimit::disable())
+        .layer(RequestBodyLimitLayer::new(config.body_limit))
+        .layer(TimeoutLayer::with_status_code(
+            StatusCode::SERVICE_UNAVAILABLE,
+            Duration::from_secs(config.request_timeout_s),
+        ))
+        .layer(CatchPanicLayer::custom(panic_response))
+        .layer(CompressionLayer::new().gzip(true))
+        .layer(cors(&config.cors_origins))
+        .layer(PropagateRequestIdLayer::new(request_id.clone()))
+        .layer(TraceLayer::new_for_http().make_span_with(|req: &Request<Body>| {
+            let id = req.headers().get(REQUEST_ID).and_then(|v| v.to_str().ok()).unwrap_or("-");
+            tracing::info_span!("request", method = %req.method(), uri = %req.uri(), request_id = %id)
+        }))
+        .layer(SetRequestIdLayer::new(request_id, MakeRequestUuid))
+}
+
+fn cors(origins: &[String]) -> CorsLayer {
+    let origins: Vec<&str> = origins
+        .iter()
+        .map(|o| o.trim())
+        .filter(|o| !o.is_empty())
+        .collect();
+    if origins.is_empty() {
+        return CorsLayer::new();
+    }
+    let allow = if origins.contains(&"*") {
+        AllowOrigin::any()
+    } else {
+        AllowOrigin::list(origins.iter().filter_map(|o| HeaderValue::from_str(o).ok()))
+    };
+    CorsLayer::new()
+        .allow_origin(allow)
+        .allow_methods([
+            Method::GET,
+            Method::POST,
+            Method::PUT,
+            Method::PATCH,
+            Method::DELETE,
+        ])
+        .allow_headers([header::CONTENT_TYPE, HeaderName::from_static("prefer")])
+        .expose_headers([header::LOCATION, HeaderName::from_static(REQUEST_ID)])
+}
+
+async fn not_found() -> ApiError {
+    ApiError::not_found("no such route: see /openapi.json or /docs")
+}
+
+async fn method_not_allowed() -> ApiError {
+    ApiError::Status {
+        status: StatusCode::METHOD_NOT_ALLOWED,
+        detail: "this route does not take that method: see /openapi.json".to_string(),
+    }
+}
+
+fn panic_response(_: Box<dyn std::any::Any + Send + 'static>) -> Response<Body> {
+    tracing::error!("a request handler panicked");
+    problem_response(&ApiError::Internal("panic".into()).problem())
+}
+
+/// Turns error answers made outside the handlers (405, 408, 413, 503 from layers) into
+/// problem documents.
+async fn problem_for_bare_errors(response: Response<Body>) -> Response<Body> {
+    let status = response.status();
+    let is_problem = response
+        .headers()
+        .get(header::CONTENT_TYPE)
+        .is_some_and(|v| v.as_bytes().starts_with(PROBLEM_JSON.as_bytes()));
+    if !status.is_client_error() && !status.is_server_error() || is_problem {
+        return response;
+    }
+    let detail = match status {
+        StatusCode::METHOD_NOT_ALLOWED => "this route does not take that method".to_string(),
+        StatusCode::PAYLOAD_TOO_LARGE => {
+            "the request body is larger than the configured limit".to_string()
+        }
+        StatusCode::SERVICE_UNAVAILABLE | StatusCode::REQUEST_TIMEOUT => {
+            "the request took longer than the configured timeout".to_string()
+        }
+        other => other.canonical_reason().unwrap_or("error").to_string(),
+    };
+    let mut problem = problem_response(&ApiError::Status { status, detail }.problem());
+    for (name, value) in response.headers() {
+        if name != header::CONTENT_TYPE && name != header::CONTENT_LENGTH {
+            problem.headers_mut().insert(name.clone(), value.clone());
+        }
+    }
+    problem
+}
+
+/// A started service.
+pub struct RunningServer {
+    pub addr: SocketAddr,
+    pub state: AppState,
+    stop: oneshot::Sender<()>,
+    server: JoinHandle<Result<(), std::io::Error>>,
+}
+
+impl RunningServer {
+    /// Stops accepting requests, lets in-flight ones finish, then stops the workers;
+    /// running jobs are left queued for the next start.
+    pub async fn stop(self) {
+        let _ = self.stop.send(());
+        match self.server.await {
+            Ok(Err(e)) => tracing::error!(error = %e, "server stopped with an error"),
+            Err(e) => tracing::error!(error = %e, "server task failed"),
+            Ok(Ok(())) => {}
+        }
+        self.state
+            .jobs
+            .shutdown(Duration::from_secs(self.state.config.shutdown_grace_s))
+            .await;
+        self.state.pool.close().await;
+        tracing::info!("stopped");
+    }
+}
+
+/// Opens the database, starts the workers and serves on the configured address
+/// (port 0 picks a free one: see [`RunningServer::addr`]).
+pub async fn start(config: Config) -> Result<RunningServer, StartError> {
+    let pool = crate::service::store::open(&config.database)
+        .await
+        .map_err(|source| StartError::Database {
+            path: config.database.display().to_string(),
+            source,
+        })?;
+    let workers = config.worker_count();
+    let jobs = JobQueue::start(pool.clone(), workers)
+        .await
+        .map_err(|source| StartError::Database {
+            path: config.database.display().to_string(),
+            source,
+        })?;
+    let listener = TcpListener::bind(config.addr)
+        .await
+        .map_err(|source| StartError::Bind {
+            addr: config.addr,
+            source,
+        })?;
+    let addr = listener.local_addr().map_err(|source| StartError::Bind {
+        addr: config.addr,
+        source,
+    })?;
+    let state = AppState {
+        pool,
+        jobs,
+        config: Arc::new(config),
+    };
+    let app = router(state.clone());
+    let (stop, stopped) = oneshot::channel::<()>();
+    let server = tokio::spawn(async move {
+        axum::serve(listener, app)
+            .with_graceful_shutdown(async {
+                let _ = stopped.await;
+            })
+            .await
+    });
+    tracing::info!(%addr, workers, "dieplan listening");
+    Ok(RunningServer {
+        addr,
+        state,
+        stop,
+        server,
+    })
+}
+
+/// Resolves on SIGTERM or ctrl-c.
+pub async fn shutdown_signal() {
+    let ctrl_c = async {
+        let _ = tokio::signal::ctrl_c().await;
+    };
+    #[cfg(unix)]
+    let terminate = async {
+        match tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate()) {
+            Ok(mut s) => {
+                s.recv().await;
+            }
+            Err(_) => std::future::pending::<()>().await,
+        }
+    };
+    #[cfg(not(unix))]
+    let terminate = std::future::pending::<()>();
+    tokio::select! {
+        _ = ctrl_c => {},
+        _ = terminate => {},
+    }
+    tracing::info!("shutdown signal received");
+}

@@ -1,0 +1,82 @@
+//! Configuration from flags and environment variables, with defaults that work out of
+//! the box.
+
+use clap::{Args, ValueEnum};
+use std::net::SocketAddr;
+use std::path::PathBuf;
+
+/// Log output format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum LogFormat {
+    Text,
+    Json,
+}
+
+/// Everything `dieplan serve` can be told.
+#[derive(Debug, Clone, Args)]
+pub struct Config {
+    /// Address to listen on.
+    #[arg(long, env = "DIEPLAN_ADDR", default_value = "127.0.0.1:8080")]
+    pub addr: SocketAddr,
+    /// SQLite database file; created and migrated at start.
+    #[arg(long, env = "DIEPLAN_DATABASE", default_value = "data/dieplan.sqlite")]
+    pub database: PathBuf,
+    /// Log format.
+    #[arg(long, env = "DIEPLAN_LOG_FORMAT", value_enum, default_value_t = LogFormat::Text)]
+    pub log_format: LogFormat,
+    /// Log filter (tracing EnvFilter syntax), e.g. `info` or `dieplan=debug,tower_http=info`.
+    #[arg(long, env = "DIEPLAN_LOG", default_value = "info")]
+    pub log: String,
+    /// Job workers; default: one per core. 0 runs an API-only instance that queues jobs
+    /// for another instance on the same database.
+    #[arg(long, env = "DIEPLAN_WORKERS")]
+    pub workers: Option<usize>,
+    /// Largest request body, bytes.
+    #[arg(long, env = "DIEPLAN_BODY_LIMIT", default_value_t = 64 * 1024 * 1024)]
+    pub body_limit: usize,
+    /// Request timeout, seconds.
+    #[arg(long, env = "DIEPLAN_REQUEST_TIMEOUT", default_value_t = 120)]
+    pub request_timeout_s: u64,
+    /// Longest `Prefer: wait=N` honoured, seconds (kept below the request timeout).
+    #[arg(long, env = "DIEPLAN_MAX_WAIT", default_value_t = 60)]
+    pub max_wait_s: u64,
+    /// Origins allowed by CORS, comma-separated, or `*`; none by default.
+    #[arg(long, env = "DIEPLAN_CORS_ORIGINS", value_delimiter = ',')]
+    pub cors_origins: Vec<String>,
+    /// Seconds running jobs get to stop at shutdown before the process exits.
+    #[arg(long, env = "DIEPLAN_SHUTDOWN_GRACE", default_value_t = 10)]
+    pub shutdown_grace_s: u64,
+}
+
+impl Config {
+    /// A configuration with every default, for `database` (tests, embedding).
+    pub fn with_database(database: PathBuf) -> Config {
+        Config {
+            addr: SocketAddr::from(([127, 0, 0, 1], 0)),
+            database,
+            log_format: LogFormat::Text,
+            log: "info".to_string(),
+            workers: None,
+            body_limit: 64 * 1024 * 1024,
+            request_timeout_s: 120,
+            max_wait_s: 60,
+            cors_origins: Vec::new(),
+            shutdown_grace_s: 10,
+        }
+    }
+
+    /// The number of workers to start.
+    pub fn worker_count(&self) -> usize {
+        self.workers.unwrap_or_else(|| {
+            std::thread::available_parallelism()
+                .map(|n| n.get())
+                .unwrap_or(1)
+        })
+    }
+
+    /// The wait cap actually applied: never past the request timeout.
+    pub fn effective_max_wait_s(&self) -> u64 {
+        self.max_wait_s
+            .min(self.request_timeout_s.saturating_sub(1))
+    }
+}

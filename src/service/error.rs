@@ -1,0 +1,291 @@
+//! The service's one error type, mapped to HTTP in one place: `application/problem+json`
+//! (RFC 9457) naming the field and the reason. 5xx details are logged, never sent.
+
+use crate::core::CoreError;
+use axum::http::{header, HeaderValue, StatusCode};
+use axum::response::{IntoResponse, Response};
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+use utoipa::ToSchema;
+
+/// Content type of every error body.
+pub const PROBLEM_JSON: &str = "application/problem+json";
+
+/// One field that failed validation.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+pub struct FieldError {
+    /// JSON path of the field, e.g. `points[3].fxy_n`; `body` for the document as a whole.
+    pub field: String,
+    /// Why the value was refused.
+    pub reason: String,
+}
+
+/// An RFC 9457 problem document.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+pub struct Problem {
+    /// A URI reference naming the problem type.
+    #[serde(rename = "type")]
+    pub kind: String,
+    /// A short summary of the problem type.
+    pub title: String,
+    /// The HTTP status code.
+    pub status: u16,
+    /// What went wrong with this request.
+    pub detail: String,
+    /// For validation problems: every refused field.
+    #[serde(skip_serializing_if = "Vec::is_empty", default)]
+    pub errors: Vec<FieldError>,
+}
+
+/// Everything a request can fail with.
+#[derive(Debug, Error)]
+pub enum ApiError {
+    /// The body or query could not be read at all (malformed JSON, bad encoding).
+    #[error("{0}")]
+    BadRequest(String),
+    /// Well-formed input with values that are refused.
+    #[error("{}", summarize(.0))]
+    Validation(Vec<FieldError>),
+    #[error("{0}")]
+    NotFound(String),
+    #[error("{0}")]
+    Conflict(String),
+    #[error("{0}")]
+    UnsupportedMediaType(String),
+    /// A status produced outside the handlers (body limit, timeout, unknown route).
+    #[error("{detail}")]
+    Status { status: StatusCode, detail: String },
+    /// Something failed on our side; the detail is logged, not sent.
+    #[error("internal error: {0}")]
+    Internal(String),
+}
+
+fn summarize(errors: &[FieldError]) -> String {
+    match errors {
+        [] => "the request is invalid".to_string(),
+        [one] => format!("{}: {}", one.field, one.reason),
+        [first, rest @ ..] => format!(
+            "{}: {} (and {} more)",
+            first.field,
+            first.reason,
+            rest.len()
+        ),
+    }
+}
+
+impl ApiError {
+    pub fn field(field: impl Into<String>, reason: impl Into<String>) -> Self {
+        ApiError::Validation(vec![FieldError {
+            field: field.into(),
+            reason: reason.into(),
+        }])
+    }
+
+    pub fn not_found(what: impl Into<String>) -> Self {
+        ApiError::NotFound(what.into())
+    }
+
+    pub fn status(&self) -> StatusCode {
+        match self {
+            ApiError::BadRequest(_) => StatusCode::BAD_REQUEST,
+            ApiError::Validation(_) => StatusCode::UNPROCESSABLE_ENTITY,
+            ApiError::NotFound(_) => StatusCode::NOT_FOUND,
+            ApiError::Conflict(_) => StatusCode::CONFLICT,
+            ApiError::UnsupportedMediaType(_) => StatusCode::UNSUPPORTED_MEDIA_TYPE,
+            ApiError::Status { status, .. } => *status,
+            ApiError::Internal(_) => StatusCode::INTERNAL_SERVER_ERROR,
+        }
+    }
+
+    /// The problem document sent to the client.
+    pub fn problem(&self) -> Problem {
+        let status = self.status();
+        let (slug, detail, errors) = match self {
+            ApiError::Validation(errors) => ("validation", self.to_string(), errors.clone()),
+            ApiError::Internal(_) => (
+                "internal",
+                "the server failed to handle the request; it has been logged".to_string(),
+                vec![],
+            ),
+            ApiError::BadRequest(_) => ("bad-request", self.to_string(), vec![]),
+            ApiError::NotFound(_) => ("not-found", self.to_string(), vec![]),
+            ApiError::Conflict(_) => ("conflict", self.to_string(), vec![]),
+            ApiError::UnsupportedMediaType(_) => {
+                ("unsupported-media-type", self.to_string(), vec![])
+            }
+            ApiError::Status { .. } => ("http", self.to_string(), vec![]),
+        };
+        Problem {
+            kind: format!("urn:dieplan:problem:{slug}"),
+            title: status.canonical_reason().unwrap_or("Error").to_string(),
+            status: status.as_u16(),
+            detail,
+            errors,
+        }
+    }
+}
+
+/// Renders a problem document with its status and content type.
+pub fn problem_response(problem: &Problem) -> Response {
+    let status = StatusCode::from_u16(problem.status).unwrap_or(StatusCode::INTERNAL_SERVER_ERROR);
+    let body = serde_json::to_vec(problem).unwrap_or_default();
+    let mut response = (status, body).into_response();
+    response
+        .headers_mut()
+        .insert(header::CONTENT_TYPE, HeaderValue::from_static(PROBLEM_JSON));
+    response
+}
+
+impl IntoResponse for ApiError {
+    fn into_response(self) -> Response {
+        if self.status().is_server_error() {
+            tracing::error!(error = %self, "request failed");
+        }
+        problem_response(&self.problem())
+    }
+}
+
+impl From<CoreError> for ApiError {
+    fn from(err: CoreError) -> Self {
+        match err {
+            CoreError::InvalidInput { field, reason } | CoreError::Unsolvable { field, reason } => {
+                ApiError::field(field, reason)
+            }
+            CoreError::Cancelled => ApiError::Conflict("the computation was cancelled".to_string()),
+        }
+    }
+}
+
+impl From<sqlx::Error> for ApiError {
+    fn from(err: sqlx::Error) -> Self {
+        use sqlx::error::ErrorKind;
+        if let sqlx::Error::Database(db) = &err {
+            let message = db.message().to_string();
+            match db.kind() {
+                ErrorKind::UniqueViolation => {
+                    let columns = message.rsplit(": ").next().unwrap_or("").to_string();
+                    return ApiError::Conflict(format!(
+                        "a row with the same {columns} already exists"
+                    ));
+                }
+                ErrorKind::ForeignKeyViolation => {
+                    return ApiError::Conflict(
+                        "the change would break a reference between rows (a referenced row is missing or still referenced)"
+                            .to_string(),
+                    );
+                }
+                ErrorKind::CheckViolation | ErrorKind::NotNullViolation => {
+                    return ApiError::field("body", message);
+                }
+                _ => {}
+            }
+        }
+        if matches!(err, sqlx::Error::RowNotFound) {
+            return ApiError::not_found("the row does not exist");
+        }
+        ApiError::Internal(err.to_string())
+    }
+}
+
+/// Collects field errors and turns them into one [`ApiError::Validation`].
+#[derive(Debug, Default)]
+pub struct Validator {
+    errors: Vec<FieldError>,
+}
+
+impl Validator {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    pub fn fail(&mut self, field: impl Into<String>, reason: impl Into<String>) {
+        self.errors.push(FieldError {
+            field: field.into(),
+            reason: reason.into(),
+        });
+    }
+
+    pub fn check(&mut self, ok: bool, field: &str, reason: impl Into<String>) {
+        if !ok {
+            self.fail(field, reason);
+        }
+    }
+
+    /// The value must be finite and > 0.
+    pub fn positive(&mut self, field: &str, value: f64) {
+        self.check(
+            value.is_finite() && value > 0.0,
+            field,
+            format!("must be a finite number > 0, got {value}"),
+        );
+    }
+
+    /// The value must be finite and ≥ 0.
+    pub fn non_negative(&mut self, field: &str, value: f64) {
+        self.check(
+            value.is_finite() && value >= 0.0,
+            field,
+            format!("must be a finite number >= 0, got {value}"),
+        );
+    }
+
+    /// The value must be finite.
+    pub fn finite(&mut self, field: &str, value: f64) {
+        self.check(
+            value.is_finite(),
+            field,
+            format!("must be a finite number, got {value}"),
+        );
+    }
+
+    /// The value must lie in `[lo, hi]`.
+    pub fn within(&mut self, field: &str, value: f64, lo: f64, hi: f64) {
+        self.check(
+            value.is_finite() && value >= lo && value <= hi,
+            field,
+            format!("must be between {lo} and {hi}, got {value}"),
+        );
+    }
+
+    /// The text must not be blank.
+    pub fn not_blank(&mut self, field: &str, value: &str) {
+        self.check(!value.trim().is_empty(), field, "must not be empty");
+    }
+
+    pub fn has_errors(&self) -> bool {
+        !self.errors.is_empty()
+    }
+
+    pub fn finish(self) -> Result<(), ApiError> {
+        if self.errors.is_empty() {
+            Ok(())
+        } else {
+            Err(ApiError::Validation(self.errors))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_validation_problem_names_every_field_and_summarizes_the_first() {
+        let mut v = Validator::new();
+        v.positive("diameter_mm", -1.0);
+        v.not_blank("name", " ");
+        let err = v.finish().unwrap_err();
+        let p = err.problem();
+        assert_eq!(p.status, 422);
+        assert_eq!(p.errors.len(), 2);
+        assert!(p.detail.starts_with("diameter_mm: must be"));
+        assert!(p.detail.ends_with("(and 1 more)"));
+    }
+
+    #[test]
+    fn internal_errors_do_not_leak_their_detail() {
+        let p = ApiError::Internal("disk I/O error at /secret/path".into()).problem();
+        assert_eq!(p.status, 500);
+        assert!(!p.detail.contains("secret"));
+    }
+}

@@ -1,0 +1,137 @@
+//! Request extractors whose rejections are problem documents naming the field.
+
+use crate::service::error::{ApiError, FieldError};
+use axum::extract::{FromRequest, FromRequestParts, Request};
+use axum::http::{header, request::Parts};
+use serde::de::DeserializeOwned;
+
+/// A JSON body. Malformed JSON is a 400; a well-formed body whose values do not fit the
+/// schema is a 422 naming the field path (e.g. `points[2].l_mm`).
+pub struct ApiJson<T>(pub T);
+
+impl<S, T> FromRequest<S> for ApiJson<T>
+where
+    S: Send + Sync,
+    T: DeserializeOwned,
+{
+    type Rejection = ApiError;
+
+    async fn from_request(req: Request, state: &S) -> Result<Self, Self::Rejection> {
+        let content_type = req
+            .headers()
+            .get(header::CONTENT_TYPE)
+            .and_then(|v| v.to_str().ok())
+            .unwrap_or("")
+            .to_string();
+        let is_json = content_type
+            .parse::<mime::Mime>()
+            .map(|m| m.subtype() == mime::JSON || m.suffix() == Some(mime::JSON))
+            .unwrap_or(false);
+        if !is_json {
+            return Err(ApiError::UnsupportedMediaType(format!(
+                "the body must be JSON (Content-Type: application/json), got '{content_type}'"
+            )));
+        }
+        let bytes = axum::body::Bytes::from_request(req, state)
+            .await
+            .map_err(|rejection| ApiError::Status {
+                status: rejection.status(),
+                detail: rejection.body_text(),
+            })?;
+        parse_json(&bytes).map(ApiJson)
+    }
+}
+
+/// Parses JSON bytes into `T`, mapping syntax errors to 400 and data errors to 422
+/// with the path of the offending field.
+pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
+    let mut de = serde_json::Deserializer::from_slice(bytes);
+    let value = serde_path_to_error::deserialize(&mut de).map_err(path_error)?;
+    de.end()
+        .map_err(|e| ApiError::BadRequest(format!("malformed JSON: {e}")))?;
+    Ok(value)
+}
+
+/// Converts an already-parsed JSON value into `T` with path-aware errors (422).
+pub fn from_value<T: DeserializeOwned>(value: serde_json::Value) -> Result<T, ApiError> {
+    serde_path_to_error::deserialize(value).map_err(|e| {
+        let field = field_of(e.path().to_string());
+        ApiError::Validation(vec![FieldError {
+            field,
+            reason: e.inner().to_string(),
+        }])
+    })
+}
+
+fn field_of(path: String) -> String {
+    if path == "." || path.is_empty() {
+        "body".to_string()
+    } else {
+        path
+    }
+}
+
+fn path_error(e: serde_path_to_error::Error<serde_json::Error>) -> ApiError {
+    use serde_json::error::Category;
+    let inner = e.inner();
+    match inner.classify() {
+        Category::Syntax | Category::Eof | Category::Io => {
+            ApiError::BadRequest(format!("malformed JSON: {inner}"))
+        }
+        Category::Data => ApiError::Validation(vec![FieldError {
+            field: field_of(e.path().to_string()),
+            reason: strip_position(&inner.to_string()),
+        }]),
+    }
+}
+
+/// serde_json appends " at line L column C"; the field path says more.
+fn strip_position(message: &str) -> String {
+    match message.rfind(" at line ") {
+        Some(i) => message[..i].to_string(),
+        None => message.to_string(),
+    }
+}
+
+/// Query parameters; a bad parameter is a 400 naming it.
+pub struct ApiQuery<T>(pub T);
+
+impl<S, T> FromRequestParts<S> for ApiQuery<T>
+where
+    S: Send + Sync,
+    T: DeserializeOwned,
+{
+    type Rejection = ApiError;
+
+    async fn from_request_parts(parts: &mut Parts, _state: &S) -> Result<Self, Self::Rejection> {
+        let query = parts.uri.query().unwrap_or("");
+        let de = serde_urlencoded::Deserializer::new(form_urlencoded::parse(query.as_bytes()));
+        serde_path_to_error::deserialize(de)
+            .map(ApiQuery)
+            .map_err(|e| {
+                let field = field_of(e.path().to_string());
+                ApiError::Status {
+                    status: axum::http::StatusCode::BAD_REQUEST,
+                    detail: format!("query parameter {field}: {}", e.inner()),
+                }
+            })
+    }
+}
+
+/// Path parameters; a malformed one (e.g. `/v1/tools/abc`) is a 400.
+pub struct ApiPath<T>(pub T);
+
+impl<S, T> FromRequestParts<S> for ApiPath<T>
+where
+    S: Send + Sync,
+    T: DeserializeOwned + Send,
+{
+    type Rejection = ApiError;
+
+    async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, Self::Rejection> {
+        axum::extract::Path::<T>::from_request_parts(parts, state)
+            .await
+            .map(|axum::extract::Path(v)| ApiPath(v))
+            .map_err(|rejection| ApiError::BadRequest(format!("path: {}", rejection.body_text())))
+    }
+}

@@ -1,0 +1,88 @@
+//! The job kinds: how each one's input is checked and resolved at submission, and how
+//! its prepared input is run by a worker.
+
+use super::conditions::{self, ConditionsRequest};
+use super::model::JobKind;
+use crate::core::progress::Progress;
+use crate::core::CoreError;
+use crate::service::error::{ApiError, FieldError};
+use crate::service::extract::from_value;
+use serde::Serialize;
+use sqlx::SqlitePool;
+use utoipa::ToSchema;
+
+/// The input of a job, by kind (the `input` of `POST /v1/jobs`).
+#[derive(Debug, Serialize, ToSchema)]
+#[serde(untagged)]
+pub enum JobInput {
+    Conditions(ConditionsRequest),
+}
+
+/// What a finished job hands back.
+pub struct JobOutput {
+    pub result: serde_json::Value,
+    pub program: Option<String>,
+}
+
+/// Prefixes the field paths of a validation error (e.g. `input.` for `POST /v1/jobs`).
+fn prefixed(err: ApiError, prefix: &str) -> ApiError {
+    match err {
+        ApiError::Validation(errors) if !prefix.is_empty() => ApiError::Validation(
+            errors
+                .into_iter()
+                .map(|e| FieldError {
+                    field: if e.field == "body" {
+                        prefix.trim_end_matches('.').to_string()
+                    } else {
+                        format!("{prefix}{}", e.field)
+                    },
+                    reason: e.reason,
+                })
+                .collect(),
+        ),
+        other => other,
+    }
+}
+
+/// Checks a submission and resolves it against the database; the answer is stored
+/// with the job and is all a worker needs. Field paths in errors start with `prefix`.
+pub async fn prepare(
+    pool: &SqlitePool,
+    kind: JobKind,
+    input: serde_json::Value,
+    prefix: &str,
+) -> Result<serde_json::Value, ApiError> {
+    let prepared = async {
+        match kind {
+            JobKind::Conditions => {
+                let request: ConditionsRequest = from_value(input)?;
+                to_json(&conditions::prepare(pool, request).await?)
+            }
+        }
+    }
+    .await;
+    prepared.map_err(|e| prefixed(e, prefix))
+}
+
+fn to_json<T: Serialize>(value: &T) -> Result<serde_json::Value, ApiError> {
+    serde_json::to_value(value).map_err(|e| ApiError::Internal(format!("serializing a job: {e}")))
+}
+
+/// Runs a prepared job. CPU-bound: call it on a blocking thread.
+pub fn run(kind: JobKind, prepared: &str, progress: &dyn Progress) -> Result<JobOutput, CoreError> {
+    let unreadable = |e: serde_json::Error| {
+        CoreError::invalid("prepared", format!("stored job input unreadable: {e}"))
+    };
+    progress.checkpoint()?;
+    let result = match kind {
+        JobKind::Conditions => {
+            let input = serde_json::from_str(prepared).map_err(unreadable)?;
+            serde_json::to_value(conditions::run(input)?).map_err(unreadable)?
+        }
+    };
+    progress.report(1.0);
+    Ok(JobOutput {
+        result,
+        program: None,
+    })
+}

@@ -1,0 +1,9 @@
+//! Planning work as persistent jobs: a table, a pool of workers that run the core off
+//! the async runtime, and the routes that create, poll, list and cancel them.
+
+pub mod conditions;
+pub mod kinds;
+pub mod model;
+pub mod queue;
+pub mod routes;
+pub mod store;

@@ -1,0 +1,135 @@
+//! Jobs as the API shows them.
+
+use crate::service::error::Problem;
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+/// Where a job is in its life.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum JobStatus {
+    Queued,
+    Running,
+    Succeeded,
+    Failed,
+    Cancelled,
+}
+
+impl JobStatus {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            JobStatus::Queued => "queued",
+            JobStatus::Running => "running",
+            JobStatus::Succeeded => "succeeded",
+            JobStatus::Failed => "failed",
+            JobStatus::Cancelled => "cancelled",
+        }
+    }
+
+    pub fn parse(text: &str) -> Option<JobStatus> {
+        [
+            JobStatus::Queued,
+            JobStatus::Running,
+            JobStatus::Succeeded,
+            JobStatus::Failed,
+            JobStatus::Cancelled,
+        ]
+        .into_iter()
+        .find(|s| s.as_str() == text)
+    }
+
+    /// `true` once the job will not change any more.
+    pub fn is_terminal(self) -> bool {
+        matches!(
+            self,
+            JobStatus::Succeeded | JobStatus::Failed | JobStatus::Cancelled
+        )
+    }
+}
+
+/// What a job computes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum JobKind {
+    /// Recommended cutting conditions and the models' predictions for them
+    /// (`POST /v1/conditions`).
+    Conditions,
+}
+
+impl JobKind {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            JobKind::Conditions => "conditions",
+        }
+    }
+
+    pub fn parse(text: &str) -> Option<JobKind> {
+        [JobKind::Conditions]
+            .into_iter()
+            .find(|k| k.as_str() == text)
+    }
+}
+
+/// Links of a job.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct JobLinks {
+    /// This job.
+    #[serde(rename = "self")]
+    pub this: String,
+    /// The NC program, when the job produced one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub program: Option<String>,
+}
+
+/// A job with its input and, once finished, its result or error.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct Job {
+    pub id: String,
+    pub kind: JobKind,
+    pub status: JobStatus,
+    /// Finished fraction, 0..1.
+    pub progress: f64,
+    /// How many times a worker has started it (a restart re-runs interrupted jobs).
+    pub attempts: i64,
+    /// A cancellation was asked for and the worker has not stopped yet.
+    pub cancel_requested: bool,
+    pub created_at: String,
+    pub started_at: Option<String>,
+    pub finished_at: Option<String>,
+    pub updated_at: String,
+    /// The input as submitted.
+    pub input: serde_json::Value,
+    /// The result, when succeeded; its shape depends on `kind`.
+    pub result: Option<serde_json::Value>,
+    /// Why it failed.
+    pub error: Option<Problem>,
+    pub links: JobLinks,
+}
+
+/// A job without its input and result, as lists show it.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct JobSummary {
+    pub id: String,
+    pub kind: JobKind,
+    pub status: JobStatus,
+    pub progress: f64,
+    pub created_at: String,
+    pub started_at: Option<String>,
+    pub finished_at: Option<String>,
+    pub links: JobLinks,
+}
+
+impl From<Job> for JobSummary {
+    fn from(job: Job) -> Self {
+        JobSummary {
+            id: job.id,
+            kind: job.kind,
+            status: job.status,
+            progress: job.progress,
+            created_at: job.created_at,
+            started_at: job.started_at,
+            finished_at: job.finished_at,
+            links: job.links,
+        }
+    }
+}

@@ -1,0 +1,249 @@
+//! The worker pool: takes queued jobs from the table, runs them on blocking threads,
+//! reports progress, honours cancellation and leaves interrupted jobs resumable.
+
+use super::kinds;
+use super::model::JobKind;
+use super::store;
+use crate::core::progress::Progress;
+use crate::core::CoreError;
+use crate::service::error::ApiError;
+use sqlx::SqlitePool;
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+use tokio::sync::{broadcast, Notify};
+use tokio::task::JoinHandle;
+
+/// How often an idle worker looks at the table even without a wake-up.
+const IDLE_POLL: Duration = Duration::from_secs(2);
+/// How often a running job's progress is written to the table.
+const PROGRESS_FLUSH: Duration = Duration::from_millis(250);
+/// A job started this many times without finishing is failed instead of run again
+/// (it may be what brought the service down).
+pub const MAX_ATTEMPTS: i64 = 3;
+/// Capacity of the channel that announces finished jobs.
+const FINISHED_CHANNEL: usize = 256;
+
+/// Cancellation flags and progress of one running job; handed to the core as its
+/// [`Progress`].
+pub struct JobControl {
+    cancel: AtomicBool,
+    shutdown: Arc<AtomicBool>,
+    progress_bits: AtomicU64,
+}
+
+impl Progress for JobControl {
+    fn report(&self, fraction: f64) {
+        self.progress_bits
+            .store(fraction.clamp(0.0, 1.0).to_bits(), Ordering::Relaxed);
+    }
+
+    fn cancelled(&self) -> bool {
+        self.cancel.load(Ordering::Relaxed) || self.shutdown.load(Ordering::Relaxed)
+    }
+}
+
+impl JobControl {
+    fn progress(&self) -> f64 {
+        f64::from_bits(self.progress_bits.load(Ordering::Relaxed))
+    }
+}
+
+struct Inner {
+    pool: SqlitePool,
+    wake: Notify,
+    finished: broadcast::Sender<String>,
+    running: Mutex<HashMap<String, Arc<JobControl>>>,
+    shutdown: Arc<AtomicBool>,
+    workers: Mutex<Vec<JoinHandle<()>>>,
+}
+
+/// Handle to the worker pool.
+#[derive(Clone)]
+pub struct JobQueue {
+    inner: Arc<Inner>,
+}
+
+impl JobQueue {
+    /// Recovers jobs a previous run left behind and starts `workers` workers.
+    pub async fn start(pool: SqlitePool, workers: usize) -> Result<JobQueue, sqlx::Error> {
+        let requeued = store::recover_interrupted(&pool).await?;
+        if requeued > 0 {
+            tracing::info!(requeued, "re-queued jobs interrupted by the previous run");
+        }
+        let (finished, _) = broadcast::channel(FINISHED_CHANNEL);
+        let queue = JobQueue {
+            inner: Arc::new(Inner {
+                pool,
+                wake: Notify::new(),
+                finished,
+                running: Mutex::new(HashMap::new()),
+                shutdown: Arc::new(AtomicBool::new(false)),
+                workers: Mutex::new(Vec::new()),
+            }),
+        };
+        let handles: Vec<_> = (0..workers)
+            .map(|n| {
+                let inner = queue.inner.clone();
+                tokio::spawn(async move { worker_loop(inner, n).await })
+            })
+            .collect();
+        *queue
+            .inner
+            .workers
+            .lock()
+            .unwrap_or_else(|p| p.into_inner()) = handles;
+        Ok(queue)
+    }
+
+    /// Tells the workers a job was queued.
+    pub fn wake(&self) {
+        self.inner.wake.notify_one();
+    }
+
+    /// Subscribes to the ids of jobs as they finish.
+    pub fn subscribe(&self) -> broadcast::Receiver<String> {
+        self.inner.finished.subscribe()
+    }
+
+    /// Asks a running job to stop.
+    pub fn cancel_running(&self, id: &str) {
+        if let Some(control) = self
+            .inner
+            .running
+            .lock()
+            .unwrap_or_else(|p| p.into_inner())
+            .get(id)
+        {
+            control.cancel.store(true, Ordering::Relaxed);
+        }
+    }
+
+    /// Stops the workers: running jobs are interrupted and queued again, so the next
+    /// start resumes them. Waits at most `grace` for the workers.
+    pub async fn shutdown(&self, grace: Duration) {
+        self.inner.shutdown.store(true, Ordering::SeqCst);
+        self.inner.wake.notify_waiters();
+        let handles =
+            std::mem::take(&mut *self.inner.workers.lock().unwrap_or_else(|p| p.into_inner()));
+        let all = futures_join(handles);
+        if tokio::time::timeout(grace, all).await.is_err() {
+            tracing::warn!("workers did not stop in time; their jobs resume at the next start");
+        }
+    }
+}
+
+async fn futures_join(handles: Vec<JoinHandle<()>>) {
+    for h in handles {
+        let _ = h.await;
+    }
+}
+
+async fn worker_loop(inner: Arc<Inner>, n: usize) {
+    tracing::debug!(worker = n, "worker started");
+    while !inner.shutdown.load(Ordering::SeqCst) {
+        match store::claim_next(&inner.pool).await {
+            Ok(Some(row)) => run_one(&inner, row).await,
+            Ok(None) => {
+                let _ = tokio::time::timeout(IDLE_POLL, inner.wake.notified()).await;
+            }
+            Err(e) => {
+                tracing::error!(error = %e, "worker could not read the job table");
+                tokio::time::sleep(IDLE_POLL).await;
+            }
+        }
+    }
+    tracing::debug!(worker = n, "worker stopped");
+}
+
+async fn run_one(inner: &Arc<Inner>, row: store::JobRow) {
+    let id = row.id.clone();
+    let outcome = execute(inner, &row).await;
+    if let Err(e) = outcome {
+        tracing::error!(job = %id, error = %e, "could not record the outcome of a job");
+    }
+    inner
+        .running
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .remove(&id);
+    let _ = inner.finished.send(id);
+}
+
+async fn execute(inner: &Arc<Inner>, row: &store::JobRow) -> Result<(), sqlx::Error> {
+    let pool = &inner.pool;
+    let id = row.id.as_str();
+    if row.attempts > MAX_ATTEMPTS {
+        let problem = ApiError::Internal(String::new()).problem();
+        let problem = crate::service::error::Problem {
+            detail: format!(
+                "the job was interrupted {} times without finishing and is not run again",
+                row.attempts - 1
+            ),
+            ..problem
+        };
+        return store::fail(pool, id, &problem).await;
+    }
+    let kind = match JobKind::parse(&row.kind) {
+        Some(kind) => kind,
+        None => {
+            let problem = ApiError::Internal(format!("unknown job kind {}", row.kind)).problem();
+            return store::fail(pool, id, &problem).await;
+        }
+    };
+    let control = Arc::new(JobControl {
+        cancel: AtomicBool::new(row.cancel_requested),
+        shutdown: inner.shutdown.clone(),
+        progress_bits: AtomicU64::new(0f64.to_bits()),
+    });
+    inner
+        .running
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .insert(id.to_string(), control.clone());
+
+    let prepared = row.prepared.clone();
+    let worker_control = control.clone();
+    let mut task =
+        tokio::task::spawn_blocking(move || kinds::run(kind, &prepared, worker_control.as_ref()));
+    let mut tick = tokio::time::interval(PROGRESS_FLUSH);
+    let mut last = 0.0;
+    let joined = loop {
+        tokio::select! {
+            joined = &mut task => break joined,
+            _ = tick.tick() => {
+                let p = control.progress();
+                if (p - last).abs() > f64::EPSILON {
+                    last = p;
+                    store::set_progress(pool, id, p).await?;
+                }
+            }
+        }
+    };
+
+    match joined {
+        Ok(Ok(output)) => {
+            let text = serde_json::to_string(&output.result).unwrap_or_default();
+            store::succeed(pool, id, &text, output.program.as_deref()).await
+        }
+        Ok(Err(CoreError::Cancelled)) => {
+            if control.cancel.load(Ordering::Relaxed) {
+                store::cancelled(pool, id).await
+            } else {
+                tracing::info!(job = %id, "job interrupted by shutdown; it resumes at the next start");
+                store::requeue(pool, id).await
+            }
+        }
+        Ok(Err(err)) => store::fail(pool, id, &ApiError::from(err).problem()).await,
+        Err(join_error) => {
+            tracing::error!(job = %id, error = %join_error, "job panicked");
+            store::fail(
+                pool,
+                id,
+                &ApiError::Internal(join_error.to_string()).problem(),
+            )
+            .await
+        }
+    }
+}

@@ -1,0 +1,281 @@
+//! `/v1/jobs` and the named job endpoints.
+
+use super::conditions::ConditionsRequest;
+use super::kinds::{self, JobInput};
+use super::model::{Job, JobKind, JobStatus, JobSummary};
+use super::store;
+use crate::service::error::{ApiError, Problem};
+use crate::service::extract::{ApiJson, ApiPath, ApiQuery};
+use crate::service::resources::{Page, DEFAULT_PAGE_LIMIT, MAX_PAGE_LIMIT};
+use crate::service::state::AppState;
+use axum::extract::State;
+use axum::http::{header, HeaderMap, HeaderValue, StatusCode};
+use axum::response::{IntoResponse, Response};
+use serde::{Deserialize, Serialize};
+use std::time::Duration;
+use utoipa::{IntoParams, ToSchema};
+use utoipa_axum::{router::OpenApiRouter, routes};
+
+/// Seconds a client is told to wait before polling a job again.
+const RETRY_AFTER_S: &str = "1";
+
+/// A job to run.
+#[derive(Debug, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({"kind": "conditions", "input": {"tool_type": "square", "diameter_mm": 10.0}}))]
+pub struct JobRequest {
+    pub kind: JobKind,
+    /// The input of that kind of job.
+    #[schema(value_type = JobInput)]
+    pub input: serde_json::Value,
+}
+
+/// The `wait=N` preference of RFC 7240, if any, in seconds.
+fn preferred_wait(headers: &HeaderMap) -> Option<u64> {
+    headers
+        .get_all("prefer")
+        .iter()
+        .filter_map(|v| v.to_str().ok())
+        .flat_map(|v| v.split([',', ';']))
+        .filter_map(|pref| {
+            let (name, value) = pref.split_once('=')?;
+            (name.trim().eq_ignore_ascii_case("wait"))
+                .then(|| value.trim().trim_matches('"').parse::<u64>().ok())?
+        })
+        .next()
+}
+
+/// Creates a job; with `Prefer: wait=N` waits up to N seconds for it to finish.
+async fn submit(
+    state: &AppState,
+    kind: JobKind,
+    input: serde_json::Value,
+    prefix: &str,
+    headers: &HeaderMap,
+) -> Result<Response, ApiError> {
+    let prepared = kinds::prepare(&state.pool, kind, input.clone(), prefix).await?;
+    let id = uuid::Uuid::new_v4().to_string();
+    let mut finished = state.jobs.subscribe();
+    store::insert(
+        &state.pool,
+        &id,
+        kind,
+        &input.to_string(),
+        &prepared.to_string(),
+    )
+    .await?;
+    state.jobs.wake();
+    tracing::info!(job = %id, kind = kind.as_str(), "job queued");
+
+    let location = format!("/v1/jobs/{id}");
+    let wait = preferred_wait(headers).map(|n| n.min(state.config.max_wait_s));
+    if let Some(seconds) = wait {
+        let deadline = tokio::time::Instant::now() + Duration::from_secs(seconds);
+        loop {
+            let row = store::get(&state.pool, &id).await?;
+            if row.status()?.is_terminal() {
+                let mut response = (StatusCode::CREATED, axum::Json(row.to_job()?)).into_response();
+                let h = response.headers_mut();
+                h.insert(header::LOCATION, header_value(&location));
+                h.insert(
+                    "preference-applied",
+                    header_value(&format!("wait={seconds}")),
+                );
+                return Ok(response);
+            }
+            match tokio::time::timeout_at(deadline, finished.recv()).await {
+                Err(_) => break,
+                Ok(Ok(_)) | Ok(Err(tokio::sync::broadcast::error::RecvError::Lagged(_))) => {
+                    continue
+                }
+                Ok(Err(tokio::sync::broadcast::error::RecvError::Closed)) => break,
+            }
+        }
+    }
+    let job = store::get(&state.pool, &id).await?.to_job()?;
+    let mut response = (StatusCode::ACCEPTED, axum::Json(job)).into_response();
+    let h = response.headers_mut();
+    h.insert(header::LOCATION, header_value(&location));
+    h.insert(header::RETRY_AFTER, HeaderValue::from_static(RETRY_AFTER_S));
+    Ok(response)
+}
+
+fn header_value(text: &str) -> HeaderValue {
+    HeaderValue::from_str(text).unwrap_or_else(|_| HeaderValue::from_static(""))
+}
+
+/// Creates a job of any kind.
+///
+/// Answers 202 with `Location` at once, or, with `Prefer: wait=N`, 201 with the
+/// finished job when it finishes within N seconds. Invalid input is refused here with
+/// a 4xx, never accepted as a job that fails later.
+#[utoipa::path(post, path = "/v1/jobs", tag = "jobs", operation_id = "createJob", request_body = JobRequest,
+    params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
+    responses(
+        (status = 201, description = "Finished within the preferred wait", body = Job),
+        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
+        (status = 422, description = "A refused field", body = Problem, content_type = "application/problem+json")))]
+pub async fn create_job(
+    State(state): State<AppState>,
+    headers: HeaderMap,
+    ApiJson(request): ApiJson<JobRequest>,
+) -> Result<Response, ApiError> {
+    submit(&state, request.kind, request.input, "input.", &headers).await
+}
+
+/// Recommends cutting conditions (job kind `conditions`).
+///
+/// For a material (default SKD61), a tool (id, or type + diameter) and an operation
+/// (default standard_side_cutting): S, fz, F, Rd, Ad and the cutting speed from the
+/// database, with the engagement angle, t_m, L and XY force the models predict. The
+/// finished job's `result` is a `ConditionsResult`.
+#[utoipa::path(post, path = "/v1/conditions", tag = "jobs", operation_id = "recommendConditions", request_body = ConditionsRequest,
+    params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
+    responses(
+        (status = 201, description = "Finished within the preferred wait; result is a ConditionsResult", body = Job),
+        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 422, description = "A refused field", body = Problem, content_type = "application/problem+json")))]
+pub async fn create_conditions(
+    State(state): State<AppState>,
+    headers: HeaderMap,
+    ApiJson(input): ApiJson<serde_json::Value>,
+) -> Result<Response, ApiError> {
+    submit(&state, JobKind::Conditions, input, "", &headers).await
+}
+
+/// Reads a job: status, progress, timestamps, result or error.
+#[utoipa::path(get, path = "/v1/jobs/{id}", tag = "jobs", operation_id = "getJob",
+    params(("id" = String, Path, description = "Job id")),
+    responses(
+        (status = 200, description = "The job", body = Job),
+        (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json")))]
+pub async fn get_job(
+    State(state): State<AppState>,
+    ApiPath(id): ApiPath<String>,
+) -> Result<axum::Json<Job>, ApiError> {
+    Ok(axum::Json(store::get(&state.pool, &id).await?.to_job()?))
+}
+
+/// Filters of `GET /v1/jobs`.
+#[derive(Debug, Deserialize, IntoParams)]
+#[serde(deny_unknown_fields)]
+#[into_params(parameter_in = Query)]
+pub struct JobFilter {
+    pub status: Option<JobStatus>,
+    pub kind: Option<JobKind>,
+    /// 1 to 500 (default 50).
+    pub limit: Option<i64>,
+    pub offset: Option<i64>,
+}
+
+/// Lists jobs, newest first.
+#[utoipa::path(get, path = "/v1/jobs", tag = "jobs", operation_id = "listJobs", params(JobFilter),
+    responses(
+        (status = 200, description = "One page of jobs", body = Page<JobSummary>),
+        (status = 400, description = "A bad query parameter", body = Problem, content_type = "application/problem+json")))]
+pub async fn list_jobs(
+    State(state): State<AppState>,
+    ApiQuery(filter): ApiQuery<JobFilter>,
+) -> Result<axum::Json<Page<JobSummary>>, ApiError> {
+    let limit = filter.limit.unwrap_or(DEFAULT_PAGE_LIMIT);
+    let offset = filter.offset.unwrap_or(0);
+    if !(1..=MAX_PAGE_LIMIT).contains(&limit) || offset < 0 {
+        return Err(ApiError::Status {
+            status: StatusCode::BAD_REQUEST,
+            detail: format!("query parameter limit must be 1..={MAX_PAGE_LIMIT} and offset >= 0"),
+        });
+    }
+    let (rows, total) = store::list(&state.pool, filter.status, filter.kind, limit, offset).await?;
+    let items = rows
+        .iter()
+        .map(|r| r.to_job().map(JobSummary::from))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(axum::Json(Page {
+        items,
+        total,
+        limit,
+        offset,
+    }))
+}
+
+/// Cancels a job. A queued job is cancelled at once (200); a running one is asked to
+/// stop (202) and ends `cancelled`; a finished job cannot be cancelled (409).
+#[utoipa::path(delete, path = "/v1/jobs/{id}", tag = "jobs", operation_id = "cancelJob",
+    params(("id" = String, Path, description = "Job id")),
+    responses(
+        (status = 200, description = "Cancelled", body = Job),
+        (status = 202, description = "Cancellation requested; the job stops shortly", body = Job),
+        (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json"),
+        (status = 409, description = "Already finished", body = Problem, content_type = "application/problem+json")))]
+pub async fn cancel_job(
+    State(state): State<AppState>,
+    ApiPath(id): ApiPath<String>,
+) -> Result<Response, ApiError> {
+    let row = store::get(&state.pool, &id).await?;
+    let status = if store::cancel_queued(&state.pool, &id).await? {
+        StatusCode::OK
+    } else if store::request_cancel(&state.pool, &id).await? {
+        state.jobs.cancel_running(&id);
+        StatusCode::ACCEPTED
+    } else {
+        return Err(ApiError::Conflict(format!(
+            "job {id} has already finished ({})",
+            row.status
+        )));
+    };
+    let job = store::get(&state.pool, &id).await?.to_job()?;
+    Ok((status, axum::Json(job)).into_response())
+}
+
+/// The NC program a finished job produced, as plain text.
+#[utoipa::path(get, path = "/v1/jobs/{id}/program", tag = "jobs", operation_id = "getJobProgram",
+    params(("id" = String, Path, description = "Job id")),
+    responses(
+        (status = 200, description = "The NC program", body = String, content_type = "text/plain"),
+        (status = 404, description = "No such job, or this job makes no program", body = Problem, content_type = "application/problem+json"),
+        (status = 409, description = "Not finished yet", body = Problem, content_type = "application/problem+json")))]
+pub async fn get_program(
+    State(state): State<AppState>,
+    ApiPath(id): ApiPath<String>,
+) -> Result<Response, ApiError> {
+    let row = store::get(&state.pool, &id).await?;
+    match (row.status()?, row.program) {
+        (_, Some(program)) => Ok((
+            [(header::CONTENT_TYPE, "text/plain; charset=utf-8")],
+            program,
+        )
+            .into_response()),
+        (JobStatus::Queued | JobStatus::Running, None) => Err(ApiError::Conflict(format!(
+            "job {id} is {}; its program is not ready",
+            row.status
+        ))),
+        (_, None) => Err(ApiError::not_found(format!(
+            "job {id} ({}) has no NC program",
+            row.kind
+        ))),
+    }
+}
+
+/// The job routes.
+pub fn router() -> OpenApiRouter<AppState> {
+    OpenApiRouter::new()
+        .routes(routes!(create_job, list_jobs))
+        .routes(routes!(get_job, cancel_job))
+        .routes(routes!(get_program))
+        .routes(routes!(create_conditions))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_wait_preference_is_read_among_others() {
+        let mut h = HeaderMap::new();
+        h.insert("prefer", HeaderValue::from_static("respond-async, wait=7"));
+        assert_eq!(preferred_wait(&h), Some(7));
+        h.insert("prefer", HeaderValue::from_static("wait=abc"));
+        assert_eq!(preferred_wait(&h), None);
+    }
+}

@@ -1,0 +1,234 @@
+//! The `jobs` table.
+
+use super::model::{Job, JobKind, JobLinks, JobStatus};
+use crate::service::error::{ApiError, Problem};
+use sqlx::SqlitePool;
+
+/// A row of `jobs`.
+#[derive(Debug, Clone, sqlx::FromRow)]
+pub struct JobRow {
+    pub id: String,
+    pub kind: String,
+    pub status: String,
+    pub progress: f64,
+    pub input: String,
+    pub prepared: String,
+    pub result: Option<String>,
+    pub error: Option<String>,
+    pub program: Option<String>,
+    pub attempts: i64,
+    pub cancel_requested: bool,
+    pub created_at: String,
+    pub started_at: Option<String>,
+    pub finished_at: Option<String>,
+    pub updated_at: String,
+}
+
+impl JobRow {
+    pub fn kind(&self) -> Result<JobKind, ApiError> {
+        JobKind::parse(&self.kind).ok_or_else(|| {
+            ApiError::Internal(format!("job {} has unknown kind {}", self.id, self.kind))
+        })
+    }
+
+    pub fn status(&self) -> Result<JobStatus, ApiError> {
+        JobStatus::parse(&self.status).ok_or_else(|| {
+            ApiError::Internal(format!(
+                "job {} has unknown status {}",
+                self.id, self.status
+            ))
+        })
+    }
+
+    /// The job as the API shows it.
+    pub fn to_job(&self) -> Result<Job, ApiError> {
+        let parse = |text: &str| -> Result<serde_json::Value, ApiError> {
+            serde_json::from_str(text).map_err(|e| {
+                ApiError::Internal(format!("job {}: stored JSON unreadable: {e}", self.id))
+            })
+        };
+        let error = match &self.error {
+            Some(text) => Some(serde_json::from_str::<Problem>(text).map_err(|e| {
+                ApiError::Internal(format!("job {}: stored error unreadable: {e}", self.id))
+            })?),
+            None => None,
+        };
+        Ok(Job {
+            id: self.id.clone(),
+            kind: self.kind()?,
+            status: self.status()?,
+            progress: self.progress,
+            attempts: self.attempts,
+            cancel_requested: self.cancel_requested,
+            created_at: self.created_at.clone(),
+            started_at: self.started_at.clone(),
+            finished_at: self.finished_at.clone(),
+            updated_at: self.updated_at.clone(),
+            input: parse(&self.input)?,
+            result: self.result.as_deref().map(parse).transpose()?,
+            error,
+            links: JobLinks {
+                this: format!("/v1/jobs/{}", self.id),
+                program: self
+                    .program
+                    .as_ref()
+                    .map(|_| format!("/v1/jobs/{}/program", self.id)),
+            },
+        })
+    }
+}
+
+/// Inserts a queued job.
+pub async fn insert(
+    pool: &SqlitePool,
+    id: &str,
+    kind: JobKind,
+    input: &str,
+    prepared: &str,
+) -> Result<(), ApiError> {
+    sqlx::query(
+        "INSERT INTO jobs (id, kind, status, input, prepared) VALUES (?, ?, 'queued', ?, ?)",
+    )
+    .bind(id)
+    .bind(kind.as_str())
+    .bind(input)
+    .bind(prepared)
+    .execute(pool)
+    .await?;
+    Ok(())
+}
+
+/// Reads one job, or 404.
+pub async fn get(pool: &SqlitePool, id: &str) -> Result<JobRow, ApiError> {
+    sqlx::query_as::<_, JobRow>("SELECT * FROM jobs WHERE id = ?")
+        .bind(id)
+        .fetch_optional(pool)
+        .await?
+        .ok_or_else(|| ApiError::not_found(format!("no job with id {id}")))
+}
+
+/// Lists jobs, newest first.
+pub async fn list(
+    pool: &SqlitePool,
+    status: Option<JobStatus>,
+    kind: Option<JobKind>,
+    limit: i64,
+    offset: i64,
+) -> Result<(Vec<JobRow>, i64), ApiError> {
+    let status = status.map(JobStatus::as_str);
+    let kind = kind.map(JobKind::as_str);
+    let total: i64 = sqlx::query_scalar(
+        "SELECT COUNT(*) FROM jobs WHERE (?1 IS NULL OR status = ?1) AND (?2 IS NULL OR kind = ?2)",
+    )
+    .bind(status)
+    .bind(kind)
+    .fetch_one(pool)
+    .await?;
+    let rows = sqlx::query_as::<_, JobRow>(
+        "SELECT * FROM jobs WHERE (?1 IS NULL OR status = ?1) AND (?2 IS NULL OR kind = ?2)
+         ORDER BY created_at DESC, rowid DESC LIMIT ?3 OFFSET ?4",
+    )
+    .bind(status)
+    .bind(kind)
+    .bind(limit)
+    .bind(offset)
+    .fetch_all(pool)
+    .await?;
+    Ok((rows, total))
+}
+
+/// Takes the oldest queued job and marks it running.
+pub async fn claim_next(pool: &SqlitePool) -> Result<Option<JobRow>, sqlx::Error> {
+    sqlx::query_as::<_, JobRow>("UPDATE jobs SET status = 'running', started_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), attempts = attempts + 1, progress = 0
+         WHERE id = (SELECT id FROM jobs WHERE status = 'queued' ORDER BY created_at, rowid LIMIT 1) AND status = 'queued'
+         RETURNING *")
+    .fetch_optional(pool)
+    .await
+}
+
+/// After a restart: jobs left running whose cancellation was asked for are cancelled,
+/// the others are queued again. Returns how many were re-queued.
+pub async fn recover_interrupted(pool: &SqlitePool) -> Result<u64, sqlx::Error> {
+    sqlx::query("UPDATE jobs SET status = 'cancelled', finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now')
+         WHERE status = 'running' AND cancel_requested = 1")
+    .execute(pool)
+    .await?;
+    let requeued = sqlx::query("UPDATE jobs SET status = 'queued', progress = 0, updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE status = 'running'")
+    .execute(pool)
+    .await?;
+    Ok(requeued.rows_affected())
+}
+
+/// Records progress of a running job.
+pub async fn set_progress(pool: &SqlitePool, id: &str, progress: f64) -> Result<(), sqlx::Error> {
+    sqlx::query("UPDATE jobs SET progress = ?, updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ? AND status = 'running'")
+        .bind(progress)
+        .bind(id)
+        .execute(pool)
+        .await?;
+    Ok(())
+}
+
+/// Marks a running job succeeded with its result (and NC program, if any).
+pub async fn succeed(
+    pool: &SqlitePool,
+    id: &str,
+    result: &str,
+    program: Option<&str>,
+) -> Result<(), sqlx::Error> {
+    sqlx::query("UPDATE jobs SET status = 'succeeded', progress = 1, result = ?, program = ?, finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now')
+         WHERE id = ?")
+    .bind(result)
+    .bind(program)
+    .bind(id)
+    .execute(pool)
+    .await?;
+    Ok(())
+}
+
+/// Marks a job failed with a problem document.
+pub async fn fail(pool: &SqlitePool, id: &str, problem: &Problem) -> Result<(), sqlx::Error> {
+    let text = serde_json::to_string(problem).unwrap_or_default();
+    sqlx::query("UPDATE jobs SET status = 'failed', error = ?, finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ?")
+    .bind(text)
+    .bind(id)
+    .execute(pool)
+    .await?;
+    Ok(())
+}
+
+/// Marks a job cancelled.
+pub async fn cancelled(pool: &SqlitePool, id: &str) -> Result<(), sqlx::Error> {
+    sqlx::query("UPDATE jobs SET status = 'cancelled', finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ?")
+    .bind(id)
+    .execute(pool)
+    .await?;
+    Ok(())
+}
+
+/// Puts a running job back in the queue (shutdown).
+pub async fn requeue(pool: &SqlitePool, id: &str) -> Result<(), sqlx::Error> {
+    sqlx::query("UPDATE jobs SET status = 'queued', progress = 0, updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ? AND status = 'running'")
+    .bind(id)
+    .execute(pool)
+    .await?;
+    Ok(())
+}
+
+/// Cancels a queued job at once; returns `false` if it was not queued.
+pub async fn cancel_queued(pool: &SqlitePool, id: &str) -> Result<bool, sqlx::Error> {
+    let done = sqlx::query("UPDATE jobs SET status = 'cancelled', finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ? AND status = 'queued'")
+    .bind(id)
+    .execute(pool)
+    .await?;
+    Ok(done.rows_affected() == 1)
+}
+
+/// Asks a running job to stop; returns `false` if it was not running.
+pub async fn request_cancel(pool: &SqlitePool, id: &str) -> Result<bool, sqlx::Error> {
+    let done = sqlx::query("UPDATE jobs SET cancel_requested = 1, updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ? AND status = 'running'")
+    .bind(id)
+    .execute(pool)
+    .await?;
+    Ok(done.rows_affected() == 1)
+}

@@ -1,0 +1,129 @@
+//! Store look-ups shared by the job kinds: resolve the material, tool, standard
+//! conditions and force model a request names.
+
+use crate::core::operation::Operation;
+use crate::core::tool::ToolType;
+use crate::service::error::ApiError;
+use crate::service::resources::force_models::ForceModelRecord;
+use crate::service::resources::materials::Material;
+use crate::service::resources::standard_conditions::StandardConditions;
+use crate::service::resources::tools::Tool;
+use crate::service::resources::DIAMETER_FILTER_TOLERANCE_MM;
+use sqlx::SqlitePool;
+
+/// The material used when a request names none (MODEL.md §5).
+pub const DEFAULT_MATERIAL_NAME: &str = "SKD61";
+
+/// The material with `id`, or named `name`, or the default material.
+pub async fn material(
+    pool: &SqlitePool,
+    id: Option<i64>,
+    name: Option<&str>,
+) -> Result<Material, ApiError> {
+    let found = match (id, name) {
+        (Some(id), _) => sqlx::query_as::<_, Material>("SELECT * FROM materials WHERE id = ?")
+            .bind(id)
+            .fetch_optional(pool)
+            .await?
+            .ok_or_else(|| ApiError::field("material_id", format!("no material with id {id}")))?,
+        (None, name) => {
+            let name = name.unwrap_or(DEFAULT_MATERIAL_NAME);
+            sqlx::query_as::<_, Material>("SELECT * FROM materials WHERE name = ?")
+                .bind(name)
+                .fetch_optional(pool)
+                .await?
+                .ok_or_else(|| ApiError::field("material", format!("no material named '{name}'")))?
+        }
+    };
+    Ok(found)
+}
+
+/// The tool with `id`, or the one tool of `tool_type` and `diameter_mm`.
+pub async fn tool(
+    pool: &SqlitePool,
+    id: Option<i64>,
+    tool_type: Option<ToolType>,
+    diameter_mm: Option<f64>,
+) -> Result<Tool, ApiError> {
+    if let Some(id) = id {
+        return sqlx::query_as::<_, Tool>("SELECT * FROM tools WHERE id = ?")
+            .bind(id)
+            .fetch_optional(pool)
+            .await?
+            .ok_or_else(|| ApiError::field("tool_id", format!("no tool with id {id}")));
+    }
+    let (Some(tool_type), Some(d)) = (tool_type, diameter_mm) else {
+        return Err(ApiError::field(
+            "tool_id",
+            "give tool_id, or tool_type and diameter_mm",
+        ));
+    };
+    if !(d.is_finite() && d > 0.0) {
+        return Err(ApiError::field(
+            "diameter_mm",
+            format!("must be a finite number > 0, got {d}"),
+        ));
+    }
+    let tools = sqlx::query_as::<_, Tool>(
+        "SELECT * FROM tools WHERE tool_type = ? AND abs(diameter_mm - ?) <= ? ORDER BY id",
+    )
+    .bind(tool_type.as_str())
+    .bind(d)
+    .bind(DIAMETER_FILTER_TOLERANCE_MM)
+    .fetch_all(pool)
+    .await?;
+    match tools.as_slice() {
+        [] => Err(ApiError::field(
+            "diameter_mm",
+            format!(
+                "no {} end mill of diameter {d} mm in the database",
+                tool_type.as_str()
+            ),
+        )),
+        [one] => Ok(one.clone()),
+        many => Err(ApiError::field(
+            "tool_id",
+            format!(
+                "{} {} end mills of {d} mm match (ids {}): give tool_id",
+                many.len(),
+                tool_type.as_str(),
+                many.iter()
+                    .map(|t| t.id.to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        )),
+    }
+}
+
+/// The standard conditions of `operation` for a tool in a material, if any.
+pub async fn standard_conditions(
+    pool: &SqlitePool,
+    tool_id: i64,
+    material_id: i64,
+    operation: Operation,
+) -> Result<Option<StandardConditions>, ApiError> {
+    Ok(sqlx::query_as::<_, StandardConditions>(
+        "SELECT * FROM standard_conditions WHERE tool_id = ? AND material_id = ? AND operation = ?",
+    )
+    .bind(tool_id)
+    .bind(material_id)
+    .bind(operation.as_str())
+    .fetch_optional(pool)
+    .await?)
+}
+
+/// The force model in use for a tool in a material: the newest one.
+pub async fn force_model(
+    pool: &SqlitePool,
+    tool_id: i64,
+    material_id: i64,
+) -> Result<Option<ForceModelRecord>, ApiError> {
+    Ok(sqlx::query_as::<_, ForceModelRecord>(
+        "SELECT * FROM force_models WHERE tool_id = ? AND material_id = ? ORDER BY id DESC LIMIT 1",
+    )
+    .bind(tool_id)
+    .bind(material_id)
+    .fetch_optional(pool)
+    .await?)
+}

@@ -1,0 +1,162 @@
+//! Response-surface force models: `/v1/force-models`.
+
+use super::{Reference, Resource, Source, SqlValue, ToolMaterialFilter};
+use crate::core::force_model::{Coefficients, ForceModel};
+use crate::service::error::Validator;
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+/// A second-order response-surface model of the XY cutting force (seed 002 Eq. 1) in
+/// coded variables `X1 = (t_m − t0)/δt`, `X2 = (L − L0)/δL`.
+#[derive(Debug, Clone, Serialize, Deserialize, sqlx::FromRow, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({"tool_id": 7, "material_id": 1, "t0_um": 43.589, "dt_um": 15.0, "l0_mm": 2.2551, "dl_mm": 0.436, "b0": 269.1, "b1": 65.84, "b2": 53.66, "b11": 0.0, "b22": 3.763, "b12": 15.45, "r_squared": 0.9998, "ad_ref_mm": 10.0}))]
+pub struct ForceModelData {
+    pub tool_id: i64,
+    pub material_id: i64,
+    /// Centre of the chip-thickness variable, µm.
+    pub t0_um: f64,
+    /// Step of the chip-thickness variable, µm.
+    pub dt_um: f64,
+    /// Centre of the arc-length variable, mm.
+    pub l0_mm: f64,
+    /// Step of the arc-length variable, mm.
+    pub dl_mm: f64,
+    pub b0: f64,
+    pub b1: f64,
+    pub b2: f64,
+    #[serde(default)]
+    pub b11: f64,
+    pub b22: f64,
+    pub b12: f64,
+    /// Coefficient of determination of the fit.
+    #[serde(default)]
+    pub r_squared: Option<f64>,
+    /// Axial depth of cut of the experiments, mm: forces scale with Ad / Ad_ref.
+    pub ad_ref_mm: f64,
+    #[serde(default = "Source::user")]
+    pub source: Source,
+    #[serde(default)]
+    pub reference: String,
+}
+
+impl ForceModelData {
+    pub fn model(&self) -> ForceModel {
+        ForceModel {
+            t0_um: self.t0_um,
+            dt_um: self.dt_um,
+            l0_mm: self.l0_mm,
+            dl_mm: self.dl_mm,
+            coefficients: Coefficients {
+                b0: self.b0,
+                b1: self.b1,
+                b2: self.b2,
+                b11: self.b11,
+                b22: self.b22,
+                b12: self.b12,
+            },
+            ad_ref_mm: self.ad_ref_mm,
+        }
+    }
+}
+
+impl Resource for ForceModelData {
+    const TABLE: &'static str = "force_models";
+    const SINGULAR: &'static str = "force model";
+    const COLUMNS: &'static [&'static str] = &[
+        "tool_id",
+        "material_id",
+        "t0_um",
+        "dt_um",
+        "l0_mm",
+        "dl_mm",
+        "b0",
+        "b1",
+        "b2",
+        "b11",
+        "b22",
+        "b12",
+        "r_squared",
+        "ad_ref_mm",
+        "source",
+        "reference",
+    ];
+
+    fn values(&self) -> Vec<SqlValue> {
+        vec![
+            self.tool_id.into(),
+            self.material_id.into(),
+            self.t0_um.into(),
+            self.dt_um.into(),
+            self.l0_mm.into(),
+            self.dl_mm.into(),
+            self.b0.into(),
+            self.b1.into(),
+            self.b2.into(),
+            self.b11.into(),
+            self.b22.into(),
+            self.b12.into(),
+            self.r_squared.into(),
+            self.ad_ref_mm.into(),
+            self.source.as_str().into(),
+            self.reference.clone().into(),
+        ]
+    }
+
+    fn validate(&self, v: &mut Validator) {
+        for (field, value) in [
+            ("t0_um", self.t0_um),
+            ("dt_um", self.dt_um),
+            ("l0_mm", self.l0_mm),
+            ("dl_mm", self.dl_mm),
+            ("ad_ref_mm", self.ad_ref_mm),
+        ] {
+            v.positive(field, value);
+        }
+        for (field, value) in [
+            ("b0", self.b0),
+            ("b1", self.b1),
+            ("b2", self.b2),
+            ("b11", self.b11),
+            ("b22", self.b22),
+            ("b12", self.b12),
+        ] {
+            v.finite(field, value);
+        }
+        if let Some(r2) = self.r_squared {
+            v.within("r_squared", r2, f64::NEG_INFINITY, 1.0);
+        }
+    }
+
+    fn references(&self) -> Vec<Reference> {
+        vec![
+            Reference {
+                field: "tool_id",
+                table: "tools",
+                id: self.tool_id,
+            },
+            Reference {
+                field: "material_id",
+                table: "materials",
+                id: self.material_id,
+            },
+        ]
+    }
+}
+
+crate::record!(
+    /// A force model. The newest model of a tool and material is the one in use.
+    ForceModelRecord,
+    ForceModelData
+);
+
+crate::crud_api!(
+    module: api,
+    record: ForceModelRecord,
+    data: ForceModelData,
+    filter: ToolMaterialFilter,
+    collection: "/v1/force-models",
+    item: "/v1/force-models/{id}",
+    tag: "database",
+    ids: ["listForceModels", "getForceModel", "createForceModel", "replaceForceModel", "updateForceModel", "deleteForceModel"],
+);

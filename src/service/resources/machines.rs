@@ -1,0 +1,101 @@
+//! Machine tools and their limits: `/v1/machines`.
+
+use super::{NameFilter, Resource, Source, SqlValue};
+use crate::service::error::Validator;
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+/// A machining centre: rapid rate, feed and spindle limits, per-axis acceleration and
+/// jerk (for the kinematic time estimate, MODEL.md §10) and tool-change time.
+#[derive(Debug, Clone, Serialize, Deserialize, sqlx::FromRow, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({"name": "shop VMC", "rapid_mm_min": 30000.0, "max_feed_mm_min": 20000.0, "max_spindle_rpm": 24000.0, "accel_x_mm_s2": 3000.0, "accel_y_mm_s2": 3000.0, "accel_z_mm_s2": 2500.0, "jerk_x_mm_s3": 60000.0, "jerk_y_mm_s3": 60000.0, "jerk_z_mm_s3": 50000.0, "tool_change_s": 5.0}))]
+pub struct MachineData {
+    pub name: String,
+    pub rapid_mm_min: f64,
+    pub max_feed_mm_min: f64,
+    pub max_spindle_rpm: f64,
+    pub accel_x_mm_s2: f64,
+    pub accel_y_mm_s2: f64,
+    pub accel_z_mm_s2: f64,
+    pub jerk_x_mm_s3: f64,
+    pub jerk_y_mm_s3: f64,
+    pub jerk_z_mm_s3: f64,
+    pub tool_change_s: f64,
+    #[serde(default = "Source::user")]
+    pub source: Source,
+    #[serde(default)]
+    pub reference: String,
+}
+
+impl MachineData {
+    fn limits(&self) -> [(&'static str, f64); 9] {
+        [
+            ("rapid_mm_min", self.rapid_mm_min),
+            ("max_feed_mm_min", self.max_feed_mm_min),
+            ("max_spindle_rpm", self.max_spindle_rpm),
+            ("accel_x_mm_s2", self.accel_x_mm_s2),
+            ("accel_y_mm_s2", self.accel_y_mm_s2),
+            ("accel_z_mm_s2", self.accel_z_mm_s2),
+            ("jerk_x_mm_s3", self.jerk_x_mm_s3),
+            ("jerk_y_mm_s3", self.jerk_y_mm_s3),
+            ("jerk_z_mm_s3", self.jerk_z_mm_s3),
+        ]
+    }
+}
+
+impl Resource for MachineData {
+    const TABLE: &'static str = "machines";
+    const SINGULAR: &'static str = "machine";
+    const COLUMNS: &'static [&'static str] = &[
+        "name",
+        "rapid_mm_min",
+        "max_feed_mm_min",
+        "max_spindle_rpm",
+        "accel_x_mm_s2",
+        "accel_y_mm_s2",
+        "accel_z_mm_s2",
+        "jerk_x_mm_s3",
+        "jerk_y_mm_s3",
+        "jerk_z_mm_s3",
+        "tool_change_s",
+        "source",
+        "reference",
+    ];
+
+    fn values(&self) -> Vec<SqlValue> {
+        let mut values = vec![self.name.clone().into()];
+        values.extend(self.limits().iter().map(|(_, v)| SqlValue::Real(*v)));
+        values.extend([
+            self.tool_change_s.into(),
+            self.source.as_str().into(),
+            self.reference.clone().into(),
+        ]);
+        values
+    }
+
+    fn validate(&self, v: &mut Validator) {
+        v.not_blank("name", &self.name);
+        for (field, value) in self.limits() {
+            v.positive(field, value);
+        }
+        v.non_negative("tool_change_s", self.tool_change_s);
+    }
+}
+
+crate::record!(
+    /// A machine tool.
+    Machine,
+    MachineData
+);
+
+crate::crud_api!(
+    module: api,
+    record: Machine,
+    data: MachineData,
+    filter: NameFilter,
+    collection: "/v1/machines",
+    item: "/v1/machines/{id}",
+    tag: "database",
+    ids: ["listMachines", "getMachine", "createMachine", "replaceMachine", "updateMachine", "deleteMachine"],
+);

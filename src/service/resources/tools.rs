@@ -1,0 +1,201 @@
+//! End mills: `/v1/tools`.
+
+use super::routes::eq;
+use super::{
+    ListFilter, PageRequest, Reference, Resource, Source, SqlValue, DIAMETER_FILTER_TOLERANCE_MM,
+};
+use crate::core::tool::{EndMill, ToolType};
+use crate::service::error::Validator;
+use serde::{Deserialize, Serialize};
+use utoipa::{IntoParams, ToSchema};
+
+/// How far a ball end mill's corner radius may differ from D/2, mm.
+const BALL_RADIUS_TOLERANCE_MM: f64 = 1e-6;
+
+/// An end mill's data.
+#[derive(Debug, Clone, Serialize, Deserialize, sqlx::FromRow, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({"name": "square D10 z4 shop", "tool_type": "square", "diameter_mm": 10.0, "flutes": 4, "corner_radius_mm": 0.0, "coating": "(Al,Ti)N", "substrate": "micro-grain carbide", "price": 95.0}))]
+pub struct ToolData {
+    /// Unique name.
+    pub name: String,
+    #[sqlx(try_from = "String")]
+    pub tool_type: ToolType,
+    /// Diameter D, mm.
+    pub diameter_mm: f64,
+    /// Number of flutes z.
+    pub flutes: u32,
+    /// Corner radius, mm: 0 for square, between 0 and D/2 for radius, D/2 for ball.
+    #[serde(default)]
+    pub corner_radius_mm: f64,
+    /// Length of cut, mm.
+    #[serde(default)]
+    pub flute_length_mm: Option<f64>,
+    #[serde(default)]
+    pub coating: String,
+    #[serde(default)]
+    pub substrate: String,
+    /// Price of one tool in the cost rates' currency; the cost rates' default when null.
+    #[serde(default)]
+    pub price: Option<f64>,
+    #[serde(default = "Source::user")]
+    pub source: Source,
+    /// Where the values come from (paper file and table, or the rule used).
+    #[serde(default)]
+    pub reference: String,
+}
+
+impl ToolData {
+    pub fn end_mill(&self) -> EndMill {
+        EndMill {
+            tool_type: self.tool_type,
+            diameter_mm: self.diameter_mm,
+            flutes: self.flutes,
+            corner_radius_mm: self.corner_radius_mm,
+        }
+    }
+}
+
+impl Resource for ToolData {
+    const TABLE: &'static str = "tools";
+    const SINGULAR: &'static str = "tool";
+    const COLUMNS: &'static [&'static str] = &[
+        "name",
+        "tool_type",
+        "diameter_mm",
+        "flutes",
+        "corner_radius_mm",
+        "flute_length_mm",
+        "coating",
+        "substrate",
+        "price",
+        "source",
+        "reference",
+    ];
+    const REFERENCED_BY: &'static [(&'static str, &'static str, &'static str)] = &[
+        ("standard_conditions", "tool_id", "standard conditions"),
+        ("force_models", "tool_id", "force models"),
+        ("tool_life", "tool_id", "tool-life rows"),
+    ];
+
+    fn values(&self) -> Vec<SqlValue> {
+        vec![
+            self.name.clone().into(),
+            self.tool_type.as_str().into(),
+            self.diameter_mm.into(),
+            i64::from(self.flutes).into(),
+            self.corner_radius_mm.into(),
+            self.flute_length_mm.into(),
+            self.coating.clone().into(),
+            self.substrate.clone().into(),
+            self.price.into(),
+            self.source.as_str().into(),
+            self.reference.clone().into(),
+        ]
+    }
+
+    fn validate(&self, v: &mut Validator) {
+        v.not_blank("name", &self.name);
+        v.positive("diameter_mm", self.diameter_mm);
+        v.check(self.flutes >= 1, "flutes", "must be at least 1");
+        v.non_negative("corner_radius_mm", self.corner_radius_mm);
+        if let Some(l) = self.flute_length_mm {
+            v.positive("flute_length_mm", l);
+        }
+        if let Some(p) = self.price {
+            v.non_negative("price", p);
+        }
+        if v.has_errors() {
+            return;
+        }
+        let half = self.diameter_mm / 2.0;
+        match self.tool_type {
+            ToolType::Square => v.check(
+                self.corner_radius_mm <= BALL_RADIUS_TOLERANCE_MM,
+                "corner_radius_mm",
+                "a square end mill has no corner radius: use tool_type radius",
+            ),
+            ToolType::Radius => v.check(
+                self.corner_radius_mm > BALL_RADIUS_TOLERANCE_MM
+                    && self.corner_radius_mm < half - BALL_RADIUS_TOLERANCE_MM,
+                "corner_radius_mm",
+                format!("a radius end mill needs 0 < corner radius < D/2 = {half}"),
+            ),
+            ToolType::Ball => v.check(
+                (self.corner_radius_mm - half).abs() <= BALL_RADIUS_TOLERANCE_MM,
+                "corner_radius_mm",
+                format!("a ball end mill's corner radius is D/2 = {half}"),
+            ),
+        }
+    }
+
+    fn references(&self) -> Vec<Reference> {
+        Vec::new()
+    }
+}
+
+crate::record!(
+    /// An end mill.
+    Tool,
+    ToolData
+);
+
+/// Filters of `GET /v1/tools`.
+#[derive(Debug, Deserialize, IntoParams)]
+#[serde(deny_unknown_fields)]
+#[into_params(parameter_in = Query)]
+pub struct ToolFilter {
+    /// Only tools of this shape.
+    pub tool_type: Option<String>,
+    /// Only tools of this diameter, mm.
+    pub diameter_mm: Option<f64>,
+    /// Only tools with standard conditions for this material id.
+    pub material_id: Option<i64>,
+    /// Only rows of this source.
+    pub source: Option<Source>,
+    pub limit: Option<i64>,
+    pub offset: Option<i64>,
+}
+
+impl ListFilter for ToolFilter {
+    fn conditions(&self) -> Vec<(String, Vec<SqlValue>)> {
+        [
+            eq("tool_type", self.tool_type.clone()),
+            self.diameter_mm.map(|d| {
+                (
+                    "abs(diameter_mm - ?) <= ?".to_string(),
+                    vec![d.into(), DIAMETER_FILTER_TOLERANCE_MM.into()],
+                )
+            }),
+            self.material_id.map(|m| {
+                (
+                    "id IN (SELECT tool_id FROM standard_conditions WHERE material_id = ?)"
+                        .to_string(),
+                    vec![m.into()],
+                )
+            }),
+            eq("source", self.source.map(Source::as_str)),
+        ]
+        .into_iter()
+        .flatten()
+        .collect()
+    }
+
+    fn page(&self) -> PageRequest {
+        PageRequest {
+            limit: self.limit,
+            offset: self.offset,
+        }
+    }
+}
+
+crate::crud_api!(
+    module: api,
+    record: Tool,
+    data: ToolData,
+    filter: ToolFilter,
+    collection: "/v1/tools",
+    item: "/v1/tools/{id}",
+    tag: "database",
+    ids: ["listTools", "getTool", "createTool", "replaceTool", "updateTool", "deleteTool"],
+);

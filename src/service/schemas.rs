@@ -1,0 +1,46 @@
+//! OpenAPI schemas of the core's plain enums, written here so the core stays free of
+//! utoipa.
+
+use crate::core::operation::Operation;
+use crate::core::tool::ToolType;
+use std::borrow::Cow;
+use utoipa::openapi::schema::{ObjectBuilder, Schema, Type};
+use utoipa::openapi::RefOr;
+
+fn string_enum(values: Vec<&'static str>, description: &str) -> RefOr<Schema> {
+    ObjectBuilder::new()
+        .schema_type(Type::String)
+        .enum_values(Some(values))
+        .description(Some(description))
+        .into()
+}
+
+impl utoipa::PartialSchema for ToolType {
+    fn schema() -> RefOr<Schema> {
+        string_enum(
+            ToolType::ALL.iter().map(|t| t.as_str()).collect(),
+            "End-mill shape: square (straight, flat end), radius (flat end with corner radius), ball.",
+        )
+    }
+}
+
+impl utoipa::ToSchema for ToolType {
+    fn name() -> Cow<'static, str> {
+        Cow::Borrowed("ToolType")
+    }
+}
+
+impl utoipa::PartialSchema for Operation {
+    fn schema() -> RefOr<Schema> {
+        string_enum(
+            Operation::ALL.iter().map(|o| o.as_str()).collect(),
+            "Machining operation with its own standard conditions (MODEL.md §5). standard_side_cutting is the reference straight cut of the force model and tool-life test.",
+        )
+    }
+}
+
+impl utoipa::ToSchema for Operation {
+    fn name() -> Cow<'static, str> {
+        Cow::Borrowed("Operation")
+    }
+}

@@ -1,0 +1,14 @@
+//! What every handler can reach.
+
+use crate::service::config::Config;
+use crate::service::jobs::queue::JobQueue;
+use sqlx::SqlitePool;
+use std::sync::Arc;
+
+/// Shared application state.
+#[derive(Clone)]
+pub struct AppState {
+    pub pool: SqlitePool,
+    pub jobs: JobQueue,
+    pub config: Arc<Config>,
+}
