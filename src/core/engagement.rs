@@ -266,3 +266,39 @@ mod tests {
         ));
     }
 }
+
+#[cfg(test)]
+mod properties {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #[test]
+        fn concave_engages_more_and_convex_less_than_a_straight_cut(
+            r in 1.0f64..10.0,
+            rd_fraction in 0.01f64..0.9,
+            ratio in 1.05f64..50.0,
+        ) {
+            let rd = rd_fraction * r;
+            let straight = straight_engagement_angle_rad(rd, r);
+            let concave = concave_engagement_angle_rad(ratio * r, rd, r);
+            let convex = convex_engagement_angle_rad(ratio * r, rd, r);
+            prop_assert!(concave >= straight - 1e-12);
+            prop_assert!(convex <= straight + 1e-12);
+            prop_assert!((0.0..=PI).contains(&concave) && (0.0..=PI).contains(&convex));
+        }
+
+        #[test]
+        fn a_tighter_concave_arc_never_engages_less(
+            r in 1.0f64..10.0,
+            rd_fraction in 0.01f64..0.9,
+            ratio in 1.05f64..20.0,
+            step in 0.01f64..5.0,
+        ) {
+            let rd = rd_fraction * r;
+            let tight = concave_engagement_angle_rad(ratio * r, rd, r);
+            let wide = concave_engagement_angle_rad((ratio + step) * r, rd, r);
+            prop_assert!(tight >= wide - 1e-12);
+        }
+    }
+}

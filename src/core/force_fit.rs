@@ -108,7 +108,7 @@ pub fn fit_force_model(samples: &[ForceSample], spec: FitSpec) -> Result<ForceFi
     let svd = design.clone().svd(true, true);
     let max_sv = svd.singular_values.max();
     let min_sv = svd.singular_values.min();
-    if !(max_sv > 0.0) || min_sv / max_sv < RANK_TOLERANCE {
+    if max_sv.is_nan() || max_sv <= 0.0 || min_sv / max_sv < RANK_TOLERANCE {
         return Err(CoreError::unsolvable(
             "points",
             "the points do not determine every coefficient: vary both the chip thickness and the arc length (e.g. a central composite design)",
@@ -124,7 +124,7 @@ pub fn fit_force_model(samples: &[ForceSample], spec: FitSpec) -> Result<ForceFi
     let mean = forces.mean();
     let ss_tot: f64 = forces.iter().map(|f| (f - mean).powi(2)).sum();
     let ss_res: f64 = residuals.iter().map(|r| r * r).sum();
-    if !(ss_tot > 0.0) {
+    if ss_tot.is_nan() || ss_tot <= 0.0 {
         return Err(CoreError::unsolvable(
             "points",
             "every measured force is the same: R² is undefined and the model cannot be fitted",
@@ -251,7 +251,7 @@ mod tests {
 
     #[test]
     fn noisy_samples_give_r2_below_one_and_residuals_that_sum_to_zero() {
-        let noise = |i: usize| if i % 2 == 0 { 3.0 } else { -2.5 };
+        let noise = |i: usize| if i.is_multiple_of(2) { 3.0 } else { -2.5 };
         let fit = fit_force_model(&samples_from(&seed_001_ten_mm(), noise), spec(true)).unwrap();
         assert!(fit.r_squared < 1.0 && fit.r_squared > 0.99);
         assert!(fit.adjusted_r_squared < fit.r_squared);

@@ -52,6 +52,16 @@ impl Operation {
     }
 }
 
+impl TryFrom<String> for Operation {
+    type Error = crate::core::CoreError;
+
+    fn try_from(value: String) -> Result<Self, Self::Error> {
+        Operation::parse(&value).ok_or_else(|| {
+            crate::core::CoreError::invalid("operation", format!("unknown operation '{value}'"))
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -63,15 +73,5 @@ mod tests {
             let json = serde_json::to_string(&op).unwrap();
             assert_eq!(json, format!("\"{}\"", op.as_str()));
         }
-    }
-}
-
-impl TryFrom<String> for Operation {
-    type Error = crate::core::CoreError;
-
-    fn try_from(value: String) -> Result<Self, Self::Error> {
-        Operation::parse(&value).ok_or_else(|| {
-            crate::core::CoreError::invalid("operation", format!("unknown operation '{value}'"))
-        })
     }
 }

@@ -60,7 +60,6 @@ pub fn router(state: AppState) -> Router {
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         .with_state(state)
-        .layer(axum::middleware::map_response(problem_for_bare_errors))
         .layer(DefaultBodyLimit::disable())
         .layer(RequestBodyLimitLayer::new(config.body_limit))
         .layer(TimeoutLayer::with_status_code(
@@ -68,6 +67,7 @@ pub fn router(state: AppState) -> Router {
             Duration::from_secs(config.request_timeout_s),
         ))
         .layer(CatchPanicLayer::custom(panic_response))
+        .layer(axum::middleware::map_response(problem_for_bare_errors))
         .layer(CompressionLayer::new().gzip(true))
         .layer(cors(&config.cors_origins))
         .layer(PropagateRequestIdLayer::new(request_id.clone()))

@@ -1,0 +1,187 @@
+//! Starting the app for a test and talking to it.
+
+use dieplan::service::app::{start, RunningServer};
+use dieplan::service::config::Config;
+use reqwest::{header::HeaderMap, Method, StatusCode};
+use serde_json::Value;
+use std::path::PathBuf;
+use std::sync::Arc;
+use tempfile::TempDir;
+
+/// A running app on a temporary database.
+pub struct TestApp {
+    pub base: String,
+    pub client: reqwest::Client,
+    pub dir: Arc<TempDir>,
+    server: RunningServer,
+}
+
+/// An HTTP answer: status, headers, JSON body (Null when not JSON).
+pub struct Answer {
+    pub status: StatusCode,
+    pub headers: HeaderMap,
+    pub body: Value,
+    pub text: String,
+}
+
+impl Answer {
+    pub fn header(&self, name: &str) -> Option<&str> {
+        self.headers.get(name).and_then(|v| v.to_str().ok())
+    }
+
+    pub fn content_type(&self) -> &str {
+        self.header("content-type").unwrap_or("")
+    }
+}
+
+impl TestApp {
+    pub async fn start() -> TestApp {
+        TestApp::start_with(|_| {}).await
+    }
+
+    pub async fn start_with(configure: impl FnOnce(&mut Config)) -> TestApp {
+        let dir = Arc::new(tempfile::tempdir().expect("temp dir"));
+        TestApp::start_in(dir, configure).await
+    }
+
+    pub async fn start_in(dir: Arc<TempDir>, configure: impl FnOnce(&mut Config)) -> TestApp {
+        let mut config = Config::with_database(db_path(&dir));
+        config.workers = Some(1);
+        configure(&mut config);
+        let server = start(config).await.expect("app starts");
+        TestApp {
+            base: format!("http://{}", server.addr),
+            client: reqwest::Client::new(),
+            dir,
+            server,
+        }
+    }
+
+    /// Stops the app gracefully and starts it again on the same database.
+    pub async fn restart_with(self, configure: impl FnOnce(&mut Config)) -> TestApp {
+        let dir = self.dir.clone();
+        self.server.stop().await;
+        TestApp::start_in(dir, configure).await
+    }
+
+    /// Stops the app; the returned directory keeps the database until dropped.
+    pub async fn stop(self) -> Arc<TempDir> {
+        self.server.stop().await;
+        self.dir
+    }
+
+    pub fn database(&self) -> PathBuf {
+        db_path(&self.dir)
+    }
+
+    pub fn url(&self, path: &str) -> String {
+        format!("{}{}", self.base, path)
+    }
+
+    pub async fn send(
+        &self,
+        method: Method,
+        path: &str,
+        body: Option<Value>,
+        headers: &[(&str, &str)],
+    ) -> Answer {
+        let mut req = self.client.request(method, self.url(path));
+        for (k, v) in headers {
+            req = req.header(*k, *v);
+        }
+        if let Some(body) = body {
+            req = req.json(&body);
+        }
+        let resp = req.send().await.expect("request is answered");
+        let status = resp.status();
+        let headers = resp.headers().clone();
+        let text = resp.text().await.expect("body");
+        let body = serde_json::from_str(&text).unwrap_or(Value::Null);
+        Answer {
+            status,
+            headers,
+            body,
+            text,
+        }
+    }
+
+    pub async fn get(&self, path: &str) -> Answer {
+        self.send(Method::GET, path, None, &[]).await
+    }
+
+    pub async fn post(&self, path: &str, body: Value) -> Answer {
+        self.send(Method::POST, path, Some(body), &[]).await
+    }
+
+    /// POST with `Prefer: wait=10`: the finished job.
+    pub async fn post_wait(&self, path: &str, body: Value) -> Answer {
+        self.send(Method::POST, path, Some(body), &[("prefer", "wait=10")])
+            .await
+    }
+
+    pub async fn put(&self, path: &str, body: Value) -> Answer {
+        self.send(Method::PUT, path, Some(body), &[]).await
+    }
+
+    pub async fn patch(&self, path: &str, body: Value) -> Answer {
+        self.send(Method::PATCH, path, Some(body), &[]).await
+    }
+
+    pub async fn delete(&self, path: &str) -> Answer {
+        self.send(Method::DELETE, path, None, &[]).await
+    }
+
+    /// Polls a job until it is finished.
+    pub async fn wait_for_job(&self, id: &str) -> Value {
+        for _ in 0..200 {
+            let a = self.get(&format!("/v1/jobs/{id}")).await;
+            let status = a.body["status"].as_str().unwrap_or("").to_string();
+            if ["succeeded", "failed", "cancelled"].contains(&status.as_str()) {
+                return a.body;
+            }
+            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+        }
+        panic!("job {id} did not finish");
+    }
+
+    /// The id of the seeded tool of this type and diameter.
+    pub async fn tool_id(&self, tool_type: &str, diameter: f64) -> i64 {
+        let a = self
+            .get(&format!(
+                "/v1/tools?tool_type={tool_type}&diameter_mm={diameter}"
+            ))
+            .await;
+        a.body["items"][0]["id"].as_i64().expect("seeded tool")
+    }
+}
+
+fn db_path(dir: &TempDir) -> PathBuf {
+    dir.path().join("dieplan.sqlite")
+}
+
+/// Asserts a problem document with `status` naming `field`.
+pub fn assert_problem(a: &Answer, status: u16, field: Option<&str>) {
+    assert_eq!(a.status.as_u16(), status, "{}", a.text);
+    assert!(
+        a.content_type().starts_with("application/problem+json"),
+        "content type {}",
+        a.content_type()
+    );
+    assert_eq!(a.body["status"], status);
+    assert!(a.body["detail"].as_str().is_some_and(|d| !d.is_empty()));
+    if let Some(field) = field {
+        let fields: Vec<&str> = a.body["errors"]
+            .as_array()
+            .map(|e| e.iter().filter_map(|x| x["field"].as_str()).collect())
+            .unwrap_or_default();
+        assert!(
+            fields.contains(&field),
+            "expected field {field} in {}",
+            a.text
+        );
+    }
+}
+
+pub fn close(actual: &Value, expected: f64, tol: f64) -> bool {
+    actual.as_f64().is_some_and(|a| (a - expected).abs() <= tol)
+}

@@ -1,0 +1,12 @@
+//! API tests: each starts the real application on port 0 with a temporary database.
+//! One test binary, so CI links once.
+
+mod architecture;
+mod common;
+mod conditions;
+mod curl_examples;
+mod database;
+mod errors;
+mod fit;
+mod jobs;
+mod openapi;

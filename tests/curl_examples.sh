@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# Starts the dieplan binary on a free port with a temporary database and runs every
+# ```sh block of README.md's "API examples" section against it, in order, in one shell
+# (so later examples can use variables set by earlier ones). Then checks a few answers
+# and that SIGTERM stops the service cleanly.
+#
+#   DIEPLAN_BIN=target/release/dieplan bash tests/curl_examples.sh
+#
+# Without DIEPLAN_BIN it builds the release binary first. `cargo test --release` runs it
+# through tests/api/curl_examples.rs with the binary cargo just built.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+for tool in curl jq python3; do
+  command -v "$tool" >/dev/null || { echo "curl_examples: $tool is required" >&2; exit 1; }
+done
+
+BIN=${DIEPLAN_BIN:-}
+if [ -z "$BIN" ]; then
+  cargo build --release
+  BIN=target/release/dieplan
+fi
+
+TMP=$(mktemp -d)
+PORT=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+"$BIN" serve --addr "127.0.0.1:$PORT" --database "$TMP/dieplan.sqlite" --workers 2 >"$TMP/server.log" 2>&1 &
+PID=$!
+cleanup() {
+  kill "$PID" 2>/dev/null || true
+  wait "$PID" 2>/dev/null || true
+  rm -rf "$TMP"
+}
+trap cleanup EXIT
+
+export DIEPLAN="http://127.0.0.1:$PORT"
+for _ in $(seq 1 100); do
+  curl -fsS "$DIEPLAN/healthz" >/dev/null 2>&1 && break
+  sleep 0.1
+done
+curl -fsS "$DIEPLAN/readyz" >/dev/null || { echo "service did not become ready"; cat "$TMP/server.log"; exit 1; }
+
+# Collect the examples: ```sh blocks between the two markers of README.md.
+awk -v out="$TMP/examples.sh" '
+  /<!-- examples:start -->/ { on = 1; next }
+  /<!-- examples:end -->/   { on = 0; next }
+  on && /^```sh$/ { inblock = 1; n++; printf "echo \"--- example %d (README.md line %d)\"\n", n, NR + 1 >> out; next }
+  on && inblock && /^```$/ { inblock = 0; print "echo" >> out; next }
+  on && inblock { print >> out }
+' README.md
+COUNT=$(grep -c '^echo "--- example' "$TMP/examples.sh" || true)
+[ "$COUNT" -ge 12 ] || { echo "expected at least 12 README examples, found $COUNT"; exit 1; }
+
+echo "running $COUNT README examples against $DIEPLAN"
+if ! bash -euo pipefail "$TMP/examples.sh" >"$TMP/examples.out" 2>&1; then
+  cat "$TMP/examples.out"
+  echo "a README example failed (see the last '--- example' above)"
+  echo "--- server log"; tail -n 30 "$TMP/server.log"
+  exit 1
+fi
+
+# Answers the README promises.
+check() { # description, jq filter, URL path, method, body
+  local got
+  got=$(curl -sS -X "$4" "$DIEPLAN$3" -H 'content-type: application/json' -H 'Prefer: wait=10' ${5:+-d "$5"})
+  echo "$got" | jq -e "$2" >/dev/null || { echo "check failed: $1: $got"; exit 1; }
+  echo "ok: $1"
+}
+check "10 mm standard conditions give F 5760 and beta0 = 269.1 N" \
+  '((.result.conditions.feed_mm_min - 5760) | fabs) < 1e-6 and ((.result.force.fxy_n - 269.1) | fabs) < 1e-3' \
+  /v1/conditions POST '{"tool_type": "square", "diameter_mm": 10}'
+check "18 seeded tools" '.total == 18' "/v1/tools?limit=1" GET ""
+check "a bad request is a problem document naming the field" \
+  '.status == 422 and .errors[0].field == "diameter_mm"' /v1/conditions POST '{"tool_type": "square", "diameter_mm": 11}'
+
+# SIGTERM: graceful stop with exit code 0.
+kill -TERM "$PID"
+for _ in $(seq 1 100); do kill -0 "$PID" 2>/dev/null || break; sleep 0.1; done
+if kill -0 "$PID" 2>/dev/null; then echo "the service did not stop on SIGTERM"; exit 1; fi
+CODE=0; wait "$PID" || CODE=$?
+[ "$CODE" -eq 0 ] || { echo "exit code $CODE after SIGTERM"; exit 1; }
+grep -q "stopped" "$TMP/server.log" || { echo "no graceful stop in the log"; cat "$TMP/server.log"; exit 1; }
+echo "ok: SIGTERM stops the service gracefully"
+echo "curl_examples: all $COUNT examples and checks passed"
