@@ -174,7 +174,7 @@ pub fn evaluate_conditions(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::core::force_model::Coefficients;
+    use crate::core::fixtures::seed_001_ten_mm;
     use crate::core::tolerance::approx_eq;
     use crate::core::tool::ToolType;
 
@@ -187,27 +187,6 @@ mod tests {
         }
     }
 
-    /// seed 001 Table 4, centred exactly on the standard conditions (Table 2 prints the
-    /// centres rounded to 43.6 µm and 2.26 mm).
-    fn ten_mm_model() -> ForceModel {
-        let alpha = (0.9f64).acos();
-        ForceModel {
-            t0_um: 100.0 * alpha.sin(),
-            dt_um: 15.0,
-            l0_mm: 5.0 * alpha,
-            dl_mm: 0.436,
-            coefficients: Coefficients {
-                b0: 269.1,
-                b1: 65.84,
-                b2: 53.66,
-                b11: 0.0,
-                b22: 3.763,
-                b12: 15.45,
-            },
-            ad_ref_mm: 10.0,
-        }
-    }
-
     #[test]
     fn the_10_mm_standard_gives_f5760_v302_and_beta0_as_the_force() {
         let c = CuttingConditions {
@@ -216,7 +195,7 @@ mod tests {
             rd_mm: 0.5,
             ad_mm: 10.0,
         };
-        let r = evaluate_conditions(&square(10.0), c, Some(&ten_mm_model())).unwrap();
+        let r = evaluate_conditions(&square(10.0), c, Some(&seed_001_ten_mm())).unwrap();
         assert!(approx_eq(r.feed_mm_min, 5760.0, 1e-9));
         assert!(approx_eq(r.cutting_speed_m_min, 301.6, 0.05));
         let e = r.engagement.unwrap();
@@ -260,7 +239,7 @@ mod tests {
             rd_mm: 2.0,
             ad_mm: 10.0,
         };
-        let r = evaluate_conditions(&square(10.0), c, Some(&ten_mm_model())).unwrap();
+        let r = evaluate_conditions(&square(10.0), c, Some(&seed_001_ten_mm())).unwrap();
         assert!(!r.force.unwrap().within_design_region);
         assert!(r.warnings[0].contains("design region"));
     }

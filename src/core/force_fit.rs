@@ -167,15 +167,17 @@ pub fn fit_force_model(samples: &[ForceSample], spec: FitSpec) -> Result<ForceFi
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::core::fixtures::seed_001_ten_mm;
     use crate::core::tolerance::approx_eq;
 
     fn spec(include_x1_squared: bool) -> FitSpec {
+        let m = seed_001_ten_mm();
         FitSpec {
-            t0_um: 43.6,
-            dt_um: 15.0,
-            l0_mm: 2.26,
-            dl_mm: 0.436,
-            ad_ref_mm: 10.0,
+            t0_um: m.t0_um,
+            dt_um: m.dt_um,
+            l0_mm: m.l0_mm,
+            dl_mm: m.dl_mm,
+            ad_ref_mm: m.ad_ref_mm,
             include_x1_squared,
         }
     }
@@ -211,24 +213,6 @@ mod tests {
                 }
             })
             .collect()
-    }
-
-    fn seed_001_ten_mm() -> ForceModel {
-        ForceModel {
-            t0_um: 43.6,
-            dt_um: 15.0,
-            l0_mm: 2.26,
-            dl_mm: 0.436,
-            coefficients: Coefficients {
-                b0: 269.1,
-                b1: 65.84,
-                b2: 53.66,
-                b11: 0.0,
-                b22: 3.763,
-                b12: 15.45,
-            },
-            ad_ref_mm: 10.0,
-        }
     }
 
     #[test]

@@ -148,36 +148,28 @@ fn solve_rising_root(a: f64, b: f64, k: f64) -> Option<f64> {
 mod tests {
     use super::*;
     use crate::core::engagement::{engagement, max_chip_thickness_mm, Contour};
+    use crate::core::fixtures::seed_001_ten_mm;
     use crate::core::tolerance::approx_eq;
-
-    /// seed 001 Table 4, 10 mm new end mill (β11 = 0, MODEL.md §3).
-    fn ten_mm() -> ForceModel {
-        ForceModel {
-            t0_um: 43.6,
-            dt_um: 15.0,
-            l0_mm: 2.26,
-            dl_mm: 0.436,
-            coefficients: Coefficients {
-                b0: 269.1,
-                b1: 65.84,
-                b2: 53.66,
-                b11: 0.0,
-                b22: 3.763,
-                b12: 15.45,
-            },
-            ad_ref_mm: 10.0,
-        }
-    }
 
     #[test]
     fn at_the_design_centre_the_force_is_beta0() {
-        assert!(approx_eq(ten_mm().force_n(43.6, 2.26, 10.0), 269.1, 1e-9));
+        assert!(approx_eq(
+            {
+                let m = seed_001_ten_mm();
+                m.force_n(m.t0_um, m.l0_mm, 10.0)
+            },
+            269.1,
+            1e-9
+        ));
     }
 
     #[test]
     fn force_scales_linearly_with_axial_depth() {
         assert!(approx_eq(
-            ten_mm().force_n(43.6, 2.26, 5.0),
+            {
+                let m = seed_001_ten_mm();
+                m.force_n(m.t0_um, m.l0_mm, 5.0)
+            },
             269.1 / 2.0,
             1e-9
         ));
@@ -185,7 +177,7 @@ mod tests {
 
     #[test]
     fn solving_for_chip_thickness_inverts_the_model() {
-        let m = ten_mm();
+        let m = seed_001_ten_mm();
         let t = m.chip_thickness_for_force_um(300.0, 3.0, 10.0).unwrap();
         assert!(approx_eq(m.force_n(t, 3.0, 10.0), 300.0, 1e-9));
         let quad = ForceModel {
@@ -202,7 +194,7 @@ mod tests {
     #[test]
     fn constant_force_feeds_on_concave_arcs_match_model_section_3() {
         // 10 mm, z 6, S 9600, Rd 0.5: R/r → feed (mm/min) at the standard force β0.
-        let m = ten_mm();
+        let m = seed_001_ten_mm();
         for (ratio, feed) in [(3.0, 2340.0), (2.0, 1160.0), (1.6, 513.0)] {
             let contour = Contour::Concave {
                 surface_radius_mm: 5.0 * ratio,
@@ -236,7 +228,7 @@ mod tests {
             0.5,
         )
         .unwrap();
-        assert!(ten_mm()
+        assert!(seed_001_ten_mm()
             .chip_thickness_for_force_um(269.1, e.arc_length_mm, 10.0)
             .is_none());
     }

@@ -6,6 +6,8 @@
 pub mod conditions;
 pub mod engagement;
 pub mod error;
+#[cfg(test)]
+pub(crate) mod fixtures;
 pub mod force_fit;
 pub mod force_model;
 pub mod operation;

@@ -22,6 +22,8 @@ const DT_UM_PER_MM_DIAMETER: f64 = 1.5;
 const DL_PER_MM_DIAMETER: f64 = 0.0436;
 /// Micrometres per millimetre.
 const UM_PER_MM: f64 = 1000.0;
+/// Most measurements one fit takes (the papers fitted 13-run designs).
+pub const MAX_FIT_POINTS: usize = 10_000;
 
 /// One measured cut.
 #[derive(Debug, Clone, Copy, Serialize, Deserialize, ToSchema)]
@@ -113,6 +115,15 @@ pub async fn fit(
     ApiPath(tool_id): ApiPath<i64>,
     ApiJson(request): ApiJson<FitRequest>,
 ) -> Result<Response, ApiError> {
+    if request.points.len() > MAX_FIT_POINTS {
+        return Err(ApiError::field(
+            "points",
+            format!(
+                "{} points given; at most {MAX_FIT_POINTS} are fitted at once",
+                request.points.len()
+            ),
+        ));
+    }
     let tool = crate::service::resources::crud::get::<crate::service::resources::tools::Tool>(
         &state.pool,
         tool_id,

@@ -97,6 +97,8 @@ async fn tools_are_filtered_by_type_diameter_material_and_paged() {
     assert_problem(&app.get("/v1/tools?limit=0").await, 400, None);
     assert_problem(&app.get("/v1/tools?diameter_mm=ten").await, 400, None);
     assert_problem(&app.get("/v1/tools?colour=red").await, 400, None);
+    assert_problem(&app.get("/v1/tools?diameter_mm=NaN").await, 400, None);
+    assert_problem(&app.get("/v1/tools?tool_type=cone").await, 400, None);
     app.stop().await;
 }
 

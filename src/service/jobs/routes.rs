@@ -68,7 +68,7 @@ async fn submit(
     tracing::info!(job = %id, kind = kind.as_str(), "job queued");
 
     let location = format!("/v1/jobs/{id}");
-    let wait = preferred_wait(headers).map(|n| n.min(state.config.max_wait_s));
+    let wait = preferred_wait(headers).map(|n| n.min(state.config.effective_max_wait_s()));
     if let Some(seconds) = wait {
         let deadline = tokio::time::Instant::now() + Duration::from_secs(seconds);
         loop {

@@ -41,6 +41,7 @@ pub async fn list<R: Record, F: ListFilter>(
         format!("must be between 1 and {MAX_PAGE_LIMIT}"),
     );
     v.check(offset >= 0, "offset", "must be >= 0");
+    filter.validate(&mut v);
     if v.has_errors() {
         return Err(to_bad_query(v));
     }

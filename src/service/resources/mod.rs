@@ -135,6 +135,8 @@ pub trait ListFilter: serde::de::DeserializeOwned + Send {
     /// `(condition with ? placeholders, values)` pairs, ANDed together.
     fn conditions(&self) -> Vec<(String, Vec<SqlValue>)>;
     fn page(&self) -> PageRequest;
+    /// Checks the filter values (e.g. finiteness); errors name the parameter.
+    fn validate(&self, _v: &mut Validator) {}
 }
 
 /// Default number of rows in one page of a list.

@@ -187,6 +187,19 @@ impl ListFilter for ToolFilter {
             offset: self.offset,
         }
     }
+
+    fn validate(&self, v: &mut Validator) {
+        if let Some(d) = self.diameter_mm {
+            v.positive("diameter_mm", d);
+        }
+        if let Some(t) = &self.tool_type {
+            v.check(
+                ToolType::parse(t).is_some(),
+                "tool_type",
+                "must be square, radius or ball",
+            );
+        }
+    }
 }
 
 crate::crud_api!(
