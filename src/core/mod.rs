@@ -10,9 +10,11 @@ pub mod error;
 pub(crate) mod fixtures;
 pub mod force_fit;
 pub mod force_model;
+pub mod geometry;
 pub mod operation;
 pub mod progress;
 pub mod tolerance;
 pub mod tool;
+pub mod toolpath;
 
 pub use error::CoreError;
