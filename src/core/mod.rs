@@ -3,7 +3,9 @@
 //! Nothing in here knows about HTTP, SQL, async runtimes or OpenAPI; a test
 //! (`core_is_pure` in `tests/architecture.rs`) fails if a file under `src/core/` names them.
 
+pub mod analysis;
 pub mod conditions;
+pub mod curvature;
 pub mod engagement;
 pub mod error;
 #[cfg(test)]
@@ -13,6 +15,7 @@ pub mod force_model;
 pub mod geometry;
 pub mod operation;
 pub mod progress;
+pub mod stock;
 pub mod tolerance;
 pub mod tool;
 pub mod toolpath;

@@ -1,0 +1,201 @@
+//! The material-removal simulation (MODEL.md §6, seed 004 §2.1): the in-process stock
+//! is updated move by move and, at every sample, the engagement of the leading half,
+//! the arc length, the chip thickness at the programmed feed and the force are found.
+
+use super::probe::{AngleTable, Contact, ProbeSite};
+use super::sampling::{for_each_sample, move_curvatures, Sample};
+use super::slices::{self, Slice};
+use crate::core::engagement::max_chip_thickness_mm;
+use crate::core::force_model::ForceModel;
+use crate::core::progress::Progress;
+use crate::core::toolpath::Toolpath;
+use crate::core::CoreError;
+
+/// The raster is brought up to date every this many samples …
+pub const CHUNK_SAMPLES: usize = 8;
+/// … or sooner when the direction has turned by more than this since the last update,
+/// so one straight capsule stands for the swept area.
+pub const CHUNK_TURN_DEG: f64 = 5.0;
+/// Micrometres per millimetre.
+const UM_PER_MM: f64 = 1000.0;
+/// Smallest feed ratio at the cutting point (a convex path tighter than the tool).
+const MIN_CUTTING_POINT_RATIO: f64 = 0.05;
+/// Engagement this close to a full slot has no side: the feed ratio is 1.
+const SLOT_ALPHA_RAD: f64 = 0.99 * std::f64::consts::PI;
+/// Samples between progress reports and cancellation checks.
+const PROGRESS_EVERY: usize = 4096;
+
+/// What the tool and the cut are.
+#[derive(Debug, Clone, Copy)]
+pub struct Cutter {
+    pub radius_mm: f64,
+    pub flutes: u32,
+    /// Used where the program has no S word.
+    pub default_spindle_rpm: Option<f64>,
+}
+
+/// The engagement and its consequences at one sample.
+#[derive(Debug, Clone, Copy)]
+pub struct SampleResult {
+    pub sample: Sample,
+    /// Path distance from the start, mm.
+    pub s_mm: f64,
+    /// Largest engagement over the slices cut.
+    pub contact: Contact,
+    /// Engagement arc length L = r·α, mm.
+    pub arc_length_mm: f64,
+    /// Axial depth of cut in material, mm.
+    pub ad_mm: f64,
+    /// Maximum undeformed chip thickness at the programmed feed, µm.
+    pub t_m_um: f64,
+    /// Predicted XY force, N, when a force model is given.
+    pub force_n: Option<f64>,
+    /// A move straight down (no XY motion): no leading half to measure.
+    pub plunge: bool,
+}
+
+struct Chunk {
+    start: Option<(f64, f64)>,
+    heading: (f64, f64),
+    cut: usize,
+    recent: Vec<(f64, f64)>,
+}
+
+impl Chunk {
+    fn flush(&mut self, slices: &mut [Slice], radius: f64) {
+        if let (Some(a), Some(&b)) = (self.start, self.recent.last()) {
+            for s in slices.iter_mut().take(self.cut) {
+                s.raster.clear_capsule(a, b, radius);
+            }
+            self.start = Some(b);
+            self.recent.clear();
+            self.recent.push(b);
+        }
+    }
+}
+
+/// Feed per tooth at the cutting point over that at the centre, from the path's
+/// curvature and the side the material is on (MODEL.md §2, seed 000 Eq. 1).
+fn cutting_point_ratio(sample: &Sample, contact: &Contact, radius: f64) -> f64 {
+    let rc = sample.curvature.radius_mm();
+    if !rc.is_finite() || rc <= 0.0 || contact.alpha_rad >= SLOT_ALPHA_RAD {
+        return 1.0;
+    }
+    let material_left = (contact.entry_rad + contact.exit_rad) > 0.0;
+    let centre_left = sample.curvature.kappa > 0.0;
+    if material_left == centre_left {
+        ((rc - radius) / rc).max(MIN_CUTTING_POINT_RATIO)
+    } else {
+        (rc + radius) / rc
+    }
+}
+
+/// Runs the simulation, handing every sample's result to `sink`.
+pub fn simulate(
+    path: &Toolpath,
+    cutter: Cutter,
+    slices: &mut [Slice],
+    spacing_mm: f64,
+    force_model: Option<&ForceModel>,
+    progress: &dyn Progress,
+    total_samples: usize,
+    mut sink: impl FnMut(&SampleResult),
+) -> Result<(), CoreError> {
+    let curvatures = move_curvatures(path);
+    let table = AngleTable::default();
+    let r = cutter.radius_mm;
+    let cos_turn = CHUNK_TURN_DEG.to_radians().cos();
+    let mut chunk = Chunk { start: None, heading: (0.0, 0.0), cut: 0, recent: Vec::with_capacity(CHUNK_SAMPLES + 1) };
+    let mut contacts = vec![Contact::default(); slices.len()];
+    let mut s_mm = 0.0;
+    let mut n = 0usize;
+    let mut failure: Option<CoreError> = None;
+
+    for_each_sample(path, &curvatures, spacing_mm, |sample| {
+        n += 1;
+        if n % PROGRESS_EVERY == 0 {
+            progress.report(n as f64 / total_samples.max(1) as f64);
+            if let Err(e) = progress.checkpoint() {
+                failure = Some(e);
+                return false;
+            }
+        }
+        s_mm += sample.step_mm;
+        let p = (sample.p.x, sample.p.y);
+        let cut = slices::slices_cut(slices, sample.p.z);
+        if cut != chunk.cut {
+            chunk.flush(slices, r);
+            chunk = Chunk { start: None, heading: sample.heading, cut, recent: std::mem::take(&mut chunk.recent) };
+            chunk.recent.clear();
+        }
+        let plunge = sample.heading.0 == 0.0 && sample.heading.1 == 0.0;
+        let mut result = SampleResult {
+            sample: *sample,
+            s_mm,
+            contact: Contact::default(),
+            arc_length_mm: 0.0,
+            ad_mm: 0.0,
+            t_m_um: 0.0,
+            force_n: force_model.map(|_| 0.0),
+            plunge,
+        };
+        if cut > 0 && !plunge {
+            let site = ProbeSite { center: p, radius: r, heading: sample.heading, recent: &chunk.recent };
+            for (k, s) in slices.iter().take(cut).enumerate() {
+                contacts[k] = table.contact(&s.raster, &site);
+            }
+            evaluate(&mut result, &contacts[..cut], slices, cutter, force_model);
+        }
+        // Update the stock.
+        if chunk.start.is_none() {
+            chunk.start = Some(p);
+            chunk.heading = sample.heading;
+        }
+        chunk.recent.push(p);
+        let turned = chunk.heading.0 * sample.heading.0 + chunk.heading.1 * sample.heading.1 < cos_turn;
+        if chunk.recent.len() > CHUNK_SAMPLES || turned {
+            chunk.flush(slices, r);
+            chunk.heading = sample.heading;
+        }
+        sink(&result);
+        true
+    });
+    chunk.flush(slices, r);
+    match failure {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+/// Fills α, L, Ad, t_m and the force of `result` from the contacts of the cut slices.
+fn evaluate(result: &mut SampleResult, contacts: &[Contact], slices: &[Slice], cutter: Cutter, model: Option<&ForceModel>) {
+    let r = cutter.radius_mm;
+    let tip = result.sample.p.z;
+    let Some(best) = contacts.iter().copied().max_by(|a, b| a.alpha_rad.total_cmp(&b.alpha_rad)) else {
+        return;
+    };
+    if best.alpha_rad <= 0.0 {
+        return;
+    }
+    let rpm = result.sample.spindle_rpm.or(cutter.default_spindle_rpm).unwrap_or(0.0);
+    let fz_c_mm = if rpm > 0.0 { result.sample.feed_mm_min / (f64::from(cutter.flutes) * rpm) } else { 0.0 };
+    let ratio = cutting_point_ratio(&result.sample, &best, r);
+    let t_m = |c: &Contact| max_chip_thickness_mm(fz_c_mm * ratio, c.alpha_rad) * UM_PER_MM;
+    result.contact = best;
+    result.arc_length_mm = r * best.alpha_rad;
+    result.t_m_um = t_m(&best);
+    let mut force = 0.0;
+    for (c, s) in contacts.iter().zip(slices) {
+        if c.alpha_rad <= 0.0 {
+            continue;
+        }
+        let thickness = s.z_top - tip.max(s.z_bottom);
+        result.ad_mm += thickness;
+        if let Some(m) = model {
+            force += m.force_n(t_m(c), r * c.alpha_rad, thickness);
+        }
+    }
+    if model.is_some() {
+        result.force_n = Some(force);
+    }
+}

@@ -1,0 +1,235 @@
+//! Path analysis (seed 002 subsystem (b), seed 004 §2.1; MODEL.md §6): simulate the
+//! material removal of a layer along a tool path and report, per sample, the engagement,
+//! chip thickness and force, and the critical regions where the tool is overloaded.
+
+pub mod engine;
+pub mod probe;
+pub mod region;
+pub mod report;
+pub mod sampling;
+pub mod slices;
+
+use crate::core::error::require_positive;
+use crate::core::force_model::ForceModel;
+use crate::core::progress::Progress;
+use crate::core::stock::Rect;
+use crate::core::tool::EndMill;
+use crate::core::toolpath::{Motion, Toolpath};
+use crate::core::CoreError;
+use engine::{simulate, Cutter};
+pub use region::StockRegion;
+use report::{CriticalRegion, FinishedReport, HistogramBin, ReportBuilder, Series, Stats};
+use serde::Serialize;
+
+/// Engagement above this is critical by default (seed 002 §2.4, seed 004 §2.1), deg.
+pub const DEFAULT_ALPHA_LIMIT_DEG: f64 = 40.0;
+/// Samples are never further apart than this by default, mm (issue: 0.05 mm or D/100).
+pub const DEFAULT_MAX_SPACING_MM: f64 = 0.05;
+/// Default spacing as a fraction of the tool diameter.
+pub const SPACING_PER_DIAMETER: f64 = 0.01;
+/// Default raster cell as a fraction of the tool diameter (0.05 mm for 10 mm): the
+/// distance raster places smooth boundaries to a small fraction of a cell.
+pub const CELL_PER_DIAMETER: f64 = 1.0 / 200.0;
+/// Raster cell bounds, mm.
+pub const MIN_CELL_MM: f64 = 0.002;
+pub const MAX_CELL_MM: f64 = 0.5;
+/// Raster memory the analysis may use, cells over all slices (one byte each: 256 MiB).
+pub const MAX_RASTER_CELLS: f64 = 256.0 * 1024.0 * 1024.0;
+/// Most series points a request may ask for.
+pub const MAX_SERIES_POINTS: usize = 100_000;
+
+/// What to analyse and how finely.
+#[derive(Debug, Clone)]
+pub struct AnalysisSpec {
+    pub tool: EndMill,
+    /// Where the material is at the start: the union of these.
+    pub stock: Vec<StockRegion>,
+    /// Regions already open (a pre-drilled hole, a previous layer).
+    pub open: Vec<StockRegion>,
+    /// The layer's z range, mm.
+    pub z_top: f64,
+    pub z_bottom: f64,
+    pub force_model: Option<ForceModel>,
+    /// Used where the program has no S word.
+    pub default_spindle_rpm: Option<f64>,
+    /// The machine's rapid rate, mm/min.
+    pub rapid_mm_min: f64,
+    pub sample_spacing_mm: Option<f64>,
+    pub cell_mm: Option<f64>,
+    pub alpha_limit_deg: f64,
+    /// 0: no series.
+    pub series_points: usize,
+}
+
+/// One z slice of the simulated stock.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SliceSummary {
+    pub z_top: f64,
+    pub z_bottom: f64,
+    /// Area the path removed in this slice, mm².
+    pub removed_area_mm2: f64,
+}
+
+/// The figures of a whole analysis.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Summary {
+    pub samples: usize,
+    pub sample_spacing_mm: f64,
+    pub cell_mm: f64,
+    pub raster_memory_bytes: usize,
+    pub slices: Vec<SliceSummary>,
+    /// Length of feed moves in material, mm.
+    pub cutting_length_mm: f64,
+    /// Length of feed moves in the air, mm.
+    pub air_cut_length_mm: f64,
+    pub rapid_length_mm: f64,
+    /// Feed moves at their programmed feeds plus rapids at the rapid rate, min.
+    pub time_at_programmed_feeds_min: f64,
+    pub removed_volume_mm3: f64,
+    pub alpha_deg: Stats,
+    pub t_m_um: Stats,
+    pub force_n: Option<Stats>,
+    /// Cut length per 10° of engagement.
+    pub alpha_histogram: Vec<HistogramBin>,
+    pub alpha_limit_deg: f64,
+    pub critical_length_mm: f64,
+    pub warnings: Vec<String>,
+}
+
+/// The answer of an analysis.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Analysis {
+    pub summary: Summary,
+    pub critical_regions: Vec<CriticalRegion>,
+    pub series: Option<Series>,
+}
+
+/// The sample spacing and raster cell an analysis of `spec` uses.
+pub fn resolution(spec: &AnalysisSpec, bounds: Rect, slices: usize) -> (f64, f64) {
+    let d = spec.tool.diameter_mm;
+    let spacing = spec.sample_spacing_mm.unwrap_or((SPACING_PER_DIAMETER * d).min(DEFAULT_MAX_SPACING_MM));
+    let wanted = spec.cell_mm.unwrap_or((CELL_PER_DIAMETER * d).clamp(MIN_CELL_MM, MAX_CELL_MM));
+    let area = (bounds.x_max - bounds.x_min) * (bounds.y_max - bounds.y_min);
+    let floor = (area * slices as f64 / MAX_RASTER_CELLS).sqrt();
+    (spacing, wanted.max(floor))
+}
+
+fn validate(path: &Toolpath, spec: &AnalysisSpec) -> Result<(), CoreError> {
+    require_positive("tool.diameter_mm", spec.tool.diameter_mm)?;
+    if let Some(s) = spec.sample_spacing_mm {
+        require_positive("sample_spacing_mm", s)?;
+    }
+    if let Some(c) = spec.cell_mm {
+        require_positive("cell_mm", c)?;
+    }
+    require_positive("rapid_mm_min", spec.rapid_mm_min)?;
+    if !(spec.alpha_limit_deg > 0.0 && spec.alpha_limit_deg < 180.0) {
+        return Err(CoreError::invalid("alpha_limit_deg", "must be between 0 and 180"));
+    }
+    if !(spec.z_top.is_finite() && spec.z_bottom.is_finite() && spec.z_top > spec.z_bottom) {
+        return Err(CoreError::invalid("layer", "z_top must be finite and above z_bottom"));
+    }
+    if spec.series_points > MAX_SERIES_POINTS {
+        return Err(CoreError::invalid("series_points", format!("at most {MAX_SERIES_POINTS}")));
+    }
+    if spec.stock.is_empty() {
+        return Err(CoreError::invalid("stock", "no stock region given"));
+    }
+    for m in &path.moves {
+        if !matches!(m.motion, Motion::Rapid) && m.feed_mm_min.is_none_or(|f| f <= 0.0) {
+            return Err(CoreError::invalid("program", format!("line {}: a feed move with no feed (F)", m.line)));
+        }
+    }
+    Ok(())
+}
+
+/// Analyses `path` in the layer of `spec`.
+pub fn analyze(path: &Toolpath, spec: &AnalysisSpec, progress: &dyn Progress) -> Result<Analysis, CoreError> {
+    validate(path, spec)?;
+    let bounds = region::union_bounds(&spec.stock);
+    let levels = slices::slice_levels(path, spec.z_bottom, spec.z_top);
+    let (spacing, cell) = resolution(spec, bounds, levels.len() - 1);
+    let mut slices = slices::build(&levels, bounds, cell, |raster| region::paint(raster, &spec.stock, &spec.open));
+    let initial: Vec<f64> = slices.iter().map(|s| s.raster.material_area_mm2()).collect();
+
+    let total_length: f64 = path.moves.iter().map(sampling::move_length).sum();
+    let total_samples: usize = path
+        .moves
+        .iter()
+        .map(|m| ((sampling::move_length(m) / spacing).ceil() as usize).max(1))
+        .sum();
+    let cutter = Cutter {
+        radius_mm: spec.tool.radius_mm(),
+        flutes: spec.tool.flutes,
+        default_spindle_rpm: spec.default_spindle_rpm,
+    };
+    let mut builder = ReportBuilder::new(spec.alpha_limit_deg, spec.tool.diameter_mm, spec.series_points, total_length);
+    simulate(path, cutter, &mut slices, spacing, spec.force_model.as_ref(), progress, total_samples, |r| builder.add(r))?;
+    progress.report(1.0);
+    let report = builder.finish();
+    Ok(assemble(path, spec, report, &slices, &initial, spacing, cell))
+}
+
+fn assemble(
+    path: &Toolpath,
+    spec: &AnalysisSpec,
+    report: FinishedReport,
+    slices: &[slices::Slice],
+    initial: &[f64],
+    spacing: f64,
+    cell: f64,
+) -> Analysis {
+    let mut warnings = path.warnings.clone();
+    if report.rapid_in_material.iter().any(|_| true) {
+        let lines: Vec<String> = report.rapid_in_material.iter().take(10).map(u32::to_string).collect();
+        warnings.push(format!("rapid moves cut material at lines {}", lines.join(", ")));
+    }
+    if report.plunge_samples > 0 {
+        warnings.push(format!("{} samples plunge straight down (no leading half to measure)", report.plunge_samples));
+    }
+    if spec.force_model.is_none() {
+        warnings.push("no force model: forces are not predicted".to_string());
+    }
+    let slice_summaries: Vec<SliceSummary> = slices
+        .iter()
+        .zip(initial)
+        .map(|(s, a0)| SliceSummary { z_top: s.z_top, z_bottom: s.z_bottom, removed_area_mm2: a0 - s.raster.material_area_mm2() })
+        .collect();
+    let removed_volume_mm3 = slice_summaries.iter().map(|s| s.removed_area_mm2 * (s.z_top - s.z_bottom)).sum();
+    let (mut rapid_length, mut minutes) = (0.0, 0.0);
+    for m in &path.moves {
+        let len = sampling::move_length(m);
+        if matches!(m.motion, Motion::Rapid) {
+            rapid_length += len;
+            minutes += len / spec.rapid_mm_min;
+        } else {
+            minutes += len / m.feed_mm_min.unwrap_or(f64::INFINITY);
+        }
+    }
+    Analysis {
+        summary: Summary {
+            samples: report.samples,
+            sample_spacing_mm: spacing,
+            cell_mm: cell,
+            raster_memory_bytes: slices.iter().map(|s| s.raster.memory_bytes()).sum(),
+            slices: slice_summaries,
+            cutting_length_mm: report.cutting_length_mm,
+            air_cut_length_mm: report.air_cut_length_mm,
+            rapid_length_mm: rapid_length,
+            time_at_programmed_feeds_min: minutes,
+            removed_volume_mm3,
+            alpha_deg: report.alpha_deg,
+            t_m_um: report.t_m_um,
+            force_n: report.force_n,
+            alpha_histogram: report.histogram,
+            alpha_limit_deg: spec.alpha_limit_deg,
+            critical_length_mm: report.regions.iter().map(|r| r.length_mm).sum(),
+            warnings,
+        },
+        critical_regions: report.regions,
+        series: (spec.series_points > 0).then_some(report.series),
+    }
+}
+
+#[cfg(test)]
+mod accuracy_tests;

@@ -1,0 +1,229 @@
+//! Samples along a tool path at a fixed spacing, with position, direction, curvature,
+//! programmed feed and source line (MODEL.md §6: "per sample").
+
+use crate::core::curvature::{polyline_curvature, PointCurvature, DEFAULT_FIT_HALF_WIDTH_MM};
+use crate::core::toolpath::{Motion, Move, Plane, Toolpath, P3};
+use std::f64::consts::PI;
+
+/// Below this (mm) a move has no length in XY.
+const MIN_XY_MM: f64 = 1e-9;
+
+/// One point of the path to analyse.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sample {
+    pub p: P3,
+    /// Unit tangent in XY; (0, 0) for a plunge (no XY motion).
+    pub heading: (f64, f64),
+    /// Path length from the previous sample, mm.
+    pub step_mm: f64,
+    pub move_index: usize,
+    pub line: u32,
+    /// Programmed feed, mm/min (0 when none is programmed).
+    pub feed_mm_min: f64,
+    pub spindle_rpm: Option<f64>,
+    pub rapid: bool,
+    /// Curvature of the tool-centre path in XY.
+    pub curvature: PointCurvature,
+}
+
+/// Position on `m` at parameter `t` ∈ [0, 1], and its XY tangent (not normalised).
+fn point_on(m: &Move, t: f64) -> (P3, (f64, f64)) {
+    match m.motion {
+        Motion::Rapid | Motion::Linear => {
+            let p = P3::new(
+                m.start.x + (m.end.x - m.start.x) * t,
+                m.start.y + (m.end.y - m.start.y) * t,
+                m.start.z + (m.end.z - m.start.z) * t,
+            );
+            (p, (m.end.x - m.start.x, m.end.y - m.start.y))
+        }
+        Motion::Arc { center, clockwise, plane, turns } => {
+            let (s, e, c) = in_plane(m.start, m.end, center, plane);
+            let a0 = (s.1 - c.1).atan2(s.0 - c.0);
+            let sweep = arc_sweep(s, e, c, clockwise, turns);
+            let r = (s.0 - c.0).hypot(s.1 - c.1);
+            let a = a0 + sweep * t;
+            let (u, v) = (c.0 + r * a.cos(), c.1 + r * a.sin());
+            let axial = s.2 + (e.2 - s.2) * t;
+            let du = (-r * a.sin() * sweep, r * a.cos() * sweep);
+            let d_axial = e.2 - s.2;
+            let (p, d) = from_plane((u, v, axial), (du.0, du.1, d_axial), plane);
+            (p, (d.0, d.1))
+        }
+    }
+}
+
+/// Signed sweep of an arc (radians): negative for clockwise.
+pub fn arc_sweep(s: (f64, f64, f64), e: (f64, f64, f64), c: (f64, f64, f64), clockwise: bool, turns: u32) -> f64 {
+    let a0 = (s.1 - c.1).atan2(s.0 - c.0);
+    let a1 = (e.1 - c.1).atan2(e.0 - c.0);
+    let mut sweep = a1 - a0;
+    if clockwise {
+        while sweep >= -1e-12 {
+            sweep -= 2.0 * PI;
+        }
+        sweep -= 2.0 * PI * f64::from(turns);
+    } else {
+        while sweep <= 1e-12 {
+            sweep += 2.0 * PI;
+        }
+        sweep += 2.0 * PI * f64::from(turns);
+    }
+    sweep
+}
+
+/// Start, end and centre as (u, v, axial) in the arc's plane.
+fn in_plane(s: P3, e: P3, c: P3, plane: Plane) -> ((f64, f64, f64), (f64, f64, f64), (f64, f64, f64)) {
+    let f = |p: P3| match plane {
+        Plane::Xy => (p.x, p.y, p.z),
+        Plane::Zx => (p.z, p.x, p.y),
+        Plane::Yz => (p.y, p.z, p.x),
+    };
+    (f(s), f(e), f(c))
+}
+
+fn from_plane(p: (f64, f64, f64), d: (f64, f64, f64), plane: Plane) -> (P3, (f64, f64, f64)) {
+    match plane {
+        Plane::Xy => (P3::new(p.0, p.1, p.2), (d.0, d.1, d.2)),
+        Plane::Zx => (P3::new(p.1, p.2, p.0), (d.1, d.2, d.0)),
+        Plane::Yz => (P3::new(p.2, p.0, p.1), (d.2, d.0, d.1)),
+    }
+}
+
+/// Length of a move, mm.
+pub fn move_length(m: &Move) -> f64 {
+    match m.motion {
+        Motion::Rapid | Motion::Linear => {
+            ((m.end.x - m.start.x).powi(2) + (m.end.y - m.start.y).powi(2) + (m.end.z - m.start.z).powi(2)).sqrt()
+        }
+        Motion::Arc { center, clockwise, plane, turns } => {
+            let (s, e, c) = in_plane(m.start, m.end, center, plane);
+            let r = (s.0 - c.0).hypot(s.1 - c.1);
+            let planar = r * arc_sweep(s, e, c, clockwise, turns).abs();
+            planar.hypot(e.2 - s.2)
+        }
+    }
+}
+
+/// Curvature at the start and end of every move: exact on XY arcs, from the polynomial
+/// fit (seed 000 §2) over runs of consecutive linear feed moves.
+pub fn move_curvatures(path: &Toolpath) -> Vec<(PointCurvature, PointCurvature)> {
+    let moves = &path.moves;
+    let mut out = vec![(PointCurvature::STRAIGHT, PointCurvature::STRAIGHT); moves.len()];
+    let mut i = 0;
+    while i < moves.len() {
+        let is_run_move = |m: &Move| {
+            matches!(m.motion, Motion::Linear) && (m.end.x - m.start.x).hypot(m.end.y - m.start.y) > MIN_XY_MM
+        };
+        if let Motion::Arc { center, clockwise, plane: Plane::Xy, .. } = moves[i].motion {
+            let r = (moves[i].start.x - center.x).hypot(moves[i].start.y - center.y);
+            let k = PointCurvature { kappa: if clockwise { -1.0 / r } else { 1.0 / r }, corner: false };
+            out[i] = (k, k);
+            i += 1;
+            continue;
+        }
+        if !is_run_move(&moves[i]) {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        while i < moves.len() && is_run_move(&moves[i]) && (i == start || connected(&moves[i - 1], &moves[i])) {
+            i += 1;
+        }
+        let mut pts: Vec<(f64, f64)> = Vec::with_capacity(i - start + 1);
+        pts.push((moves[start].start.x, moves[start].start.y));
+        pts.extend(moves[start..i].iter().map(|m| (m.end.x, m.end.y)));
+        let k = polyline_curvature(&pts, DEFAULT_FIT_HALF_WIDTH_MM);
+        for (n, slot) in out[start..i].iter_mut().enumerate() {
+            *slot = (k[n], k[n + 1]);
+        }
+    }
+    out
+}
+
+fn connected(a: &Move, b: &Move) -> bool {
+    (a.end.x - b.start.x).hypot(a.end.y - b.start.y) < MIN_XY_MM
+}
+
+/// Interpolates the curvature along a move from its end values; a sharp corner at one
+/// end does not spread into the move.
+fn curvature_at(ends: (PointCurvature, PointCurvature), t: f64) -> PointCurvature {
+    match (ends.0.corner, ends.1.corner) {
+        (true, true) => PointCurvature::STRAIGHT,
+        (true, false) => ends.1,
+        (false, true) => ends.0,
+        (false, false) => PointCurvature { kappa: ends.0.kappa + (ends.1.kappa - ends.0.kappa) * t, corner: false },
+    }
+}
+
+/// Calls `visit` for every sample of the moves, in order: each move is divided into equal
+/// steps no longer than `spacing_mm`; a sample sits at the end of each step.
+pub fn for_each_sample(
+    path: &Toolpath,
+    curvatures: &[(PointCurvature, PointCurvature)],
+    spacing_mm: f64,
+    mut visit: impl FnMut(&Sample) -> bool,
+) {
+    for (index, m) in path.moves.iter().enumerate() {
+        let len = move_length(m);
+        let steps = ((len / spacing_mm).ceil() as usize).max(1);
+        let step_mm = len / steps as f64;
+        for k in 1..=steps {
+            let t = k as f64 / steps as f64;
+            let (p, d) = point_on(m, t);
+            let dl = d.0.hypot(d.1);
+            let heading = if dl > MIN_XY_MM { (d.0 / dl, d.1 / dl) } else { (0.0, 0.0) };
+            let sample = Sample {
+                p,
+                heading,
+                step_mm,
+                move_index: index,
+                line: m.line,
+                feed_mm_min: m.feed_mm_min.unwrap_or(0.0),
+                spindle_rpm: m.spindle_rpm,
+                rapid: matches!(m.motion, Motion::Rapid),
+                curvature: curvature_at(curvatures[index], t),
+            };
+            if !visit(&sample) {
+                return;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn mv(motion: Motion, start: P3, end: P3) -> Move {
+        Move { motion, start, end, feed_mm_min: Some(1000.0), spindle_rpm: Some(9600.0), tool: None, line: 1 }
+    }
+
+    #[test]
+    fn a_quarter_arc_has_the_length_and_curvature_of_its_circle() {
+        let m = mv(
+            Motion::Arc { center: P3::new(0.0, 0.0, 0.0), clockwise: false, plane: Plane::Xy, turns: 0 },
+            P3::new(10.0, 0.0, 0.0),
+            P3::new(0.0, 10.0, 0.0),
+        );
+        assert!((move_length(&m) - 5.0 * PI).abs() < 1e-9);
+        let path = Toolpath { moves: vec![m], events: vec![], source_units: crate::core::toolpath::Units::Mm, warnings: vec![] };
+        let k = move_curvatures(&path);
+        assert!((k[0].0.kappa - 0.1).abs() < 1e-12);
+        let mut n = 0;
+        for_each_sample(&path, &k, 0.05, |s| {
+            n += 1;
+            assert!((s.p.x.hypot(s.p.y) - 10.0).abs() < 1e-9);
+            true
+        });
+        assert_eq!(n, (5.0 * PI / 0.05).ceil() as usize);
+    }
+
+    #[test]
+    fn a_full_circle_sweeps_two_pi_and_extra_turns_add_more() {
+        let s = (10.0, 0.0, 0.0);
+        let c = (0.0, 0.0, 0.0);
+        assert!((arc_sweep(s, s, c, false, 0) - 2.0 * PI).abs() < 1e-12);
+        assert!((arc_sweep(s, s, c, true, 1) + 4.0 * PI).abs() < 1e-12);
+    }
+}

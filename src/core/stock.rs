@@ -1,0 +1,338 @@
+//! The in-process stock of one z slice as a raster of clamped signed distances
+//! (MODEL.md §6). Each cell keeps the distance from its centre to the material boundary
+//! (positive in material), clamped to ±[`SDF_CLAMP_CELLS`] cells and stored in one byte;
+//! a probe interpolates bilinearly, which places a smooth boundary to a small fraction of
+//! a cell. Memory grows with the stock area (one byte per cell), not with the path.
+
+/// Distances are clamped to this many cells either side of the boundary.
+pub const SDF_CLAMP_CELLS: f64 = 2.0;
+/// Stored units per cell of distance (so ±2 cells fit an i8).
+const UNITS_PER_CELL: f64 = 63.0;
+/// The stored value of "far inside material" / "far outside".
+const FULL: i8 = 126;
+/// Segments shorter than this are treated as a single disc, mm.
+const DEGENERATE_SEGMENT_MM: f64 = 1e-12;
+
+/// A rectangle, mm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rect {
+    pub x_min: f64,
+    pub y_min: f64,
+    pub x_max: f64,
+    pub y_max: f64,
+}
+
+/// Signed distance from `(x, y)` to the boundary of `r`: positive inside.
+pub fn rect_signed_distance(r: &Rect, x: f64, y: f64) -> f64 {
+    let dx = (r.x_min - x).max(x - r.x_max);
+    let dy = (r.y_min - y).max(y - r.y_max);
+    if dx <= 0.0 && dy <= 0.0 {
+        -dx.max(dy)
+    } else {
+        -(dx.max(0.0).hypot(dy.max(0.0)))
+    }
+}
+
+/// A clamped signed-distance raster of material over a rectangle.
+#[derive(Debug, Clone)]
+pub struct Raster {
+    x0: f64,
+    y0: f64,
+    cell_mm: f64,
+    inv_cell: f64,
+    nx: usize,
+    ny: usize,
+    f: Vec<i8>,
+}
+
+impl Raster {
+    /// An empty raster (no material) covering `bounds` (plus a margin of the clamp width)
+    /// with square cells of `cell_mm`.
+    pub fn new(bounds: Rect, cell_mm: f64) -> Raster {
+        let margin = (SDF_CLAMP_CELLS + 1.0) * cell_mm;
+        let x0 = bounds.x_min - margin;
+        let y0 = bounds.y_min - margin;
+        let nx = (((bounds.x_max + margin - x0) / cell_mm).ceil() as usize).max(2);
+        let ny = (((bounds.y_max + margin - y0) / cell_mm).ceil() as usize).max(2);
+        Raster { x0, y0, cell_mm, inv_cell: 1.0 / cell_mm, nx, ny, f: vec![-FULL; nx * ny] }
+    }
+
+    pub fn size(&self) -> (usize, usize) {
+        (self.nx, self.ny)
+    }
+
+    pub fn cell_mm(&self) -> f64 {
+        self.cell_mm
+    }
+
+    /// Bytes of raster memory.
+    pub fn memory_bytes(&self) -> usize {
+        self.f.len()
+    }
+
+    fn row_y(&self, j: usize) -> f64 {
+        self.y0 + (j as f64 + 0.5) * self.cell_mm
+    }
+
+    fn col_x(&self, i: usize) -> f64 {
+        self.x0 + (i as f64 + 0.5) * self.cell_mm
+    }
+
+    fn encode(&self, d_mm: f64) -> i8 {
+        (d_mm * self.inv_cell).clamp(-SDF_CLAMP_CELLS, SDF_CLAMP_CELLS).mul_add(UNITS_PER_CELL, 0.0).round() as i8
+    }
+
+    /// Cells whose centres lie in `[x_lo, x_hi]`, as a half-open index range.
+    fn cell_range(&self, x_lo: f64, x_hi: f64) -> (usize, usize) {
+        let first = ((x_lo - self.x0) * self.inv_cell - 0.5).ceil().max(0.0);
+        let last = ((x_hi - self.x0) * self.inv_cell - 0.5).floor().min(self.nx as f64 - 1.0);
+        if last < first {
+            return (0, 0);
+        }
+        (first as usize, last as usize + 1)
+    }
+
+    /// Paints a region as material (`add`) or as removed. `intervals(y, out)` gives the
+    /// sorted, disjoint x-intervals inside the region on the line at `y`; `distance(x, y)`
+    /// its signed distance (positive inside), evaluated only in the band of cells near the
+    /// boundary, so the boundary is placed exactly.
+    pub fn paint(
+        &mut self,
+        add: bool,
+        mut intervals: impl FnMut(f64, &mut Vec<(f64, f64)>),
+        distance: impl Fn(f64, f64) -> f64,
+    ) {
+        let (nx, ny) = (self.nx, self.ny);
+        let mut inside = vec![false; nx * ny];
+        let mut out = Vec::new();
+        for j in 0..ny {
+            out.clear();
+            intervals(self.row_y(j), &mut out);
+            for &(lo, hi) in &out {
+                let (a, b) = self.cell_range(lo, hi);
+                inside[j * nx + a..j * nx + b].fill(true);
+            }
+        }
+        // Cells within the clamp width of a change of membership get exact distances.
+        let band = SDF_CLAMP_CELLS.ceil() as usize + 1;
+        let mut near = vec![false; nx * ny];
+        for j in 0..ny {
+            for i in 0..nx {
+                let k = j * nx + i;
+                let differs = (i + 1 < nx && inside[k] != inside[k + 1]) || (j + 1 < ny && inside[k] != inside[k + nx]);
+                if differs {
+                    for jj in j.saturating_sub(band)..(j + band + 2).min(ny) {
+                        near[jj * nx + i.saturating_sub(band)..jj * nx + (i + band + 2).min(nx)].fill(true);
+                    }
+                }
+            }
+        }
+        for j in 0..ny {
+            for i in 0..nx {
+                let k = j * nx + i;
+                let v = if near[k] {
+                    self.encode(distance(self.col_x(i), self.row_y(j)))
+                } else if inside[k] {
+                    FULL
+                } else {
+                    -FULL
+                };
+                self.f[k] = if add { self.f[k].max(v) } else { self.f[k].min(-v) };
+            }
+        }
+    }
+
+    /// `true` when the bilinearly interpolated distance at `(x, y)` is inside material.
+    #[inline]
+    pub fn is_material(&self, x: f64, y: f64) -> bool {
+        let fx = (x - self.x0) * self.inv_cell - 0.5;
+        let fy = (y - self.y0) * self.inv_cell - 0.5;
+        if fx < 0.0 || fy < 0.0 {
+            return false;
+        }
+        let (i, j) = (fx as usize, fy as usize);
+        if i + 1 >= self.nx || j + 1 >= self.ny {
+            return false;
+        }
+        let (tx, ty) = (fx - i as f64, fy - j as f64);
+        let k = j * self.nx + i;
+        let (a, b) = (f64::from(self.f[k]), f64::from(self.f[k + 1]));
+        let (c, d) = (f64::from(self.f[k + self.nx]), f64::from(self.f[k + self.nx + 1]));
+        let bottom = a + (b - a) * tx;
+        let top = c + (d - c) * tx;
+        bottom + (top - bottom) * ty > 0.0
+    }
+
+    /// Area holding material (cells with a positive distance), mm².
+    pub fn material_area_mm2(&self) -> f64 {
+        self.f.iter().filter(|&&v| v > 0).count() as f64 * self.cell_mm * self.cell_mm
+    }
+
+    /// Removes the area swept by a disc of radius `r` moving from `a` to `b` (a capsule).
+    pub fn clear_capsule(&mut self, a: (f64, f64), b: (f64, f64), r: f64) {
+        let reach = SDF_CLAMP_CELLS * self.cell_mm;
+        let y_lo = a.1.min(b.1) - r - reach;
+        let y_hi = a.1.max(b.1) + r + reach;
+        let j_first = ((y_lo - self.y0) * self.inv_cell - 0.5).ceil().max(0.0) as usize;
+        let j_last = ((y_hi - self.y0) * self.inv_cell - 0.5).floor();
+        if j_last < 0.0 {
+            return;
+        }
+        let j_last = (j_last as usize).min(self.ny - 1);
+        let outer = Capsule::new(a, b, r + reach);
+        let inner = Capsule::new(a, b, (r - reach).max(0.0));
+        for j in j_first..=j_last {
+            let y = self.row_y(j);
+            let Some((lo, hi)) = outer.row_interval(y) else {
+                continue;
+            };
+            let (from, to) = self.cell_range(lo, hi);
+            let (in_from, in_to) = inner.row_interval(y).map_or((from, from), |(l, h)| self.cell_range(l, h));
+            let row = j * self.nx;
+            for i in (from..in_from.max(from)).chain(in_to.max(in_from)..to) {
+                // Material stays where it is farther than r from the segment.
+                let d = outer.distance((self.col_x(i), y)) - r;
+                let v = self.encode(d);
+                let cell = &mut self.f[row + i];
+                *cell = (*cell).min(v);
+            }
+            if in_to > in_from {
+                self.f[row + in_from..row + in_to].fill(-FULL);
+            }
+        }
+    }
+}
+
+/// The set of points within `r` of a segment.
+struct Capsule {
+    a: (f64, f64),
+    b: (f64, f64),
+    r: f64,
+    /// Unit direction and length, when the segment is not degenerate.
+    dir: Option<((f64, f64), f64)>,
+}
+
+impl Capsule {
+    fn new(a: (f64, f64), b: (f64, f64), r: f64) -> Capsule {
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let len = dx.hypot(dy);
+        let dir = (len > DEGENERATE_SEGMENT_MM).then(|| ((dx / len, dy / len), len));
+        Capsule { a, b, r, dir }
+    }
+
+    /// Distance from `q` to the segment.
+    fn distance(&self, q: (f64, f64)) -> f64 {
+        let (px, py) = (q.0 - self.a.0, q.1 - self.a.1);
+        match self.dir {
+            Some(((ux, uy), len)) => {
+                let t = (px * ux + py * uy).clamp(0.0, len);
+                (px - t * ux).hypot(py - t * uy)
+            }
+            None => px.hypot(py),
+        }
+    }
+
+    fn disc_chord(&self, c: (f64, f64), y: f64) -> Option<(f64, f64)> {
+        let dy = y - c.1;
+        let h2 = self.r * self.r - dy * dy;
+        (h2 > 0.0).then(|| {
+            let h = h2.sqrt();
+            (c.0 - h, c.0 + h)
+        })
+    }
+
+    /// The x-interval of the capsule on the line at `y` (the capsule is convex).
+    fn row_interval(&self, y: f64) -> Option<(f64, f64)> {
+        let mut lo = f64::INFINITY;
+        let mut hi = f64::NEG_INFINITY;
+        for chord in [self.disc_chord(self.a, y), self.disc_chord(self.b, y)].into_iter().flatten() {
+            lo = lo.min(chord.0);
+            hi = hi.max(chord.1);
+        }
+        if let Some(((ux, uy), len)) = self.dir {
+            // Band: |n·(q − a)| < r and 0 ≤ u·(q − a) ≤ len, with n = (−uy, ux), q = (x, y).
+            let dy = y - self.a.1;
+            let mut band = (f64::NEG_INFINITY, f64::INFINITY);
+            let mut ok = true;
+            for (coef, offset, min, max) in [(-uy, ux * dy, -self.r, self.r), (ux, uy * dy, 0.0, len)] {
+                if coef.abs() < DEGENERATE_SEGMENT_MM {
+                    ok &= offset > min && offset < max;
+                } else {
+                    let (p, q) = ((min - offset) / coef, (max - offset) / coef);
+                    let (p, q) = if p < q { (p, q) } else { (q, p) };
+                    band = (band.0.max(p + self.a.0), band.1.min(q + self.a.0));
+                }
+            }
+            if ok && band.0 < band.1 {
+                lo = lo.min(band.0);
+                hi = hi.max(band.1);
+            }
+        }
+        (lo < hi).then_some((lo, hi))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(side: f64, cell: f64) -> Raster {
+        let mut r = Raster::new(Rect { x_min: 0.0, y_min: 0.0, x_max: side, y_max: side }, cell);
+        r.paint(
+            true,
+            |y, out| {
+                if (0.0..side).contains(&y) {
+                    out.push((0.0, side))
+                }
+            },
+            |x, y| rect_signed_distance(&Rect { x_min: 0.0, y_min: 0.0, x_max: side, y_max: side }, x, y),
+        );
+        r
+    }
+
+    #[test]
+    fn a_painted_square_holds_its_area_in_material() {
+        let r = square(10.0, 0.05);
+        assert!((r.material_area_mm2() - 100.0).abs() < 1e-6, "{}", r.material_area_mm2());
+        assert!(r.is_material(5.0, 5.0));
+        assert!(!r.is_material(-0.1, 5.0) && !r.is_material(5.0, 10.1));
+    }
+
+    #[test]
+    fn a_boundary_is_placed_to_a_small_fraction_of_a_cell() {
+        let r = square(10.0, 0.05);
+        assert!(r.is_material(2.0, 9.995) && !r.is_material(2.0, 10.005));
+        assert!(r.is_material(9.995, 5.0) && !r.is_material(10.005, 5.0));
+    }
+
+    #[test]
+    fn clearing_a_capsule_removes_its_area() {
+        let mut r = square(40.0, 0.02);
+        let before = r.material_area_mm2();
+        r.clear_capsule((10.0, 20.0), (30.0, 25.0), 3.0);
+        let len = 20.0f64.hypot(5.0);
+        let expected = 2.0 * 3.0 * len + std::f64::consts::PI * 9.0;
+        let removed = before - r.material_area_mm2();
+        assert!((removed - expected).abs() / expected < 0.005, "{removed} vs {expected}");
+        assert!(!r.is_material(20.0, 22.5));
+        assert!(r.is_material(20.0, 27.0));
+    }
+
+    #[test]
+    fn the_edge_of_a_cleared_disc_is_exact_between_cell_centres() {
+        let mut r = square(20.0, 0.1);
+        r.clear_capsule((10.0, 10.0), (10.0, 10.0), 3.0);
+        assert!(!r.is_material(12.99, 10.0));
+        assert!(r.is_material(13.01, 10.0));
+        assert!(!r.is_material(10.0 + 2.99 * 0.6, 10.0 + 2.99 * 0.8));
+        assert!(r.is_material(10.0 + 3.01 * 0.6, 10.0 + 3.01 * 0.8));
+    }
+
+    #[test]
+    fn capsules_partly_outside_the_raster_are_clipped() {
+        let mut r = square(10.0, 0.1);
+        r.clear_capsule((-5.0, -5.0), (15.0, -5.0), 6.0);
+        assert!(!r.is_material(5.0, 0.5));
+        assert!(r.is_material(5.0, 1.5));
+    }
+}
