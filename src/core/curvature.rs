@@ -26,7 +26,10 @@ pub struct PointCurvature {
 }
 
 impl PointCurvature {
-    pub const STRAIGHT: PointCurvature = PointCurvature { kappa: 0.0, corner: false };
+    pub const STRAIGHT: PointCurvature = PointCurvature {
+        kappa: 0.0,
+        corner: false,
+    };
 
     /// Radius of curvature, mm (infinite on a straight path, 0 at a sharp corner).
     pub fn radius_mm(&self) -> f64 {
@@ -93,11 +96,12 @@ fn polynomial_derivatives(s: &[f64], v: &[f64], degree: usize, scale: f64) -> Op
             return None;
         }
         a.swap(col, pivot);
-        for r in 0..m {
+        let pivot_row = a[col];
+        for (r, row) in a.iter_mut().enumerate().take(m) {
             if r != col {
-                let f = a[r][col] / a[col][col];
-                for c in col..=m {
-                    a[r][c] -= f * a[col][c];
+                let f = row[col] / pivot_row[col];
+                for (v, p) in row.iter_mut().zip(pivot_row.iter()).take(m + 1).skip(col) {
+                    *v -= f * p;
                 }
             }
         }
@@ -107,7 +111,15 @@ fn polynomial_derivatives(s: &[f64], v: &[f64], degree: usize, scale: f64) -> Op
 }
 
 /// Curvature from fits over `lo..=hi` about vertex `i`.
-fn fit_at(points: &[(f64, f64)], s: &[f64], i: usize, lo: usize, hi: usize, degree: usize, buf: &mut FitBuffers) -> PointCurvature {
+fn fit_at(
+    points: &[(f64, f64)],
+    s: &[f64],
+    i: usize,
+    lo: usize,
+    hi: usize,
+    degree: usize,
+    buf: &mut FitBuffers,
+) -> PointCurvature {
     buf.ss.clear();
     buf.xs.clear();
     buf.ys.clear();
@@ -126,7 +138,10 @@ fn fit_at(points: &[(f64, f64)], s: &[f64], i: usize, lo: usize, hi: usize, degr
             if speed2 < MIN_SEGMENT_MM {
                 return PointCurvature::STRAIGHT;
             }
-            PointCurvature { kappa: (x1 * y2 - y1 * x2) / speed2.powf(1.5), corner: false }
+            PointCurvature {
+                kappa: (x1 * y2 - y1 * x2) / speed2.powf(1.5),
+                corner: false,
+            }
         }
         _ => PointCurvature::STRAIGHT,
     }
@@ -175,7 +190,10 @@ pub fn polyline_curvature(points: &[(f64, f64)], half_width_mm: f64) -> Vec<Poin
     let corner_rad = CORNER_ANGLE_DEG.to_radians();
     let corners: Vec<bool> = (0..n)
         .map(|i| {
-            i > 0 && i + 1 < n && turn_angle(points[i - 1], points[i], points[i + 1]).is_some_and(|t| t.abs() > corner_rad)
+            i > 0
+                && i + 1 < n
+                && turn_angle(points[i - 1], points[i], points[i + 1])
+                    .is_some_and(|t| t.abs() > corner_rad)
         })
         .collect();
 
@@ -183,7 +201,10 @@ pub fn polyline_curvature(points: &[(f64, f64)], half_width_mm: f64) -> Vec<Poin
     (0..n)
         .map(|i| {
             if corners[i] {
-                return PointCurvature { kappa: 0.0, corner: true };
+                return PointCurvature {
+                    kappa: 0.0,
+                    corner: true,
+                };
             }
             // A first, narrow quadratic fit estimates the radius; the final quartic fit
             // uses a window no wider than WINDOW_PER_RADIUS of it.
@@ -216,7 +237,8 @@ mod tests {
         let n = (2.0 * std::f64::consts::PI * radius / spacing) as usize;
         (0..n)
             .map(|i| {
-                let a = i as f64 / n as f64 * 2.0 * std::f64::consts::PI * if ccw { 1.0 } else { -1.0 };
+                let a =
+                    i as f64 / n as f64 * 2.0 * std::f64::consts::PI * if ccw { 1.0 } else { -1.0 };
                 let r = radius + noise(i);
                 (r * a.cos(), r * a.sin())
             })
@@ -230,7 +252,11 @@ mod tests {
             let k = polyline_curvature(&pts, DEFAULT_FIT_HALF_WIDTH_MM);
             for (i, c) in k.iter().enumerate().skip(30).take(pts.len() - 60) {
                 let err = (c.radius_mm() - radius).abs() / radius;
-                assert!(err < 0.01, "R {radius}, point {i}: {} ({err})", c.radius_mm());
+                assert!(
+                    err < 0.01,
+                    "R {radius}, point {i}: {} ({err})",
+                    c.radius_mm()
+                );
             }
         }
     }
@@ -257,6 +283,9 @@ mod tests {
         let k = polyline_curvature(&pts, DEFAULT_FIT_HALF_WIDTH_MM);
         assert!(k[20].radius_mm().is_infinite());
         assert!(k[50].corner && k[50].radius_mm() < 1e-12);
-        assert!(k[80].radius_mm().is_infinite(), "windows stop at the corner");
+        assert!(
+            k[80].radius_mm().is_infinite(),
+            "windows stop at the corner"
+        );
     }
 }

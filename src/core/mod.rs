@@ -13,6 +13,7 @@ pub(crate) mod fixtures;
 pub mod force_fit;
 pub mod force_model;
 pub mod geometry;
+pub mod nc;
 pub mod operation;
 pub mod progress;
 pub mod stock;

@@ -12,6 +12,9 @@ const UNITS_PER_CELL: f64 = 63.0;
 const FULL: i8 = 126;
 /// Segments shorter than this are treated as a single disc, mm.
 const DEGENERATE_SEGMENT_MM: f64 = 1e-12;
+/// Side of the square blocks whose material cells are counted, in cells: a probe skips
+/// a slice when no block under the tool holds material.
+const BLOCK_CELLS: usize = 16;
 
 /// A rectangle, mm.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -43,6 +46,9 @@ pub struct Raster {
     nx: usize,
     ny: usize,
     f: Vec<i8>,
+    /// Cells holding material (value > 0) per block of BLOCK_CELLS × BLOCK_CELLS.
+    blocks: Vec<u32>,
+    bx: usize,
 }
 
 impl Raster {
@@ -54,7 +60,17 @@ impl Raster {
         let y0 = bounds.y_min - margin;
         let nx = (((bounds.x_max + margin - x0) / cell_mm).ceil() as usize).max(2);
         let ny = (((bounds.y_max + margin - y0) / cell_mm).ceil() as usize).max(2);
-        Raster { x0, y0, cell_mm, inv_cell: 1.0 / cell_mm, nx, ny, f: vec![-FULL; nx * ny] }
+        Raster {
+            x0,
+            y0,
+            cell_mm,
+            inv_cell: 1.0 / cell_mm,
+            nx,
+            ny,
+            f: vec![-FULL; nx * ny],
+            blocks: vec![0; nx.div_ceil(BLOCK_CELLS) * ny.div_ceil(BLOCK_CELLS)],
+            bx: nx.div_ceil(BLOCK_CELLS),
+        }
     }
 
     pub fn size(&self) -> (usize, usize) {
@@ -78,14 +94,53 @@ impl Raster {
         self.x0 + (i as f64 + 0.5) * self.cell_mm
     }
 
+    #[inline]
     fn encode(&self, d_mm: f64) -> i8 {
-        (d_mm * self.inv_cell).clamp(-SDF_CLAMP_CELLS, SDF_CLAMP_CELLS).mul_add(UNITS_PER_CELL, 0.0).round() as i8
+        let v = (d_mm * self.inv_cell).clamp(-SDF_CLAMP_CELLS, SDF_CLAMP_CELLS) * UNITS_PER_CELL;
+        // Round half away from zero without a libm call.
+        (v + 0.5f64.copysign(v)) as i8
+    }
+
+    /// Writes `v` into cell (i, j), keeping the block counts.
+    #[inline]
+    fn write(&mut self, i: usize, j: usize, v: i8) {
+        let k = j * self.nx + i;
+        let old = self.f[k];
+        if (old > 0) != (v > 0) {
+            let b = (j / BLOCK_CELLS) * self.bx + i / BLOCK_CELLS;
+            if v > 0 {
+                self.blocks[b] += 1;
+            } else {
+                self.blocks[b] -= 1;
+            }
+        }
+        self.f[k] = v;
+    }
+
+    /// `false` when no cell within `reach_mm` of `(x, y)` holds material.
+    pub fn any_material_near(&self, x: f64, y: f64, reach_mm: f64) -> bool {
+        let index =
+            |v: f64, origin: f64, pad: f64| ((v - origin) * self.inv_cell + pad).max(0.0) as usize;
+        let (lo_i, lo_j) = (
+            index(x - reach_mm, self.x0, -1.0),
+            index(y - reach_mm, self.y0, -1.0),
+        );
+        let hi_i = index(x + reach_mm, self.x0, 1.0).min(self.nx - 1);
+        let hi_j = index(y + reach_mm, self.y0, 1.0).min(self.ny - 1);
+        if lo_i > hi_i || lo_j > hi_j {
+            return false;
+        }
+        (lo_j / BLOCK_CELLS..=hi_j / BLOCK_CELLS).any(|bj| {
+            (lo_i / BLOCK_CELLS..=hi_i / BLOCK_CELLS).any(|bi| self.blocks[bj * self.bx + bi] > 0)
+        })
     }
 
     /// Cells whose centres lie in `[x_lo, x_hi]`, as a half-open index range.
     fn cell_range(&self, x_lo: f64, x_hi: f64) -> (usize, usize) {
         let first = ((x_lo - self.x0) * self.inv_cell - 0.5).ceil().max(0.0);
-        let last = ((x_hi - self.x0) * self.inv_cell - 0.5).floor().min(self.nx as f64 - 1.0);
+        let last = ((x_hi - self.x0) * self.inv_cell - 0.5)
+            .floor()
+            .min(self.nx as f64 - 1.0);
         if last < first {
             return (0, 0);
         }
@@ -119,10 +174,12 @@ impl Raster {
         for j in 0..ny {
             for i in 0..nx {
                 let k = j * nx + i;
-                let differs = (i + 1 < nx && inside[k] != inside[k + 1]) || (j + 1 < ny && inside[k] != inside[k + nx]);
+                let differs = (i + 1 < nx && inside[k] != inside[k + 1])
+                    || (j + 1 < ny && inside[k] != inside[k + nx]);
                 if differs {
                     for jj in j.saturating_sub(band)..(j + band + 2).min(ny) {
-                        near[jj * nx + i.saturating_sub(band)..jj * nx + (i + band + 2).min(nx)].fill(true);
+                        near[jj * nx + i.saturating_sub(band)..jj * nx + (i + band + 2).min(nx)]
+                            .fill(true);
                     }
                 }
             }
@@ -137,7 +194,12 @@ impl Raster {
                 } else {
                     -FULL
                 };
-                self.f[k] = if add { self.f[k].max(v) } else { self.f[k].min(-v) };
+                let new = if add {
+                    self.f[k].max(v)
+                } else {
+                    self.f[k].min(-v)
+                };
+                self.write(i, j, new);
             }
         }
     }
@@ -157,7 +219,10 @@ impl Raster {
         let (tx, ty) = (fx - i as f64, fy - j as f64);
         let k = j * self.nx + i;
         let (a, b) = (f64::from(self.f[k]), f64::from(self.f[k + 1]));
-        let (c, d) = (f64::from(self.f[k + self.nx]), f64::from(self.f[k + self.nx + 1]));
+        let (c, d) = (
+            f64::from(self.f[k + self.nx]),
+            f64::from(self.f[k + self.nx + 1]),
+        );
         let bottom = a + (b - a) * tx;
         let top = c + (d - c) * tx;
         bottom + (top - bottom) * ty > 0.0
@@ -165,7 +230,7 @@ impl Raster {
 
     /// Area holding material (cells with a positive distance), mm².
     pub fn material_area_mm2(&self) -> f64 {
-        self.f.iter().filter(|&&v| v > 0).count() as f64 * self.cell_mm * self.cell_mm
+        self.blocks.iter().map(|&n| f64::from(n)).sum::<f64>() * self.cell_mm * self.cell_mm
     }
 
     /// Removes the area swept by a disc of radius `r` moving from `a` to `b` (a capsule).
@@ -187,17 +252,24 @@ impl Raster {
                 continue;
             };
             let (from, to) = self.cell_range(lo, hi);
-            let (in_from, in_to) = inner.row_interval(y).map_or((from, from), |(l, h)| self.cell_range(l, h));
+            let (in_from, in_to) = inner
+                .row_interval(y)
+                .map_or((from, from), |(l, h)| self.cell_range(l, h));
             let row = j * self.nx;
             for i in (from..in_from.max(from)).chain(in_to.max(in_from)..to) {
+                if self.f[row + i] == -FULL {
+                    continue;
+                }
                 // Material stays where it is farther than r from the segment.
-                let d = outer.distance((self.col_x(i), y)) - r;
-                let v = self.encode(d);
-                let cell = &mut self.f[row + i];
-                *cell = (*cell).min(v);
+                let v = self.encode(outer.distance((self.col_x(i), y)) - r);
+                if v < self.f[row + i] {
+                    self.write(i, j, v);
+                }
             }
-            if in_to > in_from {
-                self.f[row + in_from..row + in_to].fill(-FULL);
+            for i in in_from..in_to.max(in_from) {
+                if self.f[row + i] != -FULL {
+                    self.write(i, j, -FULL);
+                }
             }
         }
     }
@@ -226,9 +298,10 @@ impl Capsule {
         match self.dir {
             Some(((ux, uy), len)) => {
                 let t = (px * ux + py * uy).clamp(0.0, len);
-                (px - t * ux).hypot(py - t * uy)
+                let (ex, ey) = (px - t * ux, py - t * uy);
+                (ex * ex + ey * ey).sqrt()
             }
-            None => px.hypot(py),
+            None => (px * px + py * py).sqrt(),
         }
     }
 
@@ -245,7 +318,10 @@ impl Capsule {
     fn row_interval(&self, y: f64) -> Option<(f64, f64)> {
         let mut lo = f64::INFINITY;
         let mut hi = f64::NEG_INFINITY;
-        for chord in [self.disc_chord(self.a, y), self.disc_chord(self.b, y)].into_iter().flatten() {
+        for chord in [self.disc_chord(self.a, y), self.disc_chord(self.b, y)]
+            .into_iter()
+            .flatten()
+        {
             lo = lo.min(chord.0);
             hi = hi.max(chord.1);
         }
@@ -254,7 +330,9 @@ impl Capsule {
             let dy = y - self.a.1;
             let mut band = (f64::NEG_INFINITY, f64::INFINITY);
             let mut ok = true;
-            for (coef, offset, min, max) in [(-uy, ux * dy, -self.r, self.r), (ux, uy * dy, 0.0, len)] {
+            for (coef, offset, min, max) in
+                [(-uy, ux * dy, -self.r, self.r), (ux, uy * dy, 0.0, len)]
+            {
                 if coef.abs() < DEGENERATE_SEGMENT_MM {
                     ok &= offset > min && offset < max;
                 } else {
@@ -277,7 +355,15 @@ mod tests {
     use super::*;
 
     fn square(side: f64, cell: f64) -> Raster {
-        let mut r = Raster::new(Rect { x_min: 0.0, y_min: 0.0, x_max: side, y_max: side }, cell);
+        let mut r = Raster::new(
+            Rect {
+                x_min: 0.0,
+                y_min: 0.0,
+                x_max: side,
+                y_max: side,
+            },
+            cell,
+        );
         r.paint(
             true,
             |y, out| {
@@ -285,7 +371,18 @@ mod tests {
                     out.push((0.0, side))
                 }
             },
-            |x, y| rect_signed_distance(&Rect { x_min: 0.0, y_min: 0.0, x_max: side, y_max: side }, x, y),
+            |x, y| {
+                rect_signed_distance(
+                    &Rect {
+                        x_min: 0.0,
+                        y_min: 0.0,
+                        x_max: side,
+                        y_max: side,
+                    },
+                    x,
+                    y,
+                )
+            },
         );
         r
     }
@@ -293,7 +390,11 @@ mod tests {
     #[test]
     fn a_painted_square_holds_its_area_in_material() {
         let r = square(10.0, 0.05);
-        assert!((r.material_area_mm2() - 100.0).abs() < 1e-6, "{}", r.material_area_mm2());
+        assert!(
+            (r.material_area_mm2() - 100.0).abs() < 1e-6,
+            "{}",
+            r.material_area_mm2()
+        );
         assert!(r.is_material(5.0, 5.0));
         assert!(!r.is_material(-0.1, 5.0) && !r.is_material(5.0, 10.1));
     }
@@ -313,7 +414,10 @@ mod tests {
         let len = 20.0f64.hypot(5.0);
         let expected = 2.0 * 3.0 * len + std::f64::consts::PI * 9.0;
         let removed = before - r.material_area_mm2();
-        assert!((removed - expected).abs() / expected < 0.005, "{removed} vs {expected}");
+        assert!(
+            (removed - expected).abs() / expected < 0.005,
+            "{removed} vs {expected}"
+        );
         assert!(!r.is_material(20.0, 22.5));
         assert!(r.is_material(20.0, 27.0));
     }

@@ -1,6 +1,7 @@
 //! The OpenAPI document: every route and schema, generated from the code.
 
 use crate::service::error::{FieldError, Problem};
+use crate::service::jobs::analysis_result::AnalysisResult;
 use crate::service::jobs::conditions::ConditionsResult;
 use crate::service::state::AppState;
 use utoipa::OpenApi;
@@ -18,7 +19,7 @@ use utoipa_axum::router::OpenApiRouter;
         (name = "database", description = "The cutting-condition database"),
         (name = "health", description = "Liveness and readiness")
     ),
-    components(schemas(Problem, FieldError, ConditionsResult))
+    components(schemas(Problem, FieldError, ConditionsResult, AnalysisResult))
 )]
 pub struct ApiDoc;
 

@@ -1,6 +1,7 @@
 //! API tests: each starts the real application on port 0 with a temporary database.
 //! One test binary, so CI links once.
 
+mod analysis;
 mod architecture;
 mod common;
 mod conditions;

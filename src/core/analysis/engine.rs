@@ -12,7 +12,7 @@ use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 
 /// The raster is brought up to date every this many samples …
-pub const CHUNK_SAMPLES: usize = 8;
+pub const CHUNK_SAMPLES: usize = 16;
 /// … or sooner when the direction has turned by more than this since the last update,
 /// so one straight capsule stands for the swept area.
 pub const CHUNK_TURN_DEG: f64 = 5.0;
@@ -25,13 +25,17 @@ const SLOT_ALPHA_RAD: f64 = 0.99 * std::f64::consts::PI;
 /// Samples between progress reports and cancellation checks.
 const PROGRESS_EVERY: usize = 4096;
 
-/// What the tool and the cut are.
+/// What the tool and the cut are, and how finely to sample.
 #[derive(Debug, Clone, Copy)]
 pub struct Cutter {
     pub radius_mm: f64,
     pub flutes: u32,
     /// Used where the program has no S word.
     pub default_spindle_rpm: Option<f64>,
+    pub force_model: Option<ForceModel>,
+    pub spacing_mm: f64,
+    /// Samples expected (for progress).
+    pub total_samples: usize,
 }
 
 /// The engagement and its consequences at one sample.
@@ -95,17 +99,26 @@ pub fn simulate(
     path: &Toolpath,
     cutter: Cutter,
     slices: &mut [Slice],
-    spacing_mm: f64,
-    force_model: Option<&ForceModel>,
     progress: &dyn Progress,
-    total_samples: usize,
     mut sink: impl FnMut(&SampleResult),
 ) -> Result<(), CoreError> {
+    let Cutter {
+        spacing_mm,
+        force_model,
+        total_samples,
+        ..
+    } = cutter;
+    let force_model = force_model.as_ref();
     let curvatures = move_curvatures(path);
     let table = AngleTable::default();
     let r = cutter.radius_mm;
     let cos_turn = CHUNK_TURN_DEG.to_radians().cos();
-    let mut chunk = Chunk { start: None, heading: (0.0, 0.0), cut: 0, recent: Vec::with_capacity(CHUNK_SAMPLES + 1) };
+    let mut chunk = Chunk {
+        start: None,
+        heading: (0.0, 0.0),
+        cut: 0,
+        recent: Vec::with_capacity(CHUNK_SAMPLES + 1),
+    };
     let mut contacts = vec![Contact::default(); slices.len()];
     let mut s_mm = 0.0;
     let mut n = 0usize;
@@ -113,7 +126,7 @@ pub fn simulate(
 
     for_each_sample(path, &curvatures, spacing_mm, |sample| {
         n += 1;
-        if n % PROGRESS_EVERY == 0 {
+        if n.is_multiple_of(PROGRESS_EVERY) {
             progress.report(n as f64 / total_samples.max(1) as f64);
             if let Err(e) = progress.checkpoint() {
                 failure = Some(e);
@@ -125,7 +138,12 @@ pub fn simulate(
         let cut = slices::slices_cut(slices, sample.p.z);
         if cut != chunk.cut {
             chunk.flush(slices, r);
-            chunk = Chunk { start: None, heading: sample.heading, cut, recent: std::mem::take(&mut chunk.recent) };
+            chunk = Chunk {
+                start: None,
+                heading: sample.heading,
+                cut,
+                recent: std::mem::take(&mut chunk.recent),
+            };
             chunk.recent.clear();
         }
         let plunge = sample.heading.0 == 0.0 && sample.heading.1 == 0.0;
@@ -137,12 +155,21 @@ pub fn simulate(
             ad_mm: 0.0,
             t_m_um: 0.0,
             force_n: force_model.map(|_| 0.0),
-            plunge,
+            plunge: plunge && cut > 0,
         };
         if cut > 0 && !plunge {
-            let site = ProbeSite { center: p, radius: r, heading: sample.heading, recent: &chunk.recent };
+            let site = ProbeSite {
+                center: p,
+                radius: r,
+                heading: sample.heading,
+                recent: &chunk.recent,
+            };
             for (k, s) in slices.iter().take(cut).enumerate() {
-                contacts[k] = table.contact(&s.raster, &site);
+                contacts[k] = if s.raster.any_material_near(p.0, p.1, r) {
+                    table.contact(&s.raster, &site)
+                } else {
+                    Contact::default()
+                };
             }
             evaluate(&mut result, &contacts[..cut], slices, cutter, force_model);
         }
@@ -152,7 +179,8 @@ pub fn simulate(
             chunk.heading = sample.heading;
         }
         chunk.recent.push(p);
-        let turned = chunk.heading.0 * sample.heading.0 + chunk.heading.1 * sample.heading.1 < cos_turn;
+        let turned =
+            chunk.heading.0 * sample.heading.0 + chunk.heading.1 * sample.heading.1 < cos_turn;
         if chunk.recent.len() > CHUNK_SAMPLES || turned {
             chunk.flush(slices, r);
             chunk.heading = sample.heading;
@@ -168,17 +196,35 @@ pub fn simulate(
 }
 
 /// Fills α, L, Ad, t_m and the force of `result` from the contacts of the cut slices.
-fn evaluate(result: &mut SampleResult, contacts: &[Contact], slices: &[Slice], cutter: Cutter, model: Option<&ForceModel>) {
+fn evaluate(
+    result: &mut SampleResult,
+    contacts: &[Contact],
+    slices: &[Slice],
+    cutter: Cutter,
+    model: Option<&ForceModel>,
+) {
     let r = cutter.radius_mm;
     let tip = result.sample.p.z;
-    let Some(best) = contacts.iter().copied().max_by(|a, b| a.alpha_rad.total_cmp(&b.alpha_rad)) else {
+    let Some(best) = contacts
+        .iter()
+        .copied()
+        .max_by(|a, b| a.alpha_rad.total_cmp(&b.alpha_rad))
+    else {
         return;
     };
     if best.alpha_rad <= 0.0 {
         return;
     }
-    let rpm = result.sample.spindle_rpm.or(cutter.default_spindle_rpm).unwrap_or(0.0);
-    let fz_c_mm = if rpm > 0.0 { result.sample.feed_mm_min / (f64::from(cutter.flutes) * rpm) } else { 0.0 };
+    let rpm = result
+        .sample
+        .spindle_rpm
+        .or(cutter.default_spindle_rpm)
+        .unwrap_or(0.0);
+    let fz_c_mm = if rpm > 0.0 {
+        result.sample.feed_mm_min / (f64::from(cutter.flutes) * rpm)
+    } else {
+        0.0
+    };
     let ratio = cutting_point_ratio(&result.sample, &best, r);
     let t_m = |c: &Contact| max_chip_thickness_mm(fz_c_mm * ratio, c.alpha_rad) * UM_PER_MM;
     result.contact = best;

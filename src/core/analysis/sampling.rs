@@ -37,7 +37,12 @@ fn point_on(m: &Move, t: f64) -> (P3, (f64, f64)) {
             );
             (p, (m.end.x - m.start.x, m.end.y - m.start.y))
         }
-        Motion::Arc { center, clockwise, plane, turns } => {
+        Motion::Arc {
+            center,
+            clockwise,
+            plane,
+            turns,
+        } => {
             let (s, e, c) = in_plane(m.start, m.end, center, plane);
             let a0 = (s.1 - c.1).atan2(s.0 - c.0);
             let sweep = arc_sweep(s, e, c, clockwise, turns);
@@ -54,7 +59,13 @@ fn point_on(m: &Move, t: f64) -> (P3, (f64, f64)) {
 }
 
 /// Signed sweep of an arc (radians): negative for clockwise.
-pub fn arc_sweep(s: (f64, f64, f64), e: (f64, f64, f64), c: (f64, f64, f64), clockwise: bool, turns: u32) -> f64 {
+pub fn arc_sweep(
+    s: (f64, f64, f64),
+    e: (f64, f64, f64),
+    c: (f64, f64, f64),
+    clockwise: bool,
+    turns: u32,
+) -> f64 {
     let a0 = (s.1 - c.1).atan2(s.0 - c.0);
     let a1 = (e.1 - c.1).atan2(e.0 - c.0);
     let mut sweep = a1 - a0;
@@ -72,8 +83,11 @@ pub fn arc_sweep(s: (f64, f64, f64), e: (f64, f64, f64), c: (f64, f64, f64), clo
     sweep
 }
 
+/// A point as (u, v, axial) coordinates of an arc's plane.
+type PlanePoint = (f64, f64, f64);
+
 /// Start, end and centre as (u, v, axial) in the arc's plane.
-fn in_plane(s: P3, e: P3, c: P3, plane: Plane) -> ((f64, f64, f64), (f64, f64, f64), (f64, f64, f64)) {
+fn in_plane(s: P3, e: P3, c: P3, plane: Plane) -> (PlanePoint, PlanePoint, PlanePoint) {
     let f = |p: P3| match plane {
         Plane::Xy => (p.x, p.y, p.z),
         Plane::Zx => (p.z, p.x, p.y),
@@ -93,10 +107,16 @@ fn from_plane(p: (f64, f64, f64), d: (f64, f64, f64), plane: Plane) -> (P3, (f64
 /// Length of a move, mm.
 pub fn move_length(m: &Move) -> f64 {
     match m.motion {
-        Motion::Rapid | Motion::Linear => {
-            ((m.end.x - m.start.x).powi(2) + (m.end.y - m.start.y).powi(2) + (m.end.z - m.start.z).powi(2)).sqrt()
-        }
-        Motion::Arc { center, clockwise, plane, turns } => {
+        Motion::Rapid | Motion::Linear => ((m.end.x - m.start.x).powi(2)
+            + (m.end.y - m.start.y).powi(2)
+            + (m.end.z - m.start.z).powi(2))
+        .sqrt(),
+        Motion::Arc {
+            center,
+            clockwise,
+            plane,
+            turns,
+        } => {
             let (s, e, c) = in_plane(m.start, m.end, center, plane);
             let r = (s.0 - c.0).hypot(s.1 - c.1);
             let planar = r * arc_sweep(s, e, c, clockwise, turns).abs();
@@ -113,11 +133,21 @@ pub fn move_curvatures(path: &Toolpath) -> Vec<(PointCurvature, PointCurvature)>
     let mut i = 0;
     while i < moves.len() {
         let is_run_move = |m: &Move| {
-            matches!(m.motion, Motion::Linear) && (m.end.x - m.start.x).hypot(m.end.y - m.start.y) > MIN_XY_MM
+            matches!(m.motion, Motion::Linear)
+                && (m.end.x - m.start.x).hypot(m.end.y - m.start.y) > MIN_XY_MM
         };
-        if let Motion::Arc { center, clockwise, plane: Plane::Xy, .. } = moves[i].motion {
+        if let Motion::Arc {
+            center,
+            clockwise,
+            plane: Plane::Xy,
+            ..
+        } = moves[i].motion
+        {
             let r = (moves[i].start.x - center.x).hypot(moves[i].start.y - center.y);
-            let k = PointCurvature { kappa: if clockwise { -1.0 / r } else { 1.0 / r }, corner: false };
+            let k = PointCurvature {
+                kappa: if clockwise { -1.0 / r } else { 1.0 / r },
+                corner: false,
+            };
             out[i] = (k, k);
             i += 1;
             continue;
@@ -127,7 +157,10 @@ pub fn move_curvatures(path: &Toolpath) -> Vec<(PointCurvature, PointCurvature)>
             continue;
         }
         let start = i;
-        while i < moves.len() && is_run_move(&moves[i]) && (i == start || connected(&moves[i - 1], &moves[i])) {
+        while i < moves.len()
+            && is_run_move(&moves[i])
+            && (i == start || connected(&moves[i - 1], &moves[i]))
+        {
             i += 1;
         }
         let mut pts: Vec<(f64, f64)> = Vec::with_capacity(i - start + 1);
@@ -152,7 +185,10 @@ fn curvature_at(ends: (PointCurvature, PointCurvature), t: f64) -> PointCurvatur
         (true, true) => PointCurvature::STRAIGHT,
         (true, false) => ends.1,
         (false, true) => ends.0,
-        (false, false) => PointCurvature { kappa: ends.0.kappa + (ends.1.kappa - ends.0.kappa) * t, corner: false },
+        (false, false) => PointCurvature {
+            kappa: ends.0.kappa + (ends.1.kappa - ends.0.kappa) * t,
+            corner: false,
+        },
     }
 }
 
@@ -172,7 +208,11 @@ pub fn for_each_sample(
             let t = k as f64 / steps as f64;
             let (p, d) = point_on(m, t);
             let dl = d.0.hypot(d.1);
-            let heading = if dl > MIN_XY_MM { (d.0 / dl, d.1 / dl) } else { (0.0, 0.0) };
+            let heading = if dl > MIN_XY_MM {
+                (d.0 / dl, d.1 / dl)
+            } else {
+                (0.0, 0.0)
+            };
             let sample = Sample {
                 p,
                 heading,
@@ -196,18 +236,36 @@ mod tests {
     use super::*;
 
     fn mv(motion: Motion, start: P3, end: P3) -> Move {
-        Move { motion, start, end, feed_mm_min: Some(1000.0), spindle_rpm: Some(9600.0), tool: None, line: 1 }
+        Move {
+            motion,
+            start,
+            end,
+            feed_mm_min: Some(1000.0),
+            spindle_rpm: Some(9600.0),
+            tool: None,
+            line: 1,
+        }
     }
 
     #[test]
     fn a_quarter_arc_has_the_length_and_curvature_of_its_circle() {
         let m = mv(
-            Motion::Arc { center: P3::new(0.0, 0.0, 0.0), clockwise: false, plane: Plane::Xy, turns: 0 },
+            Motion::Arc {
+                center: P3::new(0.0, 0.0, 0.0),
+                clockwise: false,
+                plane: Plane::Xy,
+                turns: 0,
+            },
             P3::new(10.0, 0.0, 0.0),
             P3::new(0.0, 10.0, 0.0),
         );
         assert!((move_length(&m) - 5.0 * PI).abs() < 1e-9);
-        let path = Toolpath { moves: vec![m], events: vec![], source_units: crate::core::toolpath::Units::Mm, warnings: vec![] };
+        let path = Toolpath {
+            moves: vec![m],
+            events: vec![],
+            source_units: crate::core::toolpath::Units::Mm,
+            warnings: vec![],
+        };
         let k = move_curvatures(&path);
         assert!((k[0].0.kappa - 0.1).abs() < 1e-12);
         let mut n = 0;

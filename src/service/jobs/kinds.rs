@@ -1,6 +1,7 @@
 //! The job kinds: how each one's input is checked and resolved at submission, and how
 //! its prepared input is run by a worker.
 
+use super::analysis::{self, AnalysisRequest};
 use super::conditions::{self, ConditionsRequest};
 use super::model::JobKind;
 use crate::core::progress::Progress;
@@ -16,6 +17,7 @@ use utoipa::ToSchema;
 #[serde(untagged)]
 pub enum JobInput {
     Conditions(ConditionsRequest),
+    Analysis(Box<AnalysisRequest>),
 }
 
 /// What a finished job hands back.
@@ -58,6 +60,10 @@ pub async fn prepare(
                 let request: ConditionsRequest = from_value(input)?;
                 to_json(&conditions::prepare(pool, request).await?)
             }
+            JobKind::Analysis => {
+                let request: AnalysisRequest = from_value(input)?;
+                to_json(&analysis::prepare(pool, request).await?)
+            }
         }
     }
     .await;
@@ -68,16 +74,27 @@ fn to_json<T: Serialize>(value: &T) -> Result<serde_json::Value, ApiError> {
     serde_json::to_value(value).map_err(|e| ApiError::Internal(format!("serializing a job: {e}")))
 }
 
-/// Runs a prepared job. CPU-bound: call it on a blocking thread.
-pub fn run(kind: JobKind, prepared: &str, progress: &dyn Progress) -> Result<JobOutput, CoreError> {
+/// Runs a prepared job from its input as submitted and what `prepare` resolved.
+/// CPU-bound: call it on a blocking thread.
+pub fn run(
+    kind: JobKind,
+    input: &str,
+    prepared: &str,
+    progress: &dyn Progress,
+) -> Result<JobOutput, CoreError> {
     let unreadable = |e: serde_json::Error| {
         CoreError::invalid("prepared", format!("stored job input unreadable: {e}"))
     };
     progress.checkpoint()?;
     let result = match kind {
         JobKind::Conditions => {
-            let input = serde_json::from_str(prepared).map_err(unreadable)?;
-            serde_json::to_value(conditions::run(input)?).map_err(unreadable)?
+            let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
+            serde_json::to_value(conditions::run(prepared)?).map_err(unreadable)?
+        }
+        JobKind::Analysis => {
+            let request = serde_json::from_str(input).map_err(unreadable)?;
+            let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
+            serde_json::to_value(analysis::run(request, prepared, progress)?).map_err(unreadable)?
         }
     };
     progress.report(1.0);

@@ -1,7 +1,10 @@
 //! Planning work as persistent jobs: a table, a pool of workers that run the core off
 //! the async runtime, and the routes that create, poll, list and cancel them.
 
+pub mod analysis;
+pub mod analysis_result;
 pub mod conditions;
+pub mod inputs;
 pub mod kinds;
 pub mod model;
 pub mod queue;

@@ -54,17 +54,21 @@ pub enum JobKind {
     /// Recommended cutting conditions and the models' predictions for them
     /// (`POST /v1/conditions`).
     Conditions,
+    /// Engagement, chip thickness, force and critical regions along a tool path
+    /// (`POST /v1/analysis`).
+    Analysis,
 }
 
 impl JobKind {
     pub fn as_str(self) -> &'static str {
         match self {
             JobKind::Conditions => "conditions",
+            JobKind::Analysis => "analysis",
         }
     }
 
     pub fn parse(text: &str) -> Option<JobKind> {
-        [JobKind::Conditions]
+        [JobKind::Conditions, JobKind::Analysis]
             .into_iter()
             .find(|k| k.as_str() == text)
     }

@@ -203,10 +203,11 @@ async fn execute(inner: &Arc<Inner>, row: &store::JobRow) -> Result<(), sqlx::Er
         .unwrap_or_else(|p| p.into_inner())
         .insert(id.to_string(), control.clone());
 
-    let prepared = row.prepared.clone();
+    let (input, prepared) = (row.input.clone(), row.prepared.clone());
     let worker_control = control.clone();
-    let mut task =
-        tokio::task::spawn_blocking(move || kinds::run(kind, &prepared, worker_control.as_ref()));
+    let mut task = tokio::task::spawn_blocking(move || {
+        kinds::run(kind, &input, &prepared, worker_control.as_ref())
+    });
     let mut tick = tokio::time::interval(PROGRESS_FLUSH);
     let mut last = 0.0;
     let joined = loop {

@@ -1,5 +1,6 @@
 //! `/v1/jobs` and the named job endpoints.
 
+use super::analysis::AnalysisRequest;
 use super::conditions::ConditionsRequest;
 use super::kinds::{self, JobInput};
 use super::model::{Job, JobKind, JobStatus, JobSummary};
@@ -144,6 +145,30 @@ pub async fn create_conditions(
     submit(&state, JobKind::Conditions, input, "", &headers).await
 }
 
+/// Analyses a tool path (job kind `analysis`).
+///
+/// Simulates the material removal of the layer along the path (G-code or JSON moves)
+/// and reports, per sample, the engagement angle, arc length, chip thickness at the
+/// programmed feed and the predicted force; the summary (cutting and air-cut length,
+/// time at programmed feeds, α and force statistics with a histogram) and the critical
+/// regions where α exceeds the limit (default 40°). Bad NC or contour input is refused
+/// here with a 422 naming the line or vertex. The finished job's `result` is an
+/// `AnalysisResult`.
+#[utoipa::path(post, path = "/v1/analysis", tag = "jobs", operation_id = "analyzePath", request_body = AnalysisRequest,
+    params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
+    responses(
+        (status = 201, description = "Finished within the preferred wait; result is an AnalysisResult", body = Job),
+        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
+        (status = 422, description = "A refused field, NC line or contour vertex", body = Problem, content_type = "application/problem+json")))]
+pub async fn create_analysis(
+    State(state): State<AppState>,
+    headers: HeaderMap,
+    ApiJson(input): ApiJson<serde_json::Value>,
+) -> Result<Response, ApiError> {
+    submit(&state, JobKind::Analysis, input, "", &headers).await
+}
+
 /// Reads a job: status, progress, timestamps, result or error.
 #[utoipa::path(get, path = "/v1/jobs/{id}", tag = "jobs", operation_id = "getJob",
     params(("id" = String, Path, description = "Job id")),
@@ -264,6 +289,7 @@ pub fn router() -> OpenApiRouter<AppState> {
         .routes(routes!(get_job, cancel_job))
         .routes(routes!(get_program))
         .routes(routes!(create_conditions))
+        .routes(routes!(create_analysis))
 }
 
 #[cfg(test)]

@@ -1,0 +1,137 @@
+//! Where the problems of a line go: the reporter that turns them into errors (with line,
+//! column and word) or, for unknown words under [`UnknownWords::Warn`], warnings.
+
+use super::block::{EXPRESSIONS, PARAMETERS, SUBPROGRAMS};
+use super::error::{Diagnostics, NcError};
+use super::lexer::{Issue, IssueKind, Word};
+use super::UnknownWords;
+
+/// Whether `b` continues a multi-byte UTF-8 character (bits 10xxxxxx).
+fn is_utf8_continuation(b: u8) -> bool {
+    const TOP_TWO_BITS: u8 = 0b1100_0000;
+    const CONTINUATION: u8 = 0b1000_0000;
+    b & TOP_TWO_BITS == CONTINUATION
+}
+
+/// Marks that a line has an error: the line's effects are dropped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Failed;
+
+impl Failed {
+    /// For errors recorded without stopping the line's reading.
+    pub fn ignore(self) {}
+}
+
+/// A line being read: where its errors and warnings go.
+pub(crate) struct Line<'a> {
+    /// 1-based line number.
+    pub number: u32,
+    text: &'a [u8],
+    words: &'a [Word],
+    diagnostics: &'a mut Diagnostics,
+    unknown: UnknownWords,
+    /// An error was reported on this line.
+    pub failed: bool,
+}
+
+impl<'a> Line<'a> {
+    /// A reporter for line `number` (1-based) of text `text` with words `words`.
+    pub fn new(
+        number: u32,
+        text: &'a [u8],
+        words: &'a [Word],
+        diagnostics: &'a mut Diagnostics,
+        unknown: UnknownWords,
+    ) -> Self {
+        Line {
+            number,
+            text,
+            words,
+            diagnostics,
+            unknown,
+            failed: false,
+        }
+    }
+
+    /// The text of word `i` as written.
+    pub fn word_text(&self, i: usize) -> String {
+        let w = &self.words[i];
+        self.span_text(w.start, w.end)
+    }
+
+    fn span_text(&self, start: u32, end: u32) -> String {
+        String::from_utf8_lossy(&self.text[start as usize..end as usize]).into_owned()
+    }
+
+    /// 1-based column (in characters) of byte offset `start`.
+    fn column(&self, start: u32) -> u32 {
+        let before = &self.text[..start as usize];
+        let chars = before.iter().filter(|&&b| !is_utf8_continuation(b)).count();
+        u32::try_from(chars + 1).unwrap_or(u32::MAX)
+    }
+
+    fn error_span(&mut self, start: u32, end: u32, reason: String) -> Failed {
+        self.failed = true;
+        let error = NcError {
+            line: self.number,
+            column: self.column(start),
+            word: self.span_text(start, end),
+            reason,
+        };
+        self.diagnostics.error(error);
+        Failed
+    }
+
+    /// Reports an error on word `i`.
+    pub fn error_at(&mut self, i: usize, reason: impl Into<String>) -> Failed {
+        let w = self.words[i];
+        self.error_span(w.start, w.end, reason.into())
+    }
+
+    /// Reports an error on word `i` if there is one, else on the whole line (column 1).
+    pub fn error_near(&mut self, i: Option<usize>, reason: impl Into<String>) -> Failed {
+        match i {
+            Some(i) => self.error_at(i, reason),
+            None => self.error_span(0, 0, reason.into()),
+        }
+    }
+
+    fn unknown_span(&mut self, start: u32, end: u32, what: &str) {
+        match self.unknown {
+            UnknownWords::Reject => {
+                let reason = format!("{what} (only the words of the supported dialect are read)");
+                self.error_span(start, end, reason).ignore();
+            }
+            UnknownWords::Warn => {
+                let message = format!("unknown word {} ignored", self.span_text(start, end));
+                self.warn(message);
+            }
+        }
+    }
+
+    /// Reports an unknown word: an error, or a warning under [`UnknownWords::Warn`].
+    pub fn unknown_at(&mut self, i: usize, what: &str) {
+        let w = self.words[i];
+        self.unknown_span(w.start, w.end, what);
+    }
+
+    /// Reports something found by the scanner.
+    pub fn issue(&mut self, issue: &Issue) {
+        let (s, e) = (issue.start, issue.end);
+        let reason = match issue.kind {
+            IssueKind::NoNumber => "a letter must be followed by a number",
+            IssueKind::UnclosedComment => "the comment is not closed: add ')'",
+            IssueKind::Parameter => PARAMETERS,
+            IssueKind::Expression => EXPRESSIONS,
+            IssueKind::Subprogram => SUBPROGRAMS,
+            IssueKind::UnknownCharacter => return self.unknown_span(s, e, "unknown character"),
+        };
+        self.error_span(s, e, reason.to_string()).ignore();
+    }
+
+    /// Adds a warning about this line.
+    pub fn warn(&mut self, message: impl std::fmt::Display) {
+        let line = self.number;
+        self.diagnostics.warn(format!("line {line}: {message}"));
+    }
+}

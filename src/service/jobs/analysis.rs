@@ -1,0 +1,191 @@
+//! The `analysis` job (seed 002 subsystem (b), seed 004 §2.1): where a tool path
+//! overloads the tool.
+
+use super::analysis_result::AnalysisResult;
+use super::conditions::{ForceModelRef, NamedRef, ToolGeometry, ToolRef};
+use super::inputs::{read_program, read_stock, ProgramInput, StockInput};
+use crate::core::analysis::{analyze, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_SERIES_POINTS};
+use crate::core::operation::Operation;
+use crate::core::progress::Progress;
+use crate::core::tool::ToolType;
+use crate::core::CoreError;
+use crate::service::error::{ApiError, Validator};
+use crate::service::lookup;
+use crate::service::resources::machines::Machine;
+use serde::{Deserialize, Serialize};
+use sqlx::SqlitePool;
+use utoipa::ToSchema;
+
+/// A tool path to analyse in a layer of stock.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({
+    "program": {"gcode": "G21 G90 G17\nG0 X-10 Y5 Z5\nS9600 M3\nG1 Z-5 F1000\nG1 X110 F5760\nM30"},
+    "tool_type": "square", "diameter_mm": 10,
+    "stock": {"box": {"x_min": 0, "y_min": -40, "z_min": -10, "x_max": 100, "y_max": 0, "z_max": 0}},
+    "series_points": 200
+}))]
+pub struct AnalysisRequest {
+    pub program: ProgramInput,
+    pub tool_id: Option<i64>,
+    pub tool_type: Option<ToolType>,
+    pub diameter_mm: Option<f64>,
+    pub material_id: Option<i64>,
+    /// Material name (default SKD61).
+    pub material: Option<String>,
+    pub stock: StockInput,
+    /// Spindle speed where the program has no S word (default: the tool's standard
+    /// side-cutting speed).
+    pub spindle_rpm: Option<f64>,
+    /// Machine for the rapid rate (default: the first machine).
+    pub machine_id: Option<i64>,
+    /// Engagement above this is critical (default 40°).
+    pub alpha_limit_deg: Option<f64>,
+    /// Distance between samples, mm (default min(0.05, D/100)).
+    pub sample_spacing_mm: Option<f64>,
+    /// Raster cell of the stock simulation, mm (default D/200).
+    pub cell_mm: Option<f64>,
+    /// Per-sample series downsampled to this many points (0: none).
+    #[serde(default)]
+    pub series_points: usize,
+}
+
+/// What the request resolved to in the database.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct AnalysisPrepared {
+    pub material: NamedRef,
+    pub tool: ToolRef,
+    pub force_model: Option<ForceModelRef>,
+    pub machine: NamedRef,
+    pub rapid_mm_min: f64,
+    pub default_spindle_rpm: Option<f64>,
+}
+
+/// Checks the request (parsing the program and the stock) and resolves it.
+pub async fn prepare(
+    pool: &SqlitePool,
+    request: AnalysisRequest,
+) -> Result<AnalysisPrepared, ApiError> {
+    let mut v = Validator::new();
+    if let Some(a) = request.alpha_limit_deg {
+        v.within("alpha_limit_deg", a, f64::MIN_POSITIVE, 179.9);
+    }
+    for (field, value) in [
+        ("sample_spacing_mm", request.sample_spacing_mm),
+        ("cell_mm", request.cell_mm),
+        ("spindle_rpm", request.spindle_rpm),
+    ] {
+        if let Some(x) = value {
+            v.positive(field, x);
+        }
+    }
+    if let Some(s) = request.sample_spacing_mm {
+        v.within("sample_spacing_mm", s, 1e-4, 5.0);
+    }
+    if let Some(c) = request.cell_mm {
+        v.within("cell_mm", c, 1e-3, 5.0);
+    }
+    v.check(
+        request.series_points <= MAX_SERIES_POINTS,
+        "series_points",
+        format!("at most {MAX_SERIES_POINTS}"),
+    );
+    v.finish()?;
+    let (program, stock) = (request.program.clone(), request.stock.clone());
+    tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
+        read_program(&program)?;
+        read_stock(&stock)?;
+        Ok(())
+    })
+    .await
+    .map_err(|e| ApiError::Internal(e.to_string()))??;
+
+    let material = lookup::material(pool, request.material_id, request.material.as_deref()).await?;
+    let tool = lookup::tool(
+        pool,
+        request.tool_id,
+        request.tool_type,
+        request.diameter_mm,
+    )
+    .await?;
+    let force_model = lookup::force_model(pool, tool.id, material.id)
+        .await?
+        .map(|m| ForceModelRef {
+            id: m.id,
+            source: m.data.source,
+            reference: m.data.reference.clone(),
+            model: m.data.model(),
+        });
+    let machine = match request.machine_id {
+        Some(id) => {
+            sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = ?")
+                .bind(id)
+                .fetch_optional(pool)
+                .await?
+        }
+        None => {
+            sqlx::query_as::<_, Machine>("SELECT * FROM machines ORDER BY id LIMIT 1")
+                .fetch_optional(pool)
+                .await?
+        }
+    }
+    .ok_or_else(|| ApiError::field("machine_id", "no such machine (add one at /v1/machines)"))?;
+    let default_spindle_rpm = match request.spindle_rpm {
+        Some(s) => Some(s),
+        None => {
+            lookup::standard_conditions(pool, tool.id, material.id, Operation::StandardSideCutting)
+                .await?
+                .map(|c| c.data.spindle_rpm)
+        }
+    };
+    Ok(AnalysisPrepared {
+        material: NamedRef {
+            id: material.id,
+            name: material.data.name,
+        },
+        tool: ToolRef {
+            id: tool.id,
+            name: tool.data.name.clone(),
+            geometry: ToolGeometry {
+                tool_type: tool.data.tool_type,
+                diameter_mm: tool.data.diameter_mm,
+                flutes: tool.data.flutes,
+                corner_radius_mm: tool.data.corner_radius_mm,
+            },
+        },
+        force_model,
+        machine: NamedRef {
+            id: machine.id,
+            name: machine.data.name.clone(),
+        },
+        rapid_mm_min: machine.data.rapid_mm_min,
+        default_spindle_rpm,
+    })
+}
+
+/// Runs the analysis.
+pub fn run(
+    request: AnalysisRequest,
+    prepared: AnalysisPrepared,
+    progress: &dyn Progress,
+) -> Result<AnalysisResult, CoreError> {
+    let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
+    let path = read_program(&request.program).map_err(reread)?;
+    let stock = read_stock(&request.stock).map_err(reread)?;
+    let spec = AnalysisSpec {
+        tool: prepared.tool.geometry.into(),
+        stock: stock.regions,
+        open: stock.open,
+        z_top: stock.z_top,
+        z_bottom: stock.z_bottom,
+        force_model: prepared.force_model.as_ref().map(|f| f.model),
+        default_spindle_rpm: prepared.default_spindle_rpm,
+        rapid_mm_min: prepared.rapid_mm_min,
+        sample_spacing_mm: request.sample_spacing_mm,
+        cell_mm: request.cell_mm,
+        alpha_limit_deg: request.alpha_limit_deg.unwrap_or(DEFAULT_ALPHA_LIMIT_DEG),
+        series_points: request.series_points,
+    };
+    let analysis = analyze(&path, &spec, progress)?;
+    Ok(AnalysisResult::new(prepared, path.moves.len(), analysis))
+}

@@ -1,0 +1,164 @@
+//! `POST /v1/analysis`: a tool path in a layer of stock.
+
+use crate::common::{assert_problem, close, TestApp};
+use serde_json::json;
+
+fn shared(name: &str) -> String {
+    let path = format!("{}/../shared/data/{name}", env!("CARGO_MANIFEST_DIR"));
+    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+/// A straight side cut of the 10 mm tool at its standard conditions: Rd 0.5, Ad 10.
+const STANDARD_CUT: &str = "%\n(standard straight cut)\nG21 G90 G17\nT1 M6\nS9600 M3\nG0 X-10 Y4.5 Z5\nG1 Z-10 F1000\nG1 X110 F5760\nG0 Z5\nM30\n%\n";
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_standard_straight_cut_engages_25_8_degrees_with_the_model_force_beta0() {
+    let app = TestApp::start().await;
+    let body = json!({
+        "program": {"gcode": STANDARD_CUT},
+        "tool_type": "square", "diameter_mm": 10,
+        "stock": {"box": {"x_min": 0, "y_min": -40, "z_min": -10, "x_max": 100, "y_max": 0, "z_max": 0}},
+        "series_points": 100
+    });
+    let a = app.post_wait("/v1/analysis", body).await;
+    assert_eq!(a.status, 201, "{}", a.text);
+    assert_eq!(a.body["status"], "succeeded", "{}", a.text);
+    let r = &a.body["result"];
+    let s = &r["summary"];
+    assert!(close(&s["alpha_deg"]["max"], 25.84, 0.5), "{s}");
+    assert!(close(&s["t_m_um"]["max"], 43.6, 0.5), "{s}");
+    assert!(close(&s["force_n"]["max"], 269.1, 1.0), "{s}");
+    assert!(close(&s["cutting_length_mm"], 100.0 + 5.0, 5.0), "{s}");
+    assert_eq!(r["critical_regions"].as_array().unwrap().len(), 0);
+    let series = &r["series"];
+    assert!(series["line"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|l| l.as_u64().unwrap() >= 7));
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_full_slot_is_reported_as_a_critical_region_with_its_nc_lines() {
+    let app = TestApp::start().await;
+    let gcode = "G21 G90\nS9600 M3\nG0 X-10 Y20 Z5\nG1 Z-10 F1000\nG1 X50 F2000\nG1 Y-5\nM30\n";
+    let body = json!({
+        "program": {"gcode": gcode}, "tool_type": "square", "diameter_mm": 10,
+        "stock": {"box": {"x_min": 0, "y_min": 0, "z_min": -10, "x_max": 100, "y_max": 40, "z_max": 0}}
+    });
+    let a = app.post_wait("/v1/analysis", body).await;
+    let regions = a.body["result"]["critical_regions"]
+        .as_array()
+        .unwrap()
+        .clone();
+    assert!(!regions.is_empty(), "{}", a.text);
+    assert_eq!(regions[0]["kind"], "full_slotting");
+    assert_eq!(regions[0]["start"]["line"], 5);
+    assert!(close(&regions[0]["max_alpha_deg"], 180.0, 0.5));
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn both_real_programs_analyse_through_the_api() {
+    let app = TestApp::start().await;
+    let tiger = json!({
+        "program": {"gcode": shared("tiger.nc")},
+        "tool_id": app.tool_id("square", 6.0).await,
+        "stock": {"box": {"x_min": -2, "y_min": -1, "z_min": -32, "x_max": 92, "y_max": 89, "z_max": 0}},
+        "sample_spacing_mm": 0.1
+    });
+    let a = app
+        .send(
+            reqwest::Method::POST,
+            "/v1/analysis",
+            Some(tiger),
+            &[("prefer", "wait=50")],
+        )
+        .await;
+    assert_eq!(
+        a.body["status"],
+        "succeeded",
+        "{}",
+        &a.text[..a.text.len().min(2000)]
+    );
+    assert!(
+        a.body["result"]["summary"]["cutting_length_mm"]
+            .as_f64()
+            .unwrap()
+            > 1000.0
+    );
+
+    let trochoidal = json!({
+        "program": {"gcode": shared("trochoidal.ngc")},
+        "tool_type": "square", "diameter_mm": 10,
+        "stock": {"box": {"x_min": -60, "y_min": -10, "z_min": -10, "x_max": 40, "y_max": 90, "z_max": 0}}
+    });
+    let a = app
+        .send(
+            reqwest::Method::POST,
+            "/v1/analysis",
+            Some(trochoidal),
+            &[("prefer", "wait=50")],
+        )
+        .await;
+    assert_eq!(
+        a.body["status"],
+        "succeeded",
+        "{}",
+        &a.text[..a.text.len().min(2000)]
+    );
+    assert!(a.body["result"]["summary"]["samples"].as_u64().unwrap() > 10_000);
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_dxf_pocket_is_a_stock() {
+    let app = TestApp::start().await;
+    let body = json!({
+        "program": {"gcode": "G21 G90\nS9600 M3\nG0 X0 Y0 Z5\nG1 Z-2 F500\nG1 X10 F1000\nM30\n"},
+        "tool_type": "square", "diameter_mm": 6,
+        "stock": {"dxf": shared("border.dxf"), "z_top": 0, "z_bottom": -5}
+    });
+    let a = app.post_wait("/v1/analysis", body).await;
+    assert_eq!(a.status, 201, "{}", a.text);
+    assert_eq!(a.body["status"], "succeeded", "{}", a.text);
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn bad_nc_and_bad_contours_are_refused_naming_the_line_or_vertex() {
+    let app = TestApp::start().await;
+    let stock = json!({"box": {"x_min": 0, "y_min": 0, "z_min": -10, "x_max": 100, "y_max": 40, "z_max": 0}});
+    let bad_nc = json!({"program": {"gcode": "G21\nG1 X1 F100\nG1 X2 Q7\n"}, "tool_type": "square", "diameter_mm": 10, "stock": stock});
+    let a = app.post("/v1/analysis", bad_nc).await;
+    assert_problem(&a, 422, Some("program.gcode"));
+    assert!(
+        a.body["detail"].as_str().unwrap().contains("line 3"),
+        "{}",
+        a.text
+    );
+
+    let bowtie = json!({"outer": [[0, 0], [10, 10], [10, 0], [0, 10]]});
+    let bad_contour = json!({"program": {"gcode": "G1 X1 F100\n"}, "tool_type": "square", "diameter_mm": 10,
+        "stock": {"contour": bowtie, "z_top": 0, "z_bottom": -5}});
+    let a = app.post("/v1/analysis", bad_contour).await;
+    assert_eq!(a.status, 422, "{}", a.text);
+    assert!(
+        a.body["errors"][0]["field"]
+            .as_str()
+            .unwrap()
+            .starts_with("stock.contour.outer"),
+        "{}",
+        a.text
+    );
+
+    let no_stock = json!({"program": {"gcode": "G1 X1 F100\n"}, "tool_type": "square", "diameter_mm": 10, "stock": {}});
+    assert_problem(
+        &app.post("/v1/analysis", no_stock).await,
+        422,
+        Some("stock"),
+    );
+    assert_eq!(app.get("/v1/jobs").await.body["total"], 0);
+    app.stop().await;
+}
