@@ -113,21 +113,13 @@ fn synthetic_pocket(w: f64, h: f64, r: f64, step: f64, z: f64) -> Toolpath {
             push(Motion::Linear, P3::new(p.0, p.1, z), &mut moves);
         }
     }
-    Toolpath {
-        moves,
-        events: vec![],
-        source_units: Units::Mm,
-        warnings: vec![],
-    }
+    Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] }
 }
 
 /// `cargo bench --bench analysis -- NAME…` runs only the cases whose label contains
 /// one of the names.
 fn wanted(label: &str) -> bool {
-    let filters: Vec<String> = std::env::args()
-        .skip(1)
-        .filter(|a| !a.starts_with("--"))
-        .collect();
+    let filters: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with("--")).collect();
     filters.is_empty() || filters.iter().any(|f| label.contains(f.as_str()))
 }
 
@@ -136,69 +128,25 @@ fn main() {
     let trochoidal = parse_throughput("trochoidal.ngc");
 
     // tiger.camotics: 2.5 mm flat end mill, stock (-2,-1,-32)..(92,89,0).
-    let small = EndMill {
-        tool_type: ToolType::Square,
-        diameter_mm: 2.5,
-        flutes: 2,
-        corner_radius_mm: 0.0,
-    };
-    let tiger_stock = Rect {
-        x_min: -2.0,
-        y_min: -1.0,
-        x_max: 92.0,
-        y_max: 89.0,
-    };
-    report(
-        "tiger.nc (default spacing D/100)",
-        &tiger,
-        &spec(small, tiger_stock, 0.0, -32.0, None, None),
-    );
-    report(
-        "tiger.nc at 0.05 mm",
-        &tiger,
-        &spec(small, tiger_stock, 0.0, -32.0, None, Some(0.05)),
-    );
+    let small = EndMill { tool_type: ToolType::Square, diameter_mm: 2.5, flutes: 2, corner_radius_mm: 0.0 };
+    let tiger_stock = Rect { x_min: -2.0, y_min: -1.0, x_max: 92.0, y_max: 89.0 };
+    report("tiger.nc (default spacing D/100)", &tiger, &spec(small, tiger_stock, 0.0, -32.0, None, None));
+    report("tiger.nc at 0.05 mm", &tiger, &spec(small, tiger_stock, 0.0, -32.0, None, Some(0.05)));
 
-    let ten = EndMill {
-        tool_type: ToolType::Square,
-        diameter_mm: 10.0,
-        flutes: 6,
-        corner_radius_mm: 0.0,
-    };
+    let ten = EndMill { tool_type: ToolType::Square, diameter_mm: 10.0, flutes: 6, corner_radius_mm: 0.0 };
     let model = ForceModel {
         t0_um: 43.589,
         dt_um: 15.0,
         l0_mm: 2.2551,
         dl_mm: 0.436,
-        coefficients: Coefficients {
-            b0: 269.1,
-            b1: 65.84,
-            b2: 53.66,
-            b11: 0.0,
-            b22: 3.763,
-            b12: 15.45,
-        },
+        coefficients: Coefficients { b0: 269.1, b1: 65.84, b2: 53.66, b11: 0.0, b22: 3.763, b12: 15.45 },
         ad_ref_mm: 10.0,
     };
-    let troch_stock = Rect {
-        x_min: -60.0,
-        y_min: -10.0,
-        x_max: 40.0,
-        y_max: 90.0,
-    };
-    report(
-        "trochoidal.ngc (10 mm tool)",
-        &trochoidal,
-        &spec(ten, troch_stock, 0.0, -10.0, Some(model), None),
-    );
+    let troch_stock = Rect { x_min: -60.0, y_min: -10.0, x_max: 40.0, y_max: 90.0 };
+    report("trochoidal.ngc (10 mm tool)", &trochoidal, &spec(ten, troch_stock, 0.0, -10.0, Some(model), None));
 
     let pocket = synthetic_pocket(200.0, 150.0, 5.0, 0.5, -5.0);
-    let pocket_stock = Rect {
-        x_min: 0.0,
-        y_min: 0.0,
-        x_max: 200.0,
-        y_max: 150.0,
-    };
+    let pocket_stock = Rect { x_min: 0.0, y_min: 0.0, x_max: 200.0, y_max: 150.0 };
     report(
         "synthetic 200 x 150 pocket, Rd 0.5, 10 mm tool",
         &pocket,

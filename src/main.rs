@@ -37,10 +37,7 @@ fn main() -> ExitCode {
 
 fn serve(config: Config) -> ExitCode {
     app::init_tracing(&config);
-    let runtime = match tokio::runtime::Builder::new_multi_thread()
-        .enable_all()
-        .build()
-    {
+    let runtime = match tokio::runtime::Builder::new_multi_thread().enable_all().build() {
         Ok(rt) => rt,
         Err(e) => {
             eprintln!("dieplan: cannot start the async runtime: {e}");

@@ -114,9 +114,7 @@ pub fn evaluate_conditions(
 
     let (engagement_pred, force) = if tool.tool_type.cuts_with_flank() {
         let e = engagement(Contour::Straight, tool.radius_mm(), conditions.rd_mm)?;
-        let t_m_um =
-            max_chip_thickness_mm(conditions.fz_mm * e.cutting_point_feed_ratio, e.angle_rad)
-                * UM_PER_MM;
+        let t_m_um = max_chip_thickness_mm(conditions.fz_mm * e.cutting_point_feed_ratio, e.angle_rad) * UM_PER_MM;
         let pred = PredictedEngagement {
             angle_deg: e.angle_rad.to_degrees(),
             max_chip_thickness_um: t_m_um,
@@ -141,9 +139,7 @@ pub fn evaluate_conditions(
                 })
             }
             None => {
-                warnings.push(
-                    "no force model for this tool and material: no force is predicted".to_string(),
-                );
+                warnings.push("no force model for this tool and material: no force is predicted".to_string());
                 None
             }
         };
@@ -161,10 +157,7 @@ pub fn evaluate_conditions(
         feed_mm_min: feed_mm_min(conditions.fz_mm, tool.flutes, conditions.spindle_rpm),
         cutting_speed_m_min: cutting_speed_m_min(tool.diameter_mm, conditions.spindle_rpm),
         effective_diameter_mm,
-        effective_cutting_speed_m_min: cutting_speed_m_min(
-            effective_diameter_mm,
-            conditions.spindle_rpm,
-        ),
+        effective_cutting_speed_m_min: cutting_speed_m_min(effective_diameter_mm, conditions.spindle_rpm),
         engagement: engagement_pred,
         force,
         warnings,
@@ -179,22 +172,12 @@ mod tests {
     use crate::core::tool::ToolType;
 
     fn square(d: f64) -> EndMill {
-        EndMill {
-            tool_type: ToolType::Square,
-            diameter_mm: d,
-            flutes: 6,
-            corner_radius_mm: 0.0,
-        }
+        EndMill { tool_type: ToolType::Square, diameter_mm: d, flutes: 6, corner_radius_mm: 0.0 }
     }
 
     #[test]
     fn the_10_mm_standard_gives_f5760_v302_and_beta0_as_the_force() {
-        let c = CuttingConditions {
-            spindle_rpm: 9600.0,
-            fz_mm: 0.1,
-            rd_mm: 0.5,
-            ad_mm: 10.0,
-        };
+        let c = CuttingConditions { spindle_rpm: 9600.0, fz_mm: 0.1, rd_mm: 0.5, ad_mm: 10.0 };
         let r = evaluate_conditions(&square(10.0), c, Some(&seed_001_ten_mm())).unwrap();
         assert!(approx_eq(r.feed_mm_min, 5760.0, 1e-9));
         assert!(approx_eq(r.cutting_speed_m_min, 301.6, 0.05));
@@ -207,25 +190,11 @@ mod tests {
 
     #[test]
     fn a_ball_end_mill_gets_feed_and_effective_speed_but_no_force() {
-        let ball = EndMill {
-            tool_type: ToolType::Ball,
-            diameter_mm: 10.0,
-            flutes: 2,
-            corner_radius_mm: 5.0,
-        };
-        let c = CuttingConditions {
-            spindle_rpm: 4800.0,
-            fz_mm: 0.05,
-            rd_mm: 3.5,
-            ad_mm: 0.6,
-        };
+        let ball = EndMill { tool_type: ToolType::Ball, diameter_mm: 10.0, flutes: 2, corner_radius_mm: 5.0 };
+        let c = CuttingConditions { spindle_rpm: 4800.0, fz_mm: 0.05, rd_mm: 3.5, ad_mm: 0.6 };
         let r = evaluate_conditions(&ball, c, None).unwrap();
         assert!(approx_eq(r.feed_mm_min, 480.0, 1e-9));
-        assert!(approx_eq(
-            r.effective_diameter_mm,
-            2.0 * (0.6f64 * 9.4).sqrt(),
-            1e-12
-        ));
+        assert!(approx_eq(r.effective_diameter_mm, 2.0 * (0.6f64 * 9.4).sqrt(), 1e-12));
         assert!(r.effective_cutting_speed_m_min < r.cutting_speed_m_min);
         assert!(r.force.is_none() && r.engagement.is_none());
         assert_eq!(r.warnings.len(), 1);
@@ -233,12 +202,7 @@ mod tests {
 
     #[test]
     fn conditions_outside_the_design_region_are_flagged() {
-        let c = CuttingConditions {
-            spindle_rpm: 9600.0,
-            fz_mm: 0.2,
-            rd_mm: 2.0,
-            ad_mm: 10.0,
-        };
+        let c = CuttingConditions { spindle_rpm: 9600.0, fz_mm: 0.2, rd_mm: 2.0, ad_mm: 10.0 };
         let r = evaluate_conditions(&square(10.0), c, Some(&seed_001_ten_mm())).unwrap();
         assert!(!r.force.unwrap().within_design_region);
         assert!(r.warnings[0].contains("design region"));
@@ -246,12 +210,7 @@ mod tests {
 
     #[test]
     fn a_zero_feed_is_refused_naming_the_field() {
-        let c = CuttingConditions {
-            spindle_rpm: 9600.0,
-            fz_mm: 0.0,
-            rd_mm: 0.5,
-            ad_mm: 10.0,
-        };
+        let c = CuttingConditions { spindle_rpm: 9600.0, fz_mm: 0.0, rd_mm: 0.5, ad_mm: 10.0 };
         let err = evaluate_conditions(&square(10.0), c, None).unwrap_err();
         assert!(err.to_string().starts_with("fz_mm"));
     }

@@ -26,10 +26,7 @@ pub struct PointCurvature {
 }
 
 impl PointCurvature {
-    pub const STRAIGHT: PointCurvature = PointCurvature {
-        kappa: 0.0,
-        corner: false,
-    };
+    pub const STRAIGHT: PointCurvature = PointCurvature { kappa: 0.0, corner: false };
 
     /// Radius of curvature, mm (infinite on a straight path, 0 at a sharp corner).
     pub fn radius_mm(&self) -> f64 {
@@ -138,10 +135,7 @@ fn fit_at(
             if speed2 < MIN_SEGMENT_MM {
                 return PointCurvature::STRAIGHT;
             }
-            PointCurvature {
-                kappa: (x1 * y2 - y1 * x2) / speed2.powf(1.5),
-                corner: false,
-            }
+            PointCurvature { kappa: (x1 * y2 - y1 * x2) / speed2.powf(1.5), corner: false }
         }
         _ => PointCurvature::STRAIGHT,
     }
@@ -192,8 +186,7 @@ pub fn polyline_curvature(points: &[(f64, f64)], half_width_mm: f64) -> Vec<Poin
         .map(|i| {
             i > 0
                 && i + 1 < n
-                && turn_angle(points[i - 1], points[i], points[i + 1])
-                    .is_some_and(|t| t.abs() > corner_rad)
+                && turn_angle(points[i - 1], points[i], points[i + 1]).is_some_and(|t| t.abs() > corner_rad)
         })
         .collect();
 
@@ -201,10 +194,7 @@ pub fn polyline_curvature(points: &[(f64, f64)], half_width_mm: f64) -> Vec<Poin
     (0..n)
         .map(|i| {
             if corners[i] {
-                return PointCurvature {
-                    kappa: 0.0,
-                    corner: true,
-                };
+                return PointCurvature { kappa: 0.0, corner: true };
             }
             // A first, narrow quadratic fit estimates the radius; the final quartic fit
             // uses a window no wider than WINDOW_PER_RADIUS of it.
@@ -237,8 +227,7 @@ mod tests {
         let n = (2.0 * std::f64::consts::PI * radius / spacing) as usize;
         (0..n)
             .map(|i| {
-                let a =
-                    i as f64 / n as f64 * 2.0 * std::f64::consts::PI * if ccw { 1.0 } else { -1.0 };
+                let a = i as f64 / n as f64 * 2.0 * std::f64::consts::PI * if ccw { 1.0 } else { -1.0 };
                 let r = radius + noise(i);
                 (r * a.cos(), r * a.sin())
             })
@@ -252,11 +241,7 @@ mod tests {
             let k = polyline_curvature(&pts, DEFAULT_FIT_HALF_WIDTH_MM);
             for (i, c) in k.iter().enumerate().skip(30).take(pts.len() - 60) {
                 let err = (c.radius_mm() - radius).abs() / radius;
-                assert!(
-                    err < 0.01,
-                    "R {radius}, point {i}: {} ({err})",
-                    c.radius_mm()
-                );
+                assert!(err < 0.01, "R {radius}, point {i}: {} ({err})", c.radius_mm());
             }
         }
     }
@@ -283,9 +268,6 @@ mod tests {
         let k = polyline_curvature(&pts, DEFAULT_FIT_HALF_WIDTH_MM);
         assert!(k[20].radius_mm().is_infinite());
         assert!(k[50].corner && k[50].radius_mm() < 1e-12);
-        assert!(
-            k[80].radius_mm().is_infinite(),
-            "windows stop at the corner"
-        );
+        assert!(k[80].radius_mm().is_infinite(), "windows stop at the corner");
     }
 }

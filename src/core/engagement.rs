@@ -42,31 +42,21 @@ pub fn straight_engagement_angle_rad(radial_depth_mm: f64, tool_radius_mm: f64) 
 
 /// Engagement angle on a concave arc (MODEL.md §2, seed 002 Fig. 4):
 /// `cos α = ((R − Rd)² − Rc² − r²) / (2·Rc·r)` with `Rc = R − r`.
-pub fn concave_engagement_angle_rad(
-    surface_radius_mm: f64,
-    radial_depth_mm: f64,
-    tool_radius_mm: f64,
-) -> f64 {
+pub fn concave_engagement_angle_rad(surface_radius_mm: f64, radial_depth_mm: f64, tool_radius_mm: f64) -> f64 {
     let centre_radius = surface_radius_mm - tool_radius_mm;
     let previous = surface_radius_mm - radial_depth_mm;
-    let cos_alpha =
-        (previous * previous - centre_radius * centre_radius - tool_radius_mm * tool_radius_mm)
-            / (2.0 * centre_radius * tool_radius_mm);
+    let cos_alpha = (previous * previous - centre_radius * centre_radius - tool_radius_mm * tool_radius_mm)
+        / (2.0 * centre_radius * tool_radius_mm);
     cos_alpha.clamp(-1.0, 1.0).acos()
 }
 
 /// Engagement angle on a convex arc (MODEL.md §2):
 /// `cos α = ((R + Rd)² − Rc² − r²) / (−2·Rc·r)` with `Rc = R + r`.
-pub fn convex_engagement_angle_rad(
-    surface_radius_mm: f64,
-    radial_depth_mm: f64,
-    tool_radius_mm: f64,
-) -> f64 {
+pub fn convex_engagement_angle_rad(surface_radius_mm: f64, radial_depth_mm: f64, tool_radius_mm: f64) -> f64 {
     let centre_radius = surface_radius_mm + tool_radius_mm;
     let previous = surface_radius_mm + radial_depth_mm;
-    let cos_alpha =
-        (previous * previous - centre_radius * centre_radius - tool_radius_mm * tool_radius_mm)
-            / (-2.0 * centre_radius * tool_radius_mm);
+    let cos_alpha = (previous * previous - centre_radius * centre_radius - tool_radius_mm * tool_radius_mm)
+        / (-2.0 * centre_radius * tool_radius_mm);
     cos_alpha.clamp(-1.0, 1.0).acos()
 }
 
@@ -75,12 +65,8 @@ pub fn convex_engagement_angle_rad(
 pub fn cutting_point_feed_ratio(contour: Contour, tool_radius_mm: f64) -> f64 {
     match contour {
         Contour::Straight => 1.0,
-        Contour::Concave { surface_radius_mm } => {
-            surface_radius_mm / (surface_radius_mm - tool_radius_mm)
-        }
-        Contour::Convex { surface_radius_mm } => {
-            surface_radius_mm / (surface_radius_mm + tool_radius_mm)
-        }
+        Contour::Concave { surface_radius_mm } => surface_radius_mm / (surface_radius_mm - tool_radius_mm),
+        Contour::Convex { surface_radius_mm } => surface_radius_mm / (surface_radius_mm + tool_radius_mm),
     }
 }
 
@@ -100,11 +86,7 @@ pub fn engagement_arc_length_mm(tool_radius_mm: f64, engagement_angle_rad: f64) 
 }
 
 /// The full engagement of a tool of radius `r` cutting `contour` at radial depth `Rd`.
-pub fn engagement(
-    contour: Contour,
-    tool_radius_mm: f64,
-    radial_depth_mm: f64,
-) -> Result<Engagement, CoreError> {
+pub fn engagement(contour: Contour, tool_radius_mm: f64, radial_depth_mm: f64) -> Result<Engagement, CoreError> {
     let r = require_positive("tool_radius_mm", tool_radius_mm)?;
     let rd = require_positive("rd_mm", radial_depth_mm)?;
     let angle_rad = match contour {
@@ -143,19 +125,13 @@ mod tests {
     #[test]
     fn standard_conditions_give_the_chip_thickness_and_arc_length_of_seed_001_table_2() {
         // (D, Rd, fz, t_m µm, L mm) — MODEL.md §2 check numbers.
-        for (d, rd, fz, t_um, l_mm) in [
-            (6.0, 0.3, 0.04, 17.4, 1.35),
-            (8.0, 0.4, 0.07, 30.5, 1.80),
-            (10.0, 0.5, 0.10, 43.6, 2.26),
-        ] {
+        for (d, rd, fz, t_um, l_mm) in
+            [(6.0, 0.3, 0.04, 17.4, 1.35), (8.0, 0.4, 0.07, 30.5, 1.80), (10.0, 0.5, 0.10, 43.6, 2.26)]
+        {
             let e = engagement(Contour::Straight, d / 2.0, rd).unwrap();
             let t_m = max_chip_thickness_mm(fz * e.cutting_point_feed_ratio, e.angle_rad) * 1000.0;
             assert!(approx_eq(t_m, t_um, 0.05), "D{d}: t_m {t_m}");
-            assert!(
-                approx_eq(e.arc_length_mm, l_mm, 0.005),
-                "D{d}: L {}",
-                e.arc_length_mm
-            );
+            assert!(approx_eq(e.arc_length_mm, l_mm, 0.005), "D{d}: L {}", e.arc_length_mm);
         }
     }
 
@@ -168,31 +144,12 @@ mod tests {
     #[test]
     fn concave_arcs_give_the_angles_and_lengths_of_model_section_3() {
         // R/r, α deg, L mm for the 10 mm tool at Rd 0.5.
-        for (ratio, alpha, l) in [
-            (3.0, 31.5, 2.75),
-            (2.0, 36.4, 3.18),
-            (1.6, 42.1, 3.68),
-            (1.3, 54.3, 4.74),
-            (1.2, 64.8, 5.66),
-        ] {
-            let e = engagement(
-                Contour::Concave {
-                    surface_radius_mm: 5.0 * ratio,
-                },
-                5.0,
-                0.5,
-            )
-            .unwrap();
-            assert!(
-                approx_eq(deg(e.angle_rad), alpha, 0.05),
-                "R/r {ratio}: α {}",
-                deg(e.angle_rad)
-            );
-            assert!(
-                approx_eq(e.arc_length_mm, l, 0.01),
-                "R/r {ratio}: L {}",
-                e.arc_length_mm
-            );
+        for (ratio, alpha, l) in
+            [(3.0, 31.5, 2.75), (2.0, 36.4, 3.18), (1.6, 42.1, 3.68), (1.3, 54.3, 4.74), (1.2, 64.8, 5.66)]
+        {
+            let e = engagement(Contour::Concave { surface_radius_mm: 5.0 * ratio }, 5.0, 0.5).unwrap();
+            assert!(approx_eq(deg(e.angle_rad), alpha, 0.05), "R/r {ratio}: α {}", deg(e.angle_rad));
+            assert!(approx_eq(e.arc_length_mm, l, 0.01), "R/r {ratio}: L {}", e.arc_length_mm);
         }
     }
 
@@ -209,16 +166,8 @@ mod tests {
 
     #[test]
     fn a_full_slot_engages_half_the_tool() {
-        assert!(approx_eq(
-            straight_engagement_angle_rad(10.0, 5.0),
-            PI,
-            1e-12
-        ));
-        assert!(approx_eq(
-            straight_engagement_angle_rad(25.0, 5.0),
-            PI,
-            1e-12
-        ));
+        assert!(approx_eq(straight_engagement_angle_rad(10.0, 5.0), PI, 1e-12));
+        assert!(approx_eq(straight_engagement_angle_rad(25.0, 5.0), PI, 1e-12));
     }
 
     #[test]
@@ -229,38 +178,15 @@ mod tests {
 
     #[test]
     fn a_concave_surface_tighter_than_the_tool_is_refused_naming_the_field() {
-        let err = engagement(
-            Contour::Concave {
-                surface_radius_mm: 4.0,
-            },
-            5.0,
-            0.5,
-        )
-        .unwrap_err();
-        assert!(
-            matches!(err, CoreError::InvalidInput { ref field, .. } if field == "surface_radius_mm")
-        );
+        let err = engagement(Contour::Concave { surface_radius_mm: 4.0 }, 5.0, 0.5).unwrap_err();
+        assert!(matches!(err, CoreError::InvalidInput { ref field, .. } if field == "surface_radius_mm"));
     }
 
     #[test]
     fn the_cutting_point_moves_slower_inside_and_faster_outside() {
+        assert!(approx_eq(cutting_point_feed_ratio(Contour::Concave { surface_radius_mm: 10.0 }, 5.0), 2.0, 1e-12));
         assert!(approx_eq(
-            cutting_point_feed_ratio(
-                Contour::Concave {
-                    surface_radius_mm: 10.0
-                },
-                5.0
-            ),
-            2.0,
-            1e-12
-        ));
-        assert!(approx_eq(
-            cutting_point_feed_ratio(
-                Contour::Convex {
-                    surface_radius_mm: 10.0
-                },
-                5.0
-            ),
+            cutting_point_feed_ratio(Contour::Convex { surface_radius_mm: 10.0 }, 5.0),
             10.0 / 15.0,
             1e-12
         ));

@@ -21,17 +21,11 @@ pub enum CoreError {
 
 impl CoreError {
     pub fn invalid(field: impl Into<String>, reason: impl Into<String>) -> Self {
-        CoreError::InvalidInput {
-            field: field.into(),
-            reason: reason.into(),
-        }
+        CoreError::InvalidInput { field: field.into(), reason: reason.into() }
     }
 
     pub fn unsolvable(field: impl Into<String>, reason: impl Into<String>) -> Self {
-        CoreError::Unsolvable {
-            field: field.into(),
-            reason: reason.into(),
-        }
+        CoreError::Unsolvable { field: field.into(), reason: reason.into() }
     }
 }
 
@@ -40,10 +34,7 @@ pub fn require_positive(field: &str, value: f64) -> Result<f64, CoreError> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
-        Err(CoreError::invalid(
-            field,
-            format!("must be a finite number > 0, got {value}"),
-        ))
+        Err(CoreError::invalid(field, format!("must be a finite number > 0, got {value}")))
     }
 }
 
@@ -52,9 +43,6 @@ pub fn require_finite(field: &str, value: f64) -> Result<f64, CoreError> {
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(CoreError::invalid(
-            field,
-            format!("must be a finite number, got {value}"),
-        ))
+        Err(CoreError::invalid(field, format!("must be a finite number, got {value}")))
     }
 }

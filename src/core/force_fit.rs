@@ -114,9 +114,8 @@ pub fn fit_force_model(samples: &[ForceSample], spec: FitSpec) -> Result<ForceFi
             "the points do not determine every coefficient: vary both the chip thickness and the arc length (e.g. a central composite design)",
         ));
     }
-    let beta = svd
-        .solve(&forces, RANK_TOLERANCE * max_sv)
-        .map_err(|e| CoreError::unsolvable("points", e.to_string()))?;
+    let beta =
+        svd.solve(&forces, RANK_TOLERANCE * max_sv).map_err(|e| CoreError::unsolvable("points", e.to_string()))?;
 
     let predicted = &design * &beta;
     let residuals = &forces - &predicted;
@@ -135,24 +134,13 @@ pub fn fit_force_model(samples: &[ForceSample], spec: FitSpec) -> Result<ForceFi
     let adjusted_r_squared = 1.0 - (1.0 - r_squared) * (n - 1.0) / dof;
 
     let b = beta.as_slice();
-    let (b11, rest) = if spec.include_x1_squared {
-        (b[3], &b[4..])
-    } else {
-        (0.0, &b[3..])
-    };
+    let (b11, rest) = if spec.include_x1_squared { (b[3], &b[4..]) } else { (0.0, &b[3..]) };
     let model = ForceModel {
         t0_um: spec.t0_um,
         dt_um: spec.dt_um,
         l0_mm: spec.l0_mm,
         dl_mm: spec.dl_mm,
-        coefficients: Coefficients {
-            b0: b[0],
-            b1: b[1],
-            b2: b[2],
-            b11,
-            b22: rest[0],
-            b12: rest[1],
-        },
+        coefficients: Coefficients { b0: b[0], b1: b[1], b2: b[2], b11, b22: rest[0], b12: rest[1] },
         ad_ref_mm: spec.ad_ref_mm,
     };
     Ok(ForceFit {
@@ -185,16 +173,8 @@ mod tests {
     /// The 13-run central composite design of the papers, in coded units.
     fn central_composite() -> Vec<(f64, f64)> {
         let s = std::f64::consts::SQRT_2;
-        let mut pts = vec![
-            (-1.0, -1.0),
-            (1.0, -1.0),
-            (-1.0, 1.0),
-            (1.0, 1.0),
-            (-s, 0.0),
-            (s, 0.0),
-            (0.0, -s),
-            (0.0, s),
-        ];
+        let mut pts =
+            vec![(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0), (-s, 0.0), (s, 0.0), (0.0, -s), (0.0, s)];
         pts.extend(std::iter::repeat_n((0.0, 0.0), 5));
         pts
     }
@@ -206,11 +186,7 @@ mod tests {
             .map(|(i, (x1, x2))| {
                 let t = model.t0_um + x1 * model.dt_um;
                 let l = model.l0_mm + x2 * model.dl_mm;
-                ForceSample {
-                    t_m_um: t,
-                    l_mm: l,
-                    fxy_n: model.force_n(t, l, model.ad_ref_mm) + noise(i),
-                }
+                ForceSample { t_m_um: t, l_mm: l, fxy_n: model.force_n(t, l, model.ad_ref_mm) + noise(i) }
             })
             .collect()
     }
@@ -220,13 +196,7 @@ mod tests {
         let truth = seed_001_ten_mm();
         let fit = fit_force_model(&samples_from(&truth, |_| 0.0), spec(false)).unwrap();
         let (c, t) = (fit.model.coefficients, truth.coefficients);
-        for (got, want) in [
-            (c.b0, t.b0),
-            (c.b1, t.b1),
-            (c.b2, t.b2),
-            (c.b22, t.b22),
-            (c.b12, t.b12),
-        ] {
+        for (got, want) in [(c.b0, t.b0), (c.b1, t.b1), (c.b2, t.b2), (c.b22, t.b22), (c.b12, t.b12)] {
             assert!(approx_eq(got, want, 1e-9), "{got} vs {want}");
         }
         assert!(approx_eq(fit.r_squared, 1.0, 1e-12));
@@ -253,11 +223,7 @@ mod tests {
     #[test]
     fn points_at_one_chip_thickness_are_refused_as_degenerate() {
         let samples: Vec<_> = (0..10)
-            .map(|i| ForceSample {
-                t_m_um: 43.6,
-                l_mm: 2.0 + 0.1 * i as f64,
-                fxy_n: 250.0 + i as f64,
-            })
+            .map(|i| ForceSample { t_m_um: 43.6, l_mm: 2.0 + 0.1 * i as f64, fxy_n: 250.0 + i as f64 })
             .collect();
         let err = fit_force_model(&samples, spec(false)).unwrap_err();
         assert!(matches!(err, CoreError::Unsolvable { .. }), "{err}");

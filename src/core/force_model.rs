@@ -56,12 +56,7 @@ impl Coded {
 impl Coefficients {
     /// The polynomial of seed 002 Eq. 1 at coded point `(x1, x2)`, N.
     pub fn evaluate(&self, x1: f64, x2: f64) -> f64 {
-        self.b0
-            + self.b1 * x1
-            + self.b2 * x2
-            + self.b11 * x1 * x1
-            + self.b22 * x2 * x2
-            + self.b12 * x1 * x2
+        self.b0 + self.b1 * x1 + self.b2 * x2 + self.b11 * x1 * x1 + self.b22 * x2 * x2 + self.b12 * x1 * x2
     }
 }
 
@@ -74,14 +69,7 @@ impl ForceModel {
         require_positive("dl_mm", self.dl_mm)?;
         require_positive("ad_ref_mm", self.ad_ref_mm)?;
         let c = self.coefficients;
-        for (name, v) in [
-            ("b0", c.b0),
-            ("b1", c.b1),
-            ("b2", c.b2),
-            ("b11", c.b11),
-            ("b22", c.b22),
-            ("b12", c.b12),
-        ] {
+        for (name, v) in [("b0", c.b0), ("b1", c.b1), ("b2", c.b2), ("b11", c.b11), ("b22", c.b22), ("b12", c.b12)] {
             crate::core::error::require_finite(name, v)?;
         }
         Ok(())
@@ -89,10 +77,7 @@ impl ForceModel {
 
     /// The coded variables `X1 = (t_m − t0)/δt`, `X2 = (L − L0)/δL` (MODEL.md §3).
     pub fn coded(&self, chip_thickness_um: f64, arc_length_mm: f64) -> Coded {
-        Coded {
-            x1: (chip_thickness_um - self.t0_um) / self.dt_um,
-            x2: (arc_length_mm - self.l0_mm) / self.dl_mm,
-        }
+        Coded { x1: (chip_thickness_um - self.t0_um) / self.dt_um, x2: (arc_length_mm - self.l0_mm) / self.dl_mm }
     }
 
     /// Predicted XY force (N) at chip thickness `t_m` (µm), arc length `L` (mm) and axial
@@ -180,13 +165,7 @@ mod tests {
         let m = seed_001_ten_mm();
         let t = m.chip_thickness_for_force_um(300.0, 3.0, 10.0).unwrap();
         assert!(approx_eq(m.force_n(t, 3.0, 10.0), 300.0, 1e-9));
-        let quad = ForceModel {
-            coefficients: Coefficients {
-                b11: 2.0,
-                ..m.coefficients
-            },
-            ..m
-        };
+        let quad = ForceModel { coefficients: Coefficients { b11: 2.0, ..m.coefficients }, ..m };
         let t = quad.chip_thickness_for_force_um(300.0, 3.0, 10.0).unwrap();
         assert!(approx_eq(quad.force_n(t, 3.0, 10.0), 300.0, 1e-9));
     }
@@ -196,41 +175,23 @@ mod tests {
         // 10 mm, z 6, S 9600, Rd 0.5: R/r → feed (mm/min) at the standard force β0.
         let m = seed_001_ten_mm();
         for (ratio, feed) in [(3.0, 2340.0), (2.0, 1160.0), (1.6, 513.0)] {
-            let contour = Contour::Concave {
-                surface_radius_mm: 5.0 * ratio,
-            };
+            let contour = Contour::Concave { surface_radius_mm: 5.0 * ratio };
             let e = engagement(contour, 5.0, 0.5).unwrap();
-            let t_um = m
-                .chip_thickness_for_force_um(269.1, e.arc_length_mm, 10.0)
-                .unwrap();
+            let t_um = m.chip_thickness_for_force_um(269.1, e.arc_length_mm, 10.0).unwrap();
             let fz_p_mm = t_um / 1000.0 / e.angle_rad.sin();
             let fz_c_mm = fz_p_mm / e.cutting_point_feed_ratio;
             let f = fz_c_mm * 6.0 * 9600.0;
             assert!((f - feed).abs() / feed < 0.02, "R/r {ratio}: {f} vs {feed}");
             // and the force at that feed is the target again
-            let t_back =
-                max_chip_thickness_mm(fz_c_mm * e.cutting_point_feed_ratio, e.angle_rad) * 1000.0;
-            assert!(approx_eq(
-                m.force_n(t_back, e.arc_length_mm, 10.0),
-                269.1,
-                1e-6
-            ));
+            let t_back = max_chip_thickness_mm(fz_c_mm * e.cutting_point_feed_ratio, e.angle_rad) * 1000.0;
+            assert!(approx_eq(m.force_n(t_back, e.arc_length_mm, 10.0), 269.1, 1e-6));
         }
     }
 
     #[test]
     fn a_very_long_engagement_arc_cannot_reach_the_target_force() {
-        let e = engagement(
-            Contour::Concave {
-                surface_radius_mm: 6.0,
-            },
-            5.0,
-            0.5,
-        )
-        .unwrap();
-        assert!(seed_001_ten_mm()
-            .chip_thickness_for_force_um(269.1, e.arc_length_mm, 10.0)
-            .is_none());
+        let e = engagement(Contour::Concave { surface_radius_mm: 6.0 }, 5.0, 0.5).unwrap();
+        assert!(seed_001_ten_mm().chip_thickness_for_force_um(269.1, e.arc_length_mm, 10.0).is_none());
     }
 
     #[test]

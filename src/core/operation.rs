@@ -56,9 +56,8 @@ impl TryFrom<String> for Operation {
     type Error = crate::core::CoreError;
 
     fn try_from(value: String) -> Result<Self, Self::Error> {
-        Operation::parse(&value).ok_or_else(|| {
-            crate::core::CoreError::invalid("operation", format!("unknown operation '{value}'"))
-        })
+        Operation::parse(&value)
+            .ok_or_else(|| crate::core::CoreError::invalid("operation", format!("unknown operation '{value}'")))
     }
 }
 

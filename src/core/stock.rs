@@ -119,28 +119,21 @@ impl Raster {
 
     /// `false` when no cell within `reach_mm` of `(x, y)` holds material.
     pub fn any_material_near(&self, x: f64, y: f64, reach_mm: f64) -> bool {
-        let index =
-            |v: f64, origin: f64, pad: f64| ((v - origin) * self.inv_cell + pad).max(0.0) as usize;
-        let (lo_i, lo_j) = (
-            index(x - reach_mm, self.x0, -1.0),
-            index(y - reach_mm, self.y0, -1.0),
-        );
+        let index = |v: f64, origin: f64, pad: f64| ((v - origin) * self.inv_cell + pad).max(0.0) as usize;
+        let (lo_i, lo_j) = (index(x - reach_mm, self.x0, -1.0), index(y - reach_mm, self.y0, -1.0));
         let hi_i = index(x + reach_mm, self.x0, 1.0).min(self.nx - 1);
         let hi_j = index(y + reach_mm, self.y0, 1.0).min(self.ny - 1);
         if lo_i > hi_i || lo_j > hi_j {
             return false;
         }
-        (lo_j / BLOCK_CELLS..=hi_j / BLOCK_CELLS).any(|bj| {
-            (lo_i / BLOCK_CELLS..=hi_i / BLOCK_CELLS).any(|bi| self.blocks[bj * self.bx + bi] > 0)
-        })
+        (lo_j / BLOCK_CELLS..=hi_j / BLOCK_CELLS)
+            .any(|bj| (lo_i / BLOCK_CELLS..=hi_i / BLOCK_CELLS).any(|bi| self.blocks[bj * self.bx + bi] > 0))
     }
 
     /// Cells whose centres lie in `[x_lo, x_hi]`, as a half-open index range.
     fn cell_range(&self, x_lo: f64, x_hi: f64) -> (usize, usize) {
         let first = ((x_lo - self.x0) * self.inv_cell - 0.5).ceil().max(0.0);
-        let last = ((x_hi - self.x0) * self.inv_cell - 0.5)
-            .floor()
-            .min(self.nx as f64 - 1.0);
+        let last = ((x_hi - self.x0) * self.inv_cell - 0.5).floor().min(self.nx as f64 - 1.0);
         if last < first {
             return (0, 0);
         }
@@ -174,12 +167,10 @@ impl Raster {
         for j in 0..ny {
             for i in 0..nx {
                 let k = j * nx + i;
-                let differs = (i + 1 < nx && inside[k] != inside[k + 1])
-                    || (j + 1 < ny && inside[k] != inside[k + nx]);
+                let differs = (i + 1 < nx && inside[k] != inside[k + 1]) || (j + 1 < ny && inside[k] != inside[k + nx]);
                 if differs {
                     for jj in j.saturating_sub(band)..(j + band + 2).min(ny) {
-                        near[jj * nx + i.saturating_sub(band)..jj * nx + (i + band + 2).min(nx)]
-                            .fill(true);
+                        near[jj * nx + i.saturating_sub(band)..jj * nx + (i + band + 2).min(nx)].fill(true);
                     }
                 }
             }
@@ -194,11 +185,7 @@ impl Raster {
                 } else {
                     -FULL
                 };
-                let new = if add {
-                    self.f[k].max(v)
-                } else {
-                    self.f[k].min(-v)
-                };
+                let new = if add { self.f[k].max(v) } else { self.f[k].min(-v) };
                 self.write(i, j, new);
             }
         }
@@ -219,10 +206,7 @@ impl Raster {
         let (tx, ty) = (fx - i as f64, fy - j as f64);
         let k = j * self.nx + i;
         let (a, b) = (f64::from(self.f[k]), f64::from(self.f[k + 1]));
-        let (c, d) = (
-            f64::from(self.f[k + self.nx]),
-            f64::from(self.f[k + self.nx + 1]),
-        );
+        let (c, d) = (f64::from(self.f[k + self.nx]), f64::from(self.f[k + self.nx + 1]));
         let bottom = a + (b - a) * tx;
         let top = c + (d - c) * tx;
         bottom + (top - bottom) * ty > 0.0
@@ -244,6 +228,11 @@ impl Raster {
             return;
         }
         let j_last = (j_last as usize).min(self.ny - 1);
+        let centre = ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0);
+        let half = ((b.0 - a.0).hypot(b.1 - a.1)) / 2.0 + r + reach;
+        if !self.any_material_near(centre.0, centre.1, half) {
+            return;
+        }
         let outer = Capsule::new(a, b, r + reach);
         let inner = Capsule::new(a, b, (r - reach).max(0.0));
         for j in j_first..=j_last {
@@ -252,9 +241,7 @@ impl Raster {
                 continue;
             };
             let (from, to) = self.cell_range(lo, hi);
-            let (in_from, in_to) = inner
-                .row_interval(y)
-                .map_or((from, from), |(l, h)| self.cell_range(l, h));
+            let (in_from, in_to) = inner.row_interval(y).map_or((from, from), |(l, h)| self.cell_range(l, h));
             let row = j * self.nx;
             for i in (from..in_from.max(from)).chain(in_to.max(in_from)..to) {
                 if self.f[row + i] == -FULL {
@@ -318,10 +305,7 @@ impl Capsule {
     fn row_interval(&self, y: f64) -> Option<(f64, f64)> {
         let mut lo = f64::INFINITY;
         let mut hi = f64::NEG_INFINITY;
-        for chord in [self.disc_chord(self.a, y), self.disc_chord(self.b, y)]
-            .into_iter()
-            .flatten()
-        {
+        for chord in [self.disc_chord(self.a, y), self.disc_chord(self.b, y)].into_iter().flatten() {
             lo = lo.min(chord.0);
             hi = hi.max(chord.1);
         }
@@ -330,9 +314,7 @@ impl Capsule {
             let dy = y - self.a.1;
             let mut band = (f64::NEG_INFINITY, f64::INFINITY);
             let mut ok = true;
-            for (coef, offset, min, max) in
-                [(-uy, ux * dy, -self.r, self.r), (ux, uy * dy, 0.0, len)]
-            {
+            for (coef, offset, min, max) in [(-uy, ux * dy, -self.r, self.r), (ux, uy * dy, 0.0, len)] {
                 if coef.abs() < DEGENERATE_SEGMENT_MM {
                     ok &= offset > min && offset < max;
                 } else {
@@ -355,15 +337,7 @@ mod tests {
     use super::*;
 
     fn square(side: f64, cell: f64) -> Raster {
-        let mut r = Raster::new(
-            Rect {
-                x_min: 0.0,
-                y_min: 0.0,
-                x_max: side,
-                y_max: side,
-            },
-            cell,
-        );
+        let mut r = Raster::new(Rect { x_min: 0.0, y_min: 0.0, x_max: side, y_max: side }, cell);
         r.paint(
             true,
             |y, out| {
@@ -371,18 +345,7 @@ mod tests {
                     out.push((0.0, side))
                 }
             },
-            |x, y| {
-                rect_signed_distance(
-                    &Rect {
-                        x_min: 0.0,
-                        y_min: 0.0,
-                        x_max: side,
-                        y_max: side,
-                    },
-                    x,
-                    y,
-                )
-            },
+            |x, y| rect_signed_distance(&Rect { x_min: 0.0, y_min: 0.0, x_max: side, y_max: side }, x, y),
         );
         r
     }
@@ -390,11 +353,7 @@ mod tests {
     #[test]
     fn a_painted_square_holds_its_area_in_material() {
         let r = square(10.0, 0.05);
-        assert!(
-            (r.material_area_mm2() - 100.0).abs() < 1e-6,
-            "{}",
-            r.material_area_mm2()
-        );
+        assert!((r.material_area_mm2() - 100.0).abs() < 1e-6, "{}", r.material_area_mm2());
         assert!(r.is_material(5.0, 5.0));
         assert!(!r.is_material(-0.1, 5.0) && !r.is_material(5.0, 10.1));
     }
@@ -414,10 +373,7 @@ mod tests {
         let len = 20.0f64.hypot(5.0);
         let expected = 2.0 * 3.0 * len + std::f64::consts::PI * 9.0;
         let removed = before - r.material_area_mm2();
-        assert!(
-            (removed - expected).abs() / expected < 0.005,
-            "{removed} vs {expected}"
-        );
+        assert!((removed - expected).abs() / expected < 0.005, "{removed} vs {expected}");
         assert!(!r.is_material(20.0, 22.5));
         assert!(r.is_material(20.0, 27.0));
     }

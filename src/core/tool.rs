@@ -55,8 +55,7 @@ impl TryFrom<String> for ToolType {
     type Error = crate::core::CoreError;
 
     fn try_from(value: String) -> Result<Self, Self::Error> {
-        ToolType::parse(&value).ok_or_else(|| {
-            crate::core::CoreError::invalid("tool_type", format!("unknown tool type '{value}'"))
-        })
+        ToolType::parse(&value)
+            .ok_or_else(|| crate::core::CoreError::invalid("tool_type", format!("unknown tool type '{value}'")))
     }
 }

@@ -42,12 +42,7 @@ pub enum Motion {
     /// looking down the positive normal of the plane (the usual convention). `turns` is
     /// the number of extra full turns (LinuxCNC's P word − 1; 0 for a plain arc). A
     /// move whose `end` equals its `start` in the plane is a full circle.
-    Arc {
-        center: P3,
-        clockwise: bool,
-        plane: Plane,
-        turns: u32,
-    },
+    Arc { center: P3, clockwise: bool, plane: Plane, turns: u32 },
 }
 
 /// One move of a tool path.

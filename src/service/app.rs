@@ -34,10 +34,7 @@ pub enum StartError {
     #[error("database {path}: {source}")]
     Database { path: String, source: sqlx::Error },
     #[error("cannot listen on {addr}: {source}")]
-    Bind {
-        addr: SocketAddr,
-        source: std::io::Error,
-    },
+    Bind { addr: SocketAddr, source: std::io::Error },
 }
 
 /// Sets up `tracing` output as configured. Safe to call more than once.
@@ -79,11 +76,7 @@ pub fn router(state: AppState) -> Router {
 }
 
 fn cors(origins: &[String]) -> CorsLayer {
-    let origins: Vec<&str> = origins
-        .iter()
-        .map(|o| o.trim())
-        .filter(|o| !o.is_empty())
-        .collect();
+    let origins: Vec<&str> = origins.iter().map(|o| o.trim()).filter(|o| !o.is_empty()).collect();
     if origins.is_empty() {
         return CorsLayer::new();
     }
@@ -94,13 +87,7 @@ fn cors(origins: &[String]) -> CorsLayer {
     };
     CorsLayer::new()
         .allow_origin(allow)
-        .allow_methods([
-            Method::GET,
-            Method::POST,
-            Method::PUT,
-            Method::PATCH,
-            Method::DELETE,
-        ])
+        .allow_methods([Method::GET, Method::POST, Method::PUT, Method::PATCH, Method::DELETE])
         .allow_headers([header::CONTENT_TYPE, HeaderName::from_static("prefer")])
         .expose_headers([header::LOCATION, HeaderName::from_static(REQUEST_ID)])
 }
@@ -125,18 +112,14 @@ fn panic_response(_: Box<dyn std::any::Any + Send + 'static>) -> Response<Body> 
 /// problem documents.
 async fn problem_for_bare_errors(response: Response<Body>) -> Response<Body> {
     let status = response.status();
-    let is_problem = response
-        .headers()
-        .get(header::CONTENT_TYPE)
-        .is_some_and(|v| v.as_bytes().starts_with(PROBLEM_JSON.as_bytes()));
+    let is_problem =
+        response.headers().get(header::CONTENT_TYPE).is_some_and(|v| v.as_bytes().starts_with(PROBLEM_JSON.as_bytes()));
     if !status.is_client_error() && !status.is_server_error() || is_problem {
         return response;
     }
     let detail = match status {
         StatusCode::METHOD_NOT_ALLOWED => "this route does not take that method".to_string(),
-        StatusCode::PAYLOAD_TOO_LARGE => {
-            "the request body is larger than the configured limit".to_string()
-        }
+        StatusCode::PAYLOAD_TOO_LARGE => "the request body is larger than the configured limit".to_string(),
         StatusCode::SERVICE_UNAVAILABLE | StatusCode::REQUEST_TIMEOUT => {
             "the request took longer than the configured timeout".to_string()
         }
@@ -169,10 +152,7 @@ impl RunningServer {
             Err(e) => tracing::error!(error = %e, "server task failed"),
             Ok(Ok(())) => {}
         }
-        self.state
-            .jobs
-            .shutdown(Duration::from_secs(self.state.config.shutdown_grace_s))
-            .await;
+        self.state.jobs.shutdown(Duration::from_secs(self.state.config.shutdown_grace_s)).await;
         self.state.pool.close().await;
         tracing::info!("stopped");
     }
@@ -183,32 +163,15 @@ impl RunningServer {
 pub async fn start(config: Config) -> Result<RunningServer, StartError> {
     let pool = crate::service::store::open(&config.database)
         .await
-        .map_err(|source| StartError::Database {
-            path: config.database.display().to_string(),
-            source,
-        })?;
+        .map_err(|source| StartError::Database { path: config.database.display().to_string(), source })?;
     let workers = config.worker_count();
     let jobs = JobQueue::start(pool.clone(), workers)
         .await
-        .map_err(|source| StartError::Database {
-            path: config.database.display().to_string(),
-            source,
-        })?;
-    let listener = TcpListener::bind(config.addr)
-        .await
-        .map_err(|source| StartError::Bind {
-            addr: config.addr,
-            source,
-        })?;
-    let addr = listener.local_addr().map_err(|source| StartError::Bind {
-        addr: config.addr,
-        source,
-    })?;
-    let state = AppState {
-        pool,
-        jobs,
-        config: Arc::new(config),
-    };
+        .map_err(|source| StartError::Database { path: config.database.display().to_string(), source })?;
+    let listener =
+        TcpListener::bind(config.addr).await.map_err(|source| StartError::Bind { addr: config.addr, source })?;
+    let addr = listener.local_addr().map_err(|source| StartError::Bind { addr: config.addr, source })?;
+    let state = AppState { pool, jobs, config: Arc::new(config) };
     let app = router(state.clone());
     let (stop, stopped) = oneshot::channel::<()>();
     let server = tokio::spawn(async move {
@@ -219,12 +182,7 @@ pub async fn start(config: Config) -> Result<RunningServer, StartError> {
             .await
     });
     tracing::info!(%addr, workers, "dieplan listening");
-    Ok(RunningServer {
-        addr,
-        state,
-        stop,
-        server,
-    })
+    Ok(RunningServer { addr, state, stop, server })
 }
 
 /// Resolves on SIGTERM or ctrl-c.

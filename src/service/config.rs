@@ -67,16 +67,11 @@ impl Config {
 
     /// The number of workers to start.
     pub fn worker_count(&self) -> usize {
-        self.workers.unwrap_or_else(|| {
-            std::thread::available_parallelism()
-                .map(|n| n.get())
-                .unwrap_or(1)
-        })
+        self.workers.unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1))
     }
 
     /// The wait cap actually applied: never past the request timeout.
     pub fn effective_max_wait_s(&self) -> u64 {
-        self.max_wait_s
-            .min(self.request_timeout_s.saturating_sub(1))
+        self.max_wait_s.min(self.request_timeout_s.saturating_sub(1))
     }
 }

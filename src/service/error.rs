@@ -64,21 +64,13 @@ fn summarize(errors: &[FieldError]) -> String {
     match errors {
         [] => "the request is invalid".to_string(),
         [one] => format!("{}: {}", one.field, one.reason),
-        [first, rest @ ..] => format!(
-            "{}: {} (and {} more)",
-            first.field,
-            first.reason,
-            rest.len()
-        ),
+        [first, rest @ ..] => format!("{}: {} (and {} more)", first.field, first.reason, rest.len()),
     }
 }
 
 impl ApiError {
     pub fn field(field: impl Into<String>, reason: impl Into<String>) -> Self {
-        ApiError::Validation(vec![FieldError {
-            field: field.into(),
-            reason: reason.into(),
-        }])
+        ApiError::Validation(vec![FieldError { field: field.into(), reason: reason.into() }])
     }
 
     pub fn not_found(what: impl Into<String>) -> Self {
@@ -102,17 +94,13 @@ impl ApiError {
         let status = self.status();
         let (slug, detail, errors) = match self {
             ApiError::Validation(errors) => ("validation", self.to_string(), errors.clone()),
-            ApiError::Internal(_) => (
-                "internal",
-                "the server failed to handle the request; it has been logged".to_string(),
-                vec![],
-            ),
+            ApiError::Internal(_) => {
+                ("internal", "the server failed to handle the request; it has been logged".to_string(), vec![])
+            }
             ApiError::BadRequest(_) => ("bad-request", self.to_string(), vec![]),
             ApiError::NotFound(_) => ("not-found", self.to_string(), vec![]),
             ApiError::Conflict(_) => ("conflict", self.to_string(), vec![]),
-            ApiError::UnsupportedMediaType(_) => {
-                ("unsupported-media-type", self.to_string(), vec![])
-            }
+            ApiError::UnsupportedMediaType(_) => ("unsupported-media-type", self.to_string(), vec![]),
             ApiError::Status { .. } => ("http", self.to_string(), vec![]),
         };
         Problem {
@@ -130,9 +118,7 @@ pub fn problem_response(problem: &Problem) -> Response {
     let status = StatusCode::from_u16(problem.status).unwrap_or(StatusCode::INTERNAL_SERVER_ERROR);
     let body = serde_json::to_vec(problem).unwrap_or_default();
     let mut response = (status, body).into_response();
-    response
-        .headers_mut()
-        .insert(header::CONTENT_TYPE, HeaderValue::from_static(PROBLEM_JSON));
+    response.headers_mut().insert(header::CONTENT_TYPE, HeaderValue::from_static(PROBLEM_JSON));
     response
 }
 
@@ -164,9 +150,7 @@ impl From<sqlx::Error> for ApiError {
             match db.kind() {
                 ErrorKind::UniqueViolation => {
                     let columns = message.rsplit(": ").next().unwrap_or("").to_string();
-                    return ApiError::Conflict(format!(
-                        "a row with the same {columns} already exists"
-                    ));
+                    return ApiError::Conflict(format!("a row with the same {columns} already exists"));
                 }
                 ErrorKind::ForeignKeyViolation => {
                     return ApiError::Conflict(
@@ -199,10 +183,7 @@ impl Validator {
     }
 
     pub fn fail(&mut self, field: impl Into<String>, reason: impl Into<String>) {
-        self.errors.push(FieldError {
-            field: field.into(),
-            reason: reason.into(),
-        });
+        self.errors.push(FieldError { field: field.into(), reason: reason.into() });
     }
 
     pub fn check(&mut self, ok: bool, field: &str, reason: impl Into<String>) {
@@ -213,29 +194,17 @@ impl Validator {
 
     /// The value must be finite and > 0.
     pub fn positive(&mut self, field: &str, value: f64) {
-        self.check(
-            value.is_finite() && value > 0.0,
-            field,
-            format!("must be a finite number > 0, got {value}"),
-        );
+        self.check(value.is_finite() && value > 0.0, field, format!("must be a finite number > 0, got {value}"));
     }
 
     /// The value must be finite and ≥ 0.
     pub fn non_negative(&mut self, field: &str, value: f64) {
-        self.check(
-            value.is_finite() && value >= 0.0,
-            field,
-            format!("must be a finite number >= 0, got {value}"),
-        );
+        self.check(value.is_finite() && value >= 0.0, field, format!("must be a finite number >= 0, got {value}"));
     }
 
     /// The value must be finite.
     pub fn finite(&mut self, field: &str, value: f64) {
-        self.check(
-            value.is_finite(),
-            field,
-            format!("must be a finite number, got {value}"),
-        );
+        self.check(value.is_finite(), field, format!("must be a finite number, got {value}"));
     }
 
     /// The value must lie in `[lo, hi]`.

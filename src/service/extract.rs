@@ -17,12 +17,8 @@ where
     type Rejection = ApiError;
 
     async fn from_request(req: Request, state: &S) -> Result<Self, Self::Rejection> {
-        let content_type = req
-            .headers()
-            .get(header::CONTENT_TYPE)
-            .and_then(|v| v.to_str().ok())
-            .unwrap_or("")
-            .to_string();
+        let content_type =
+            req.headers().get(header::CONTENT_TYPE).and_then(|v| v.to_str().ok()).unwrap_or("").to_string();
         let is_json = content_type
             .parse::<mime::Mime>()
             .map(|m| m.subtype() == mime::JSON || m.suffix() == Some(mime::JSON))
@@ -34,10 +30,7 @@ where
         }
         let bytes = axum::body::Bytes::from_request(req, state)
             .await
-            .map_err(|rejection| ApiError::Status {
-                status: rejection.status(),
-                detail: rejection.body_text(),
-            })?;
+            .map_err(|rejection| ApiError::Status { status: rejection.status(), detail: rejection.body_text() })?;
         parse_json(&bytes).map(ApiJson)
     }
 }
@@ -47,8 +40,7 @@ where
 pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
     let mut de = serde_json::Deserializer::from_slice(bytes);
     let value = serde_path_to_error::deserialize(&mut de).map_err(path_error)?;
-    de.end()
-        .map_err(|e| ApiError::BadRequest(format!("malformed JSON: {e}")))?;
+    de.end().map_err(|e| ApiError::BadRequest(format!("malformed JSON: {e}")))?;
     Ok(value)
 }
 
@@ -56,10 +48,7 @@ pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
 pub fn from_value<T: DeserializeOwned>(value: serde_json::Value) -> Result<T, ApiError> {
     serde_path_to_error::deserialize(value).map_err(|e| {
         let field = field_of(e.path().to_string());
-        ApiError::Validation(vec![FieldError {
-            field,
-            reason: e.inner().to_string(),
-        }])
+        ApiError::Validation(vec![FieldError { field, reason: e.inner().to_string() }])
     })
 }
 
@@ -75,9 +64,7 @@ fn path_error(e: serde_path_to_error::Error<serde_json::Error>) -> ApiError {
     use serde_json::error::Category;
     let inner = e.inner();
     match inner.classify() {
-        Category::Syntax | Category::Eof | Category::Io => {
-            ApiError::BadRequest(format!("malformed JSON: {inner}"))
-        }
+        Category::Syntax | Category::Eof | Category::Io => ApiError::BadRequest(format!("malformed JSON: {inner}")),
         Category::Data => ApiError::Validation(vec![FieldError {
             field: field_of(e.path().to_string()),
             reason: strip_position(&inner.to_string()),
@@ -106,15 +93,13 @@ where
     async fn from_request_parts(parts: &mut Parts, _state: &S) -> Result<Self, Self::Rejection> {
         let query = parts.uri.query().unwrap_or("");
         let de = serde_urlencoded::Deserializer::new(form_urlencoded::parse(query.as_bytes()));
-        serde_path_to_error::deserialize(de)
-            .map(ApiQuery)
-            .map_err(|e| {
-                let field = field_of(e.path().to_string());
-                ApiError::Status {
-                    status: axum::http::StatusCode::BAD_REQUEST,
-                    detail: format!("query parameter {field}: {}", e.inner()),
-                }
-            })
+        serde_path_to_error::deserialize(de).map(ApiQuery).map_err(|e| {
+            let field = field_of(e.path().to_string());
+            ApiError::Status {
+                status: axum::http::StatusCode::BAD_REQUEST,
+                detail: format!("query parameter {field}: {}", e.inner()),
+            }
+        })
     }
 }
 

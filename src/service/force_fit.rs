@@ -118,46 +118,33 @@ pub async fn fit(
     if request.points.len() > MAX_FIT_POINTS {
         return Err(ApiError::field(
             "points",
-            format!(
-                "{} points given; at most {MAX_FIT_POINTS} are fitted at once",
-                request.points.len()
-            ),
+            format!("{} points given; at most {MAX_FIT_POINTS} are fitted at once", request.points.len()),
         ));
     }
-    let tool = crate::service::resources::crud::get::<crate::service::resources::tools::Tool>(
-        &state.pool,
-        tool_id,
-    )
-    .await?;
+    let tool =
+        crate::service::resources::crud::get::<crate::service::resources::tools::Tool>(&state.pool, tool_id).await?;
     let material = lookup::material(&state.pool, request.material_id, None).await?;
     let current = lookup::force_model(&state.pool, tool_id, material.id).await?;
-    let standard = lookup::standard_conditions(
-        &state.pool,
-        tool_id,
-        material.id,
-        Operation::StandardSideCutting,
-    )
-    .await?;
+    let standard =
+        lookup::standard_conditions(&state.pool, tool_id, material.id, Operation::StandardSideCutting).await?;
     let d = tool.data.diameter_mm;
 
     let (t0, l0) = match (&current, &standard) {
         (Some(m), _) => (Some(m.data.t0_um), Some(m.data.l0_mm)),
         (None, Some(s)) => {
             let c = s.data.conditions();
-            let e = crate::core::engagement::engagement(
-                crate::core::engagement::Contour::Straight,
-                d / 2.0,
-                c.rd_mm,
-            )?;
-            let t =
-                crate::core::engagement::max_chip_thickness_mm(c.fz_mm, e.angle_rad) * UM_PER_MM;
+            let e = crate::core::engagement::engagement(crate::core::engagement::Contour::Straight, d / 2.0, c.rd_mm)?;
+            let t = crate::core::engagement::max_chip_thickness_mm(c.fz_mm, e.angle_rad) * UM_PER_MM;
             (Some(t), Some(e.arc_length_mm))
         }
         (None, None) => (None, None),
     };
     let spec = FitSpec {
         t0_um: request.t0_um.or(t0).ok_or_else(|| {
-            ApiError::field("t0_um", "the tool has no force model or standard conditions to centre on: give t0_um and l0_mm")
+            ApiError::field(
+                "t0_um",
+                "the tool has no force model or standard conditions to centre on: give t0_um and l0_mm",
+            )
         })?,
         dt_um: request.dt_um.or(current.as_ref().map(|m| m.data.dt_um)).unwrap_or(DT_UM_PER_MM_DIAMETER * d),
         l0_mm: request.l0_mm.or(l0).ok_or_else(|| ApiError::field("l0_mm", "give l0_mm"))?,
@@ -165,28 +152,10 @@ pub async fn fit(
         ad_ref_mm: request.ad_ref_mm.unwrap_or(d),
         include_x1_squared: request.include_x1_squared,
     };
-    let samples: Vec<ForceSample> = request
-        .points
-        .iter()
-        .map(|p| ForceSample {
-            t_m_um: p.t_m_um,
-            l_mm: p.l_mm,
-            fxy_n: p.fxy_n,
-        })
-        .collect();
+    let samples: Vec<ForceSample> =
+        request.points.iter().map(|p| ForceSample { t_m_um: p.t_m_um, l_mm: p.l_mm, fxy_n: p.fxy_n }).collect();
     let fit = fit_force_model(&samples, spec)?;
-    let ForceModel {
-        coefficients:
-            Coefficients {
-                b0,
-                b1,
-                b2,
-                b11,
-                b22,
-                b12,
-            },
-        ..
-    } = fit.model;
+    let ForceModel { coefficients: Coefficients { b0, b1, b2, b11, b22, b12 }, .. } = fit.model;
 
     let stored = if request.store {
         let data = ForceModelData {
@@ -248,12 +217,10 @@ pub async fn fit(
         stored: stored.clone(),
     };
     Ok(match stored {
-        Some(record) => (
-            StatusCode::CREATED,
-            [(header::LOCATION, format!("/v1/force-models/{}", record.id))],
-            axum::Json(body),
-        )
-            .into_response(),
+        Some(record) => {
+            (StatusCode::CREATED, [(header::LOCATION, format!("/v1/force-models/{}", record.id))], axum::Json(body))
+                .into_response()
+        }
         None => axum::Json(body).into_response(),
     })
 }

@@ -19,10 +19,7 @@ pub struct Health {
 #[utoipa::path(get, path = "/healthz", tag = "health", operation_id = "healthz",
     responses((status = 200, description = "Alive", body = Health)))]
 pub async fn healthz() -> axum::Json<Health> {
-    axum::Json(Health {
-        status: "ok".into(),
-        version: env!("CARGO_PKG_VERSION").into(),
-    })
+    axum::Json(Health { status: "ok".into(), version: env!("CARGO_PKG_VERSION").into() })
 }
 
 /// The database answers and every migration is applied.
@@ -33,18 +30,10 @@ pub async fn healthz() -> axum::Json<Health> {
 pub async fn readyz(State(state): State<AppState>) -> Result<axum::Json<Health>, ApiError> {
     crate::service::store::ready(&state.pool)
         .await
-        .map_err(|detail| ApiError::Status {
-            status: StatusCode::SERVICE_UNAVAILABLE,
-            detail,
-        })?;
-    Ok(axum::Json(Health {
-        status: "ready".into(),
-        version: env!("CARGO_PKG_VERSION").into(),
-    }))
+        .map_err(|detail| ApiError::Status { status: StatusCode::SERVICE_UNAVAILABLE, detail })?;
+    Ok(axum::Json(Health { status: "ready".into(), version: env!("CARGO_PKG_VERSION").into() }))
 }
 
 pub fn router() -> OpenApiRouter<AppState> {
-    OpenApiRouter::new()
-        .routes(routes!(healthz))
-        .routes(routes!(readyz))
+    OpenApiRouter::new().routes(routes!(healthz)).routes(routes!(readyz))
 }

@@ -15,11 +15,7 @@ use sqlx::SqlitePool;
 pub const DEFAULT_MATERIAL_NAME: &str = "SKD61";
 
 /// The material with `id`, or named `name`, or the default material.
-pub async fn material(
-    pool: &SqlitePool,
-    id: Option<i64>,
-    name: Option<&str>,
-) -> Result<Material, ApiError> {
+pub async fn material(pool: &SqlitePool, id: Option<i64>, name: Option<&str>) -> Result<Material, ApiError> {
     let found = match (id, name) {
         (Some(id), _) => sqlx::query_as::<_, Material>("SELECT * FROM materials WHERE id = ?")
             .bind(id)
@@ -53,32 +49,22 @@ pub async fn tool(
             .ok_or_else(|| ApiError::field("tool_id", format!("no tool with id {id}")));
     }
     let (Some(tool_type), Some(d)) = (tool_type, diameter_mm) else {
-        return Err(ApiError::field(
-            "tool_id",
-            "give tool_id, or tool_type and diameter_mm",
-        ));
+        return Err(ApiError::field("tool_id", "give tool_id, or tool_type and diameter_mm"));
     };
     if !(d.is_finite() && d > 0.0) {
-        return Err(ApiError::field(
-            "diameter_mm",
-            format!("must be a finite number > 0, got {d}"),
-        ));
+        return Err(ApiError::field("diameter_mm", format!("must be a finite number > 0, got {d}")));
     }
-    let tools = sqlx::query_as::<_, Tool>(
-        "SELECT * FROM tools WHERE tool_type = ? AND abs(diameter_mm - ?) <= ? ORDER BY id",
-    )
-    .bind(tool_type.as_str())
-    .bind(d)
-    .bind(DIAMETER_FILTER_TOLERANCE_MM)
-    .fetch_all(pool)
-    .await?;
+    let tools =
+        sqlx::query_as::<_, Tool>("SELECT * FROM tools WHERE tool_type = ? AND abs(diameter_mm - ?) <= ? ORDER BY id")
+            .bind(tool_type.as_str())
+            .bind(d)
+            .bind(DIAMETER_FILTER_TOLERANCE_MM)
+            .fetch_all(pool)
+            .await?;
     match tools.as_slice() {
         [] => Err(ApiError::field(
             "diameter_mm",
-            format!(
-                "no {} end mill of diameter {d} mm in the database",
-                tool_type.as_str()
-            ),
+            format!("no {} end mill of diameter {d} mm in the database", tool_type.as_str()),
         )),
         [one] => Ok(one.clone()),
         many => Err(ApiError::field(
@@ -87,10 +73,7 @@ pub async fn tool(
                 "{} {} end mills of {d} mm match (ids {}): give tool_id",
                 many.len(),
                 tool_type.as_str(),
-                many.iter()
-                    .map(|t| t.id.to_string())
-                    .collect::<Vec<_>>()
-                    .join(", ")
+                many.iter().map(|t| t.id.to_string()).collect::<Vec<_>>().join(", ")
             ),
         )),
     }

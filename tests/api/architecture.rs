@@ -18,24 +18,15 @@ fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
 #[test]
 fn the_planning_core_imports_no_axum_sqlx_tokio_or_utoipa() {
     let mut files = Vec::new();
-    rust_files(
-        &Path::new(env!("CARGO_MANIFEST_DIR")).join("src/core"),
-        &mut files,
-    );
+    rust_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src/core"), &mut files);
     assert!(files.len() > 3, "core files found");
     for file in files {
         let text = std::fs::read_to_string(&file).expect("readable");
         for (n, line) in text.lines().enumerate() {
             let code = line.split("//").next().unwrap_or("");
             for crate_name in FORBIDDEN {
-                let used = code.contains(&format!("{crate_name}::"))
-                    || code.contains(&format!("use {crate_name}"));
-                assert!(
-                    !used,
-                    "{}:{} names {crate_name}: the core must stay pure",
-                    file.display(),
-                    n + 1
-                );
+                let used = code.contains(&format!("{crate_name}::")) || code.contains(&format!("use {crate_name}"));
+                assert!(!used, "{}:{} names {crate_name}: the core must stay pure", file.display(), n + 1);
             }
         }
     }
@@ -44,19 +35,9 @@ fn the_planning_core_imports_no_axum_sqlx_tokio_or_utoipa() {
 #[test]
 fn source_files_stay_under_the_size_limit() {
     let mut files = Vec::new();
-    rust_files(
-        &Path::new(env!("CARGO_MANIFEST_DIR")).join("src"),
-        &mut files,
-    );
+    rust_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src"), &mut files);
     for file in files {
-        let lines = std::fs::read_to_string(&file)
-            .expect("readable")
-            .lines()
-            .count();
-        assert!(
-            lines <= 600,
-            "{} has {lines} lines: split it by concept",
-            file.display()
-        );
+        let lines = std::fs::read_to_string(&file).expect("readable").lines().count();
+        assert!(lines <= 600, "{} has {lines} lines: split it by concept", file.display());
     }
 }

@@ -49,12 +49,7 @@ impl TestApp {
         config.workers = Some(1);
         configure(&mut config);
         let server = start(config).await.expect("app starts");
-        TestApp {
-            base: format!("http://{}", server.addr),
-            client: reqwest::Client::new(),
-            dir,
-            server,
-        }
+        TestApp { base: format!("http://{}", server.addr), client: reqwest::Client::new(), dir, server }
     }
 
     /// Stops the app gracefully and starts it again on the same database.
@@ -78,13 +73,7 @@ impl TestApp {
         format!("{}{}", self.base, path)
     }
 
-    pub async fn send(
-        &self,
-        method: Method,
-        path: &str,
-        body: Option<Value>,
-        headers: &[(&str, &str)],
-    ) -> Answer {
+    pub async fn send(&self, method: Method, path: &str, body: Option<Value>, headers: &[(&str, &str)]) -> Answer {
         let mut req = self.client.request(method, self.url(path));
         for (k, v) in headers {
             req = req.header(*k, *v);
@@ -97,12 +86,7 @@ impl TestApp {
         let headers = resp.headers().clone();
         let text = resp.text().await.expect("body");
         let body = serde_json::from_str(&text).unwrap_or(Value::Null);
-        Answer {
-            status,
-            headers,
-            body,
-            text,
-        }
+        Answer { status, headers, body, text }
     }
 
     pub async fn get(&self, path: &str) -> Answer {
@@ -115,8 +99,7 @@ impl TestApp {
 
     /// POST with `Prefer: wait=10`: the finished job.
     pub async fn post_wait(&self, path: &str, body: Value) -> Answer {
-        self.send(Method::POST, path, Some(body), &[("prefer", "wait=10")])
-            .await
+        self.send(Method::POST, path, Some(body), &[("prefer", "wait=10")]).await
     }
 
     pub async fn put(&self, path: &str, body: Value) -> Answer {
@@ -146,11 +129,7 @@ impl TestApp {
 
     /// The id of the seeded tool of this type and diameter.
     pub async fn tool_id(&self, tool_type: &str, diameter: f64) -> i64 {
-        let a = self
-            .get(&format!(
-                "/v1/tools?tool_type={tool_type}&diameter_mm={diameter}"
-            ))
-            .await;
+        let a = self.get(&format!("/v1/tools?tool_type={tool_type}&diameter_mm={diameter}")).await;
         a.body["items"][0]["id"].as_i64().expect("seeded tool")
     }
 }
@@ -162,11 +141,7 @@ fn db_path(dir: &TempDir) -> PathBuf {
 /// Asserts a problem document with `status` naming `field`.
 pub fn assert_problem(a: &Answer, status: u16, field: Option<&str>) {
     assert_eq!(a.status.as_u16(), status, "{}", a.text);
-    assert!(
-        a.content_type().starts_with("application/problem+json"),
-        "content type {}",
-        a.content_type()
-    );
+    assert!(a.content_type().starts_with("application/problem+json"), "content type {}", a.content_type());
     assert_eq!(a.body["status"], status);
     assert!(a.body["detail"].as_str().is_some_and(|d| !d.is_empty()));
     if let Some(field) = field {
@@ -174,11 +149,7 @@ pub fn assert_problem(a: &Answer, status: u16, field: Option<&str>) {
             .as_array()
             .map(|e| e.iter().filter_map(|x| x["field"].as_str()).collect())
             .unwrap_or_default();
-        assert!(
-            fields.contains(&field),
-            "expected field {field} in {}",
-            a.text
-        );
+        assert!(fields.contains(&field), "expected field {field} in {}", a.text);
     }
 }
 

@@ -18,14 +18,8 @@ async fn the_database_is_seeded_from_the_model_with_a_source_on_every_row() {
         let a = app.get(&format!("{path}?limit=500")).await;
         assert_eq!(a.body["total"], count, "{path}");
         for row in a.body["items"].as_array().unwrap() {
-            assert!(
-                ["paper", "extrapolated", "assumed"].contains(&row["source"].as_str().unwrap()),
-                "{path}: {row}"
-            );
-            assert!(
-                !row["reference"].as_str().unwrap().is_empty(),
-                "{path}: every seed says where it comes from"
-            );
+            assert!(["paper", "extrapolated", "assumed"].contains(&row["source"].as_str().unwrap()), "{path}: {row}");
+            assert!(!row["reference"].as_str().unwrap().is_empty(), "{path}: every seed says where it comes from");
             assert_eq!(row["edited"], false);
         }
     }
@@ -50,10 +44,7 @@ async fn force_models_are_seed_001_for_6_to_10_mm_and_extrapolated_by_diameter_s
         assert!(close(&m["ad_ref_mm"], d, 1e-12));
     }
     let ten = app.tool_id("square", 10.0).await;
-    let m = &app
-        .get(&format!("/v1/force-models?tool_id={ten}"))
-        .await
-        .body["items"][0];
+    let m = &app.get(&format!("/v1/force-models?tool_id={ten}")).await.body["items"][0];
     for (k, v) in [
         ("b1", 65.84),
         ("b2", 53.66),
@@ -71,14 +62,7 @@ async fn force_models_are_seed_001_for_6_to_10_mm_and_extrapolated_by_diameter_s
     assert!(close(&life["force_exponent"], 2.4, 1e-12));
     assert_eq!(
         life["gamma_table"],
-        json!([
-            [0.0, 1.0],
-            [40.0, 1.0],
-            [50.0, 2.0],
-            [60.0, 4.0],
-            [90.0, 8.0],
-            [180.0, 12.0]
-        ])
+        json!([[0.0, 1.0], [40.0, 1.0], [50.0, 2.0], [60.0, 4.0], [90.0, 8.0], [180.0, 12.0]])
     );
     app.stop().await;
 }
@@ -105,14 +89,12 @@ async fn tools_are_filtered_by_type_diameter_material_and_paged() {
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_tool_is_created_read_replaced_patched_and_deleted() {
     let app = TestApp::start().await;
-    let body = json!({"name": "shop square 10 z4", "tool_type": "square", "diameter_mm": 10, "flutes": 4, "price": 95.0});
+    let body =
+        json!({"name": "shop square 10 z4", "tool_type": "square", "diameter_mm": 10, "flutes": 4, "price": 95.0});
     let created = app.post("/v1/tools", body.clone()).await;
     assert_eq!(created.status, 201, "{}", created.text);
     let id = created.body["id"].as_i64().unwrap();
-    assert_eq!(
-        created.header("location"),
-        Some(format!("/v1/tools/{id}").as_str())
-    );
+    assert_eq!(created.header("location"), Some(format!("/v1/tools/{id}").as_str()));
     assert_eq!(created.body["source"], "user");
     assert_eq!(created.body["seed_key"], serde_json::Value::Null);
 
@@ -126,12 +108,7 @@ async fn a_tool_is_created_read_replaced_patched_and_deleted() {
     assert_eq!(put.body["flutes"], 3);
     assert_eq!(put.body["edited"], true);
 
-    let patched = app
-        .patch(
-            &format!("/v1/tools/{id}"),
-            json!({"price": 80.0, "coating": "TiSiN"}),
-        )
-        .await;
+    let patched = app.patch(&format!("/v1/tools/{id}"), json!({"price": 80.0, "coating": "TiSiN"})).await;
     assert_eq!(patched.status, 200, "{}", patched.text);
     assert_eq!(patched.body["coating"], "TiSiN");
     assert_eq!(patched.body["flutes"], 3);
@@ -147,41 +124,16 @@ async fn refused_writes_name_the_field_and_change_nothing() {
     let app = TestApp::start().await;
     let before = app.get("/v1/tools?limit=500").await.body;
     let bad = [
-        (
-            json!({"name": "a", "tool_type": "square", "diameter_mm": -10, "flutes": 4}),
-            422,
-            Some("diameter_mm"),
-        ),
-        (
-            json!({"name": "a", "tool_type": "square", "diameter_mm": 10, "flutes": -4}),
-            422,
-            Some("flutes"),
-        ),
-        (
-            json!({"name": "a", "tool_type": "ball", "diameter_mm": 10, "flutes": 2}),
-            422,
-            Some("corner_radius_mm"),
-        ),
-        (
-            json!({"name": "a", "tool_type": "square", "diameter_mm": 10, "flutes": 4, "spin": 1}),
-            422,
-            Some("spin"),
-        ),
-        (
-            json!({"name": "square D10", "tool_type": "square", "diameter_mm": 10, "flutes": 4}),
-            409,
-            None,
-        ),
+        (json!({"name": "a", "tool_type": "square", "diameter_mm": -10, "flutes": 4}), 422, Some("diameter_mm")),
+        (json!({"name": "a", "tool_type": "square", "diameter_mm": 10, "flutes": -4}), 422, Some("flutes")),
+        (json!({"name": "a", "tool_type": "ball", "diameter_mm": 10, "flutes": 2}), 422, Some("corner_radius_mm")),
+        (json!({"name": "a", "tool_type": "square", "diameter_mm": 10, "flutes": 4, "spin": 1}), 422, Some("spin")),
+        (json!({"name": "square D10", "tool_type": "square", "diameter_mm": 10, "flutes": 4}), 409, None),
     ];
     for (body, status, field) in bad {
         assert_problem(&app.post("/v1/tools", body).await, status, field);
     }
-    assert_problem(
-        &app.send(reqwest::Method::POST, "/v1/tools", None, &[])
-            .await,
-        415,
-        None,
-    );
+    assert_problem(&app.send(reqwest::Method::POST, "/v1/tools", None, &[]).await, 415, None);
     let raw = app
         .client
         .post(app.url("/v1/tools"))
@@ -194,21 +146,12 @@ async fn refused_writes_name_the_field_and_change_nothing() {
     let seeded = app.tool_id("square", 10.0).await;
     let conflict = app.delete(&format!("/v1/tools/{seeded}")).await;
     assert_problem(&conflict, 409, None);
-    assert!(conflict.body["detail"]
-        .as_str()
-        .unwrap()
-        .contains("standard conditions"));
-    let patch = app
-        .patch(&format!("/v1/tools/{seeded}"), json!({"diameter_mm": 0}))
-        .await;
+    assert!(conflict.body["detail"].as_str().unwrap().contains("standard conditions"));
+    let patch = app.patch(&format!("/v1/tools/{seeded}"), json!({"diameter_mm": 0})).await;
     assert_problem(&patch, 422, Some("diameter_mm"));
     let cond = app.post("/v1/conditions/standard", json!({"tool_id": 9999, "material_id": 1, "operation": "rough_side_cutting", "spindle_rpm": 1000, "fz_mm": 0.1, "fz_min_mm": 0.01, "rd_mm": 0.5, "ad_mm": 5})).await;
     assert_problem(&cond, 422, Some("tool_id"));
-    assert_eq!(
-        app.get("/v1/tools?limit=500").await.body,
-        before,
-        "nothing changed"
-    );
+    assert_eq!(app.get("/v1/tools?limit=500").await.body, before, "nothing changed");
     app.stop().await;
 }
 
@@ -216,20 +159,11 @@ async fn refused_writes_name_the_field_and_change_nothing() {
 async fn a_shops_edit_of_a_seeded_row_is_marked_and_survives_restarts_and_later_seed_corrections() {
     let app = TestApp::start().await;
     let tool = app.tool_id("square", 10.0).await;
-    let list = app
-        .get(&format!(
-            "/v1/conditions/standard?tool_id={tool}&operation=rough_side_cutting"
-        ))
-        .await;
+    let list = app.get(&format!("/v1/conditions/standard?tool_id={tool}&operation=rough_side_cutting")).await;
     let row = &list.body["items"][0];
     let id = row["id"].as_i64().unwrap();
     assert_eq!(row["source"], "paper");
-    let edited = app
-        .patch(
-            &format!("/v1/conditions/standard/{id}"),
-            json!({"spindle_rpm": 5200}),
-        )
-        .await;
+    let edited = app.patch(&format!("/v1/conditions/standard/{id}"), json!({"spindle_rpm": 5200})).await;
     assert_eq!(edited.status, 200, "{}", edited.text);
     assert_eq!(edited.body["source"], "user");
     assert_eq!(edited.body["edited"], true);
@@ -238,42 +172,32 @@ async fn a_shops_edit_of_a_seeded_row_is_marked_and_survives_restarts_and_later_
     // A later migration corrects seeded rows the documented way (migrations/0001_schema.sql).
     let db = app.database();
     let app = app.restart_with(|c| c.workers = Some(1)).await;
-    let pool = sqlx::SqlitePool::connect(&format!("sqlite://{}", db.display()))
-        .await
-        .unwrap();
+    let pool = sqlx::SqlitePool::connect(&format!("sqlite://{}", db.display())).await.unwrap();
     let corrected = sqlx::query(
         "UPDATE standard_conditions SET spindle_rpm = 4900 WHERE seed_key LIKE 'conditions:square-10:skd61:%' AND operation IN ('rough_side_cutting', 'spiral_hole_expansion') AND edited = 0",
     )
     .execute(&pool)
     .await
     .unwrap();
-    assert_eq!(
-        corrected.rows_affected(),
-        1,
-        "only the unedited row is corrected"
-    );
+    assert_eq!(corrected.rows_affected(), 1, "only the unedited row is corrected");
     pool.close().await;
 
     let after = app.get(&format!("/v1/conditions/standard/{id}")).await;
-    assert!(
-        close(&after.body["spindle_rpm"], 5200.0, 1e-9),
-        "the shop's edit stays: {}",
-        after.text
-    );
+    assert!(close(&after.body["spindle_rpm"], 5200.0, 1e-9), "the shop's edit stays: {}", after.text);
     app.stop().await;
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn every_database_resource_answers_create_and_delete() {
     let app = TestApp::start().await;
-    let tool = app.post("/v1/tools", json!({"name": "t", "tool_type": "radius", "diameter_mm": 10, "flutes": 4, "corner_radius_mm": 1})).await;
-    let tool_id = tool.body["id"].as_i64().unwrap();
-    let material = app
+    let tool = app
         .post(
-            "/v1/materials",
-            json!({"name": "NAK80", "hardness_hrc": 40}),
+            "/v1/tools",
+            json!({"name": "t", "tool_type": "radius", "diameter_mm": 10, "flutes": 4, "corner_radius_mm": 1}),
         )
         .await;
+    let tool_id = tool.body["id"].as_i64().unwrap();
+    let material = app.post("/v1/materials", json!({"name": "NAK80", "hardness_hrc": 40})).await;
     let material_id = material.body["id"].as_i64().unwrap();
     let bodies = [
         (
@@ -308,15 +232,7 @@ async fn every_database_resource_answers_create_and_delete() {
     for path in created.iter().rev() {
         assert_eq!(app.delete(path).await.status, 204, "{path}");
     }
-    assert_eq!(
-        app.delete(&format!("/v1/tools/{tool_id}")).await.status,
-        204
-    );
-    assert_eq!(
-        app.delete(&format!("/v1/materials/{material_id}"))
-            .await
-            .status,
-        204
-    );
+    assert_eq!(app.delete(&format!("/v1/tools/{tool_id}")).await.status, 204);
+    assert_eq!(app.delete(&format!("/v1/materials/{material_id}")).await.status, 204);
     app.stop().await;
 }

@@ -34,11 +34,7 @@ fn measurements(model: &Value, b0: f64) -> Vec<Value> {
 async fn a_fit_recovers_the_coefficients_and_a_stored_fit_becomes_the_model_in_use() {
     let app = TestApp::start().await;
     let tool = app.tool_id("square", 10.0).await;
-    let seeded = app
-        .get(&format!("/v1/force-models?tool_id={tool}"))
-        .await
-        .body["items"][0]
-        .clone();
+    let seeded = app.get(&format!("/v1/force-models?tool_id={tool}")).await.body["items"][0].clone();
 
     let a = app
         .post(
@@ -48,11 +44,7 @@ async fn a_fit_recovers_the_coefficients_and_a_stored_fit_becomes_the_model_in_u
         .await;
     assert_eq!(a.status, 200, "{}", a.text);
     for k in ["b0", "b1", "b2", "b22", "b12"] {
-        assert!(
-            close(&a.body[k], seeded[k].as_f64().unwrap(), 1e-6),
-            "{k}: {}",
-            a.text
-        );
+        assert!(close(&a.body[k], seeded[k].as_f64().unwrap(), 1e-6), "{k}: {}", a.text);
     }
     assert!(close(&a.body["r_squared"], 1.0, 1e-9));
     assert_eq!(a.body["residuals"].as_array().unwrap().len(), 11);
@@ -66,21 +58,12 @@ async fn a_fit_recovers_the_coefficients_and_a_stored_fit_becomes_the_model_in_u
         .await;
     assert_eq!(stored.status, 201, "{}", stored.text);
     let model_id = stored.body["stored"]["id"].as_i64().unwrap();
-    assert_eq!(
-        stored.header("location"),
-        Some(format!("/v1/force-models/{model_id}").as_str())
-    );
+    assert_eq!(stored.header("location"), Some(format!("/v1/force-models/{model_id}").as_str()));
     assert_eq!(stored.body["stored"]["source"], "fitted");
 
-    let c = app
-        .post_wait("/v1/conditions", json!({"tool_id": tool}))
-        .await;
+    let c = app.post_wait("/v1/conditions", json!({"tool_id": tool})).await;
     assert_eq!(c.body["result"]["force"]["force_model_id"], model_id);
-    assert!(
-        close(&c.body["result"]["force"]["fxy_n"], 280.0, 1e-3),
-        "{}",
-        c.text
-    );
+    assert!(close(&c.body["result"]["force"]["fxy_n"], 280.0, 1e-3), "{}", c.text);
     app.stop().await;
 }
 
@@ -89,42 +72,15 @@ async fn too_few_or_degenerate_points_are_refused_and_nothing_is_stored() {
     let app = TestApp::start().await;
     let tool = app.tool_id("square", 10.0).await;
     let path = format!("/v1/tools/{tool}/force-model/fit");
-    let few = app
-        .post(
-            &path,
-            json!({"points": [{"t_m_um": 40, "l_mm": 2, "fxy_n": 250}], "store": true}),
-        )
-        .await;
+    let few = app.post(&path, json!({"points": [{"t_m_um": 40, "l_mm": 2, "fxy_n": 250}], "store": true})).await;
     assert_problem(&few, 422, Some("points"));
     assert!(few.body["detail"].as_str().unwrap().contains("at least 7"));
-    let flat: Vec<Value> = (0..10)
-        .map(|i| json!({"t_m_um": 43.6, "l_mm": 2.0 + 0.1 * i as f64, "fxy_n": 250 + i}))
-        .collect();
-    assert_problem(
-        &app.post(&path, json!({"points": flat, "store": true}))
-            .await,
-        422,
-        Some("points"),
-    );
-    let negative: Vec<Value> = (0..10)
-        .map(|i| json!({"t_m_um": -1.0 - i as f64, "l_mm": 2.0, "fxy_n": 250}))
-        .collect();
-    assert_problem(
-        &app.post(&path, json!({"points": negative})).await,
-        422,
-        Some("points[0].t_m_um"),
-    );
-    assert_problem(
-        &app.post("/v1/tools/99999/force-model/fit", json!({"points": []}))
-            .await,
-        404,
-        None,
-    );
-    assert_eq!(
-        app.get(&format!("/v1/force-models?tool_id={tool}"))
-            .await
-            .body["total"],
-        1
-    );
+    let flat: Vec<Value> =
+        (0..10).map(|i| json!({"t_m_um": 43.6, "l_mm": 2.0 + 0.1 * i as f64, "fxy_n": 250 + i})).collect();
+    assert_problem(&app.post(&path, json!({"points": flat, "store": true})).await, 422, Some("points"));
+    let negative: Vec<Value> = (0..10).map(|i| json!({"t_m_um": -1.0 - i as f64, "l_mm": 2.0, "fxy_n": 250})).collect();
+    assert_problem(&app.post(&path, json!({"points": negative})).await, 422, Some("points[0].t_m_um"));
+    assert_problem(&app.post("/v1/tools/99999/force-model/fit", json!({"points": []})).await, 404, None);
+    assert_eq!(app.get(&format!("/v1/force-models?tool_id={tool}")).await.body["total"], 1);
     app.stop().await;
 }

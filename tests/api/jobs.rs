@@ -38,14 +38,7 @@ async fn prefer_wait_returns_the_finished_job_and_says_the_preference_was_applie
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn with_no_worker_a_wait_times_out_into_a_queued_job_that_can_be_cancelled() {
     let app = TestApp::start_with(|c| c.workers = Some(0)).await;
-    let a = app
-        .send(
-            reqwest::Method::POST,
-            "/v1/jobs",
-            Some(conditions_job()),
-            &[("prefer", "wait=1")],
-        )
-        .await;
+    let a = app.send(reqwest::Method::POST, "/v1/jobs", Some(conditions_job()), &[("prefer", "wait=1")]).await;
     assert_eq!(a.status, 202);
     assert_eq!(a.body["status"], "queued");
     let id = a.body["id"].as_str().unwrap().to_string();
@@ -62,10 +55,7 @@ async fn a_queued_job_survives_a_restart_and_runs_after_it() {
     let app = TestApp::start_with(|c| c.workers = Some(0)).await;
     let a = app.post("/v1/jobs", conditions_job()).await;
     let id = a.body["id"].as_str().unwrap().to_string();
-    assert_eq!(
-        app.get(&format!("/v1/jobs/{id}")).await.body["status"],
-        "queued"
-    );
+    assert_eq!(app.get(&format!("/v1/jobs/{id}")).await.body["status"], "queued");
     let app = app.restart_with(|c| c.workers = Some(1)).await;
     let job = app.wait_for_job(&id).await;
     assert_eq!(job["status"], "succeeded", "{job}");
@@ -81,9 +71,7 @@ async fn a_job_left_running_by_a_crash_is_queued_again_and_finishes_at_the_next_
     let db = app.database();
     let dir = app.stop().await;
     // Simulate a crash in the middle of the job.
-    let pool = sqlx::SqlitePool::connect(&format!("sqlite://{}", db.display()))
-        .await
-        .unwrap();
+    let pool = sqlx::SqlitePool::connect(&format!("sqlite://{}", db.display())).await.unwrap();
     sqlx::query("UPDATE jobs SET status = 'running', attempts = 1, progress = 0.5 WHERE id = ?")
         .bind(&id)
         .execute(&pool)
@@ -102,20 +90,13 @@ async fn jobs_are_listed_newest_first_with_filters_and_pages() {
     let app = TestApp::start().await;
     let mut ids = Vec::new();
     for _ in 0..3 {
-        ids.push(
-            app.post_wait("/v1/jobs", conditions_job()).await.body["id"]
-                .as_str()
-                .unwrap()
-                .to_string(),
-        );
+        ids.push(app.post_wait("/v1/jobs", conditions_job()).await.body["id"].as_str().unwrap().to_string());
     }
     let page = app.get("/v1/jobs?limit=2").await;
     assert_eq!(page.body["total"], 3);
     assert_eq!(page.body["items"].as_array().unwrap().len(), 2);
     assert_eq!(page.body["items"][0]["id"], ids[2].as_str());
-    let done = app
-        .get("/v1/jobs?status=succeeded&kind=conditions&offset=2")
-        .await;
+    let done = app.get("/v1/jobs?status=succeeded&kind=conditions&offset=2").await;
     assert_eq!(done.body["items"][0]["id"], ids[0].as_str());
     assert_eq!(app.get("/v1/jobs?status=failed").await.body["total"], 0);
     assert_problem(&app.get("/v1/jobs?status=sleeping").await, 400, None);
@@ -125,17 +106,9 @@ async fn jobs_are_listed_newest_first_with_filters_and_pages() {
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_conditions_job_has_no_program_and_a_finished_job_cannot_be_cancelled() {
     let app = TestApp::start().await;
-    let id = app.post_wait("/v1/jobs", conditions_job()).await.body["id"]
-        .as_str()
-        .unwrap()
-        .to_string();
+    let id = app.post_wait("/v1/jobs", conditions_job()).await.body["id"].as_str().unwrap().to_string();
     assert_problem(&app.get(&format!("/v1/jobs/{id}/program")).await, 404, None);
     assert_problem(&app.delete(&format!("/v1/jobs/{id}")).await, 409, None);
-    assert_problem(
-        &app.get("/v1/jobs/00000000-0000-0000-0000-000000000000")
-            .await,
-        404,
-        None,
-    );
+    assert_problem(&app.get("/v1/jobs/00000000-0000-0000-0000-000000000000").await, 404, None);
     app.stop().await;
 }

@@ -12,12 +12,7 @@ const R: f64 = 5.0;
 const TOLERANCE_DEG: f64 = 0.5;
 
 fn tool() -> EndMill {
-    EndMill {
-        tool_type: ToolType::Square,
-        diameter_mm: 2.0 * R,
-        flutes: 6,
-        corner_radius_mm: 0.0,
-    }
+    EndMill { tool_type: ToolType::Square, diameter_mm: 2.0 * R, flutes: 6, corner_radius_mm: 0.0 }
 }
 
 fn spec(stock: Vec<StockRegion>, open: Vec<StockRegion>) -> AnalysisSpec {
@@ -38,81 +33,41 @@ fn spec(stock: Vec<StockRegion>, open: Vec<StockRegion>) -> AnalysisSpec {
 }
 
 fn feed(motion: Motion, start: P3, end: P3) -> Move {
-    Move {
-        motion,
-        start,
-        end,
-        feed_mm_min: Some(5760.0),
-        spindle_rpm: Some(9600.0),
-        tool: None,
-        line: 1,
-    }
+    Move { motion, start, end, feed_mm_min: Some(5760.0), spindle_rpm: Some(9600.0), tool: None, line: 1 }
 }
 
 fn path(moves: Vec<Move>) -> Toolpath {
-    Toolpath {
-        moves,
-        events: vec![],
-        source_units: Units::Mm,
-        warnings: vec![],
-    }
+    Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] }
 }
 
 /// α (deg) of the series point nearest path distance `s`.
 fn alpha_at(a: &Analysis, s: f64) -> f64 {
     let series = a.series.as_ref().unwrap();
-    let i = series
-        .s_mm
-        .iter()
-        .enumerate()
-        .min_by(|x, y| (x.1 - s).abs().total_cmp(&(y.1 - s).abs()))
-        .unwrap()
-        .0;
+    let i = series.s_mm.iter().enumerate().min_by(|x, y| (x.1 - s).abs().total_cmp(&(y.1 - s).abs())).unwrap().0;
     series.alpha_deg[i]
 }
 
 fn big_block() -> StockRegion {
-    StockRegion::Rect(Rect {
-        x_min: -60.0,
-        y_min: -60.0,
-        x_max: 60.0,
-        y_max: 60.0,
-    })
+    StockRegion::Rect(Rect { x_min: -60.0, y_min: -60.0, x_max: 60.0, y_max: 60.0 })
 }
 
 #[test]
 fn straight_side_cuts_engage_acos_1_minus_rd_over_r() {
     for rd in [0.25, 0.5, 1.0, 2.5, 5.0, 7.5] {
         // Material below y = 0; the tool's flank reaches rd into it.
-        let stock = StockRegion::Rect(Rect {
-            x_min: 0.0,
-            y_min: -40.0,
-            x_max: 100.0,
-            y_max: 0.0,
-        });
+        let stock = StockRegion::Rect(Rect { x_min: 0.0, y_min: -40.0, x_max: 100.0, y_max: 0.0 });
         let y = R - rd;
-        let p = path(vec![feed(
-            Motion::Linear,
-            P3::new(-10.0, y, -5.0),
-            P3::new(110.0, y, -5.0),
-        )]);
+        let p = path(vec![feed(Motion::Linear, P3::new(-10.0, y, -5.0), P3::new(110.0, y, -5.0))]);
         let a = analyze(&p, &spec(vec![stock], vec![]), &NoProgress).unwrap();
         let expected = straight_engagement_angle_rad(rd, R).to_degrees();
         let got = alpha_at(&a, 60.0);
-        assert!(
-            (got - expected).abs() < TOLERANCE_DEG,
-            "Rd {rd}: {got} vs {expected}"
-        );
+        assert!((got - expected).abs() < TOLERANCE_DEG, "Rd {rd}: {got} vs {expected}");
     }
 }
 
 #[test]
 fn a_full_slot_engages_180_degrees() {
-    let p = path(vec![feed(
-        Motion::Linear,
-        P3::new(-70.0, 0.0, -5.0),
-        P3::new(50.0, 0.0, -5.0),
-    )]);
+    let p = path(vec![feed(Motion::Linear, P3::new(-70.0, 0.0, -5.0), P3::new(50.0, 0.0, -5.0))]);
     let a = analyze(&p, &spec(vec![big_block()], vec![]), &NoProgress).unwrap();
     let got = alpha_at(&a, 80.0);
     assert!((got - 180.0).abs() < TOLERANCE_DEG, "{got}");
@@ -125,12 +80,7 @@ fn a_full_slot_engages_180_degrees() {
 fn circle_path(rc: f64) -> Toolpath {
     let s = P3::new(rc, 0.0, -5.0);
     path(vec![feed(
-        Motion::Arc {
-            center: P3::new(0.0, 0.0, -5.0),
-            clockwise: false,
-            plane: Plane::Xy,
-            turns: 0,
-        },
+        Motion::Arc { center: P3::new(0.0, 0.0, -5.0), clockwise: false, plane: Plane::Xy, turns: 0 },
         s,
         s,
     )])
@@ -141,20 +91,13 @@ fn concave_arcs_engage_as_model_section_2_says() {
     let rd = 0.5;
     for ratio in [1.2, 1.6, 2.0, 3.0] {
         let big_r = ratio * R;
-        let open = StockRegion::Circle {
-            cx: 0.0,
-            cy: 0.0,
-            r: big_r - rd,
-        };
+        let open = StockRegion::Circle { cx: 0.0, cy: 0.0, r: big_r - rd };
         let p = circle_path(big_r - R);
         let a = analyze(&p, &spec(vec![big_block()], vec![open]), &NoProgress).unwrap();
         let expected = concave_engagement_angle_rad(big_r, rd, R).to_degrees();
         let half = std::f64::consts::PI * (big_r - R);
         let got = alpha_at(&a, half);
-        assert!(
-            (got - expected).abs() < TOLERANCE_DEG,
-            "R/r {ratio}: {got} vs {expected}"
-        );
+        assert!((got - expected).abs() < TOLERANCE_DEG, "R/r {ratio}: {got} vs {expected}");
     }
 }
 
@@ -163,32 +106,19 @@ fn convex_arcs_engage_as_model_section_2_says() {
     let rd = 0.5;
     for ratio in [1.2, 1.6, 2.0, 3.0] {
         let big_r = ratio * R;
-        let island = StockRegion::Circle {
-            cx: 0.0,
-            cy: 0.0,
-            r: big_r + rd,
-        };
+        let island = StockRegion::Circle { cx: 0.0, cy: 0.0, r: big_r + rd };
         let p = circle_path(big_r + R);
         let a = analyze(&p, &spec(vec![island], vec![]), &NoProgress).unwrap();
         let expected = convex_engagement_angle_rad(big_r, rd, R).to_degrees();
         let half = std::f64::consts::PI * (big_r + R);
         let got = alpha_at(&a, half);
-        assert!(
-            (got - expected).abs() < TOLERANCE_DEG,
-            "R/r {ratio}: {got} vs {expected}"
-        );
+        assert!((got - expected).abs() < TOLERANCE_DEG, "R/r {ratio}: {got} vs {expected}");
     }
 }
 
 #[test]
 fn a_second_pass_over_cut_ground_engages_nothing_and_counts_as_air() {
-    let line = |x0: f64, x1: f64| {
-        feed(
-            Motion::Linear,
-            P3::new(x0, 0.0, -5.0),
-            P3::new(x1, 0.0, -5.0),
-        )
-    };
+    let line = |x0: f64, x1: f64| feed(Motion::Linear, P3::new(x0, 0.0, -5.0), P3::new(x1, 0.0, -5.0));
     let p = path(vec![line(-70.0, 50.0), line(50.0, -50.0)]);
     let a = analyze(&p, &spec(vec![big_block()], vec![]), &NoProgress).unwrap();
     assert!(alpha_at(&a, 170.0) < TOLERANCE_DEG);

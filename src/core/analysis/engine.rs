@@ -102,23 +102,13 @@ pub fn simulate(
     progress: &dyn Progress,
     mut sink: impl FnMut(&SampleResult),
 ) -> Result<(), CoreError> {
-    let Cutter {
-        spacing_mm,
-        force_model,
-        total_samples,
-        ..
-    } = cutter;
+    let Cutter { spacing_mm, force_model, total_samples, .. } = cutter;
     let force_model = force_model.as_ref();
     let curvatures = move_curvatures(path);
     let table = AngleTable::default();
     let r = cutter.radius_mm;
     let cos_turn = CHUNK_TURN_DEG.to_radians().cos();
-    let mut chunk = Chunk {
-        start: None,
-        heading: (0.0, 0.0),
-        cut: 0,
-        recent: Vec::with_capacity(CHUNK_SAMPLES + 1),
-    };
+    let mut chunk = Chunk { start: None, heading: (0.0, 0.0), cut: 0, recent: Vec::with_capacity(CHUNK_SAMPLES + 1) };
     let mut contacts = vec![Contact::default(); slices.len()];
     let mut s_mm = 0.0;
     let mut n = 0usize;
@@ -138,12 +128,7 @@ pub fn simulate(
         let cut = slices::slices_cut(slices, sample.p.z);
         if cut != chunk.cut {
             chunk.flush(slices, r);
-            chunk = Chunk {
-                start: None,
-                heading: sample.heading,
-                cut,
-                recent: std::mem::take(&mut chunk.recent),
-            };
+            chunk = Chunk { start: None, heading: sample.heading, cut, recent: std::mem::take(&mut chunk.recent) };
             chunk.recent.clear();
         }
         let plunge = sample.heading.0 == 0.0 && sample.heading.1 == 0.0;
@@ -158,12 +143,7 @@ pub fn simulate(
             plunge: plunge && cut > 0,
         };
         if cut > 0 && !plunge {
-            let site = ProbeSite {
-                center: p,
-                radius: r,
-                heading: sample.heading,
-                recent: &chunk.recent,
-            };
+            let site = ProbeSite { center: p, radius: r, heading: sample.heading, recent: &chunk.recent };
             for (k, s) in slices.iter().take(cut).enumerate() {
                 contacts[k] = if s.raster.any_material_near(p.0, p.1, r) {
                     table.contact(&s.raster, &site)
@@ -179,8 +159,7 @@ pub fn simulate(
             chunk.heading = sample.heading;
         }
         chunk.recent.push(p);
-        let turned =
-            chunk.heading.0 * sample.heading.0 + chunk.heading.1 * sample.heading.1 < cos_turn;
+        let turned = chunk.heading.0 * sample.heading.0 + chunk.heading.1 * sample.heading.1 < cos_turn;
         if chunk.recent.len() > CHUNK_SAMPLES || turned {
             chunk.flush(slices, r);
             chunk.heading = sample.heading;
@@ -205,26 +184,14 @@ fn evaluate(
 ) {
     let r = cutter.radius_mm;
     let tip = result.sample.p.z;
-    let Some(best) = contacts
-        .iter()
-        .copied()
-        .max_by(|a, b| a.alpha_rad.total_cmp(&b.alpha_rad))
-    else {
+    let Some(best) = contacts.iter().copied().max_by(|a, b| a.alpha_rad.total_cmp(&b.alpha_rad)) else {
         return;
     };
     if best.alpha_rad <= 0.0 {
         return;
     }
-    let rpm = result
-        .sample
-        .spindle_rpm
-        .or(cutter.default_spindle_rpm)
-        .unwrap_or(0.0);
-    let fz_c_mm = if rpm > 0.0 {
-        result.sample.feed_mm_min / (f64::from(cutter.flutes) * rpm)
-    } else {
-        0.0
-    };
+    let rpm = result.sample.spindle_rpm.or(cutter.default_spindle_rpm).unwrap_or(0.0);
+    let fz_c_mm = if rpm > 0.0 { result.sample.feed_mm_min / (f64::from(cutter.flutes) * rpm) } else { 0.0 };
     let ratio = cutting_point_ratio(&result.sample, &best, r);
     let t_m = |c: &Contact| max_chip_thickness_mm(fz_c_mm * ratio, c.alpha_rad) * UM_PER_MM;
     result.contact = best;

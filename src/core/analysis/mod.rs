@@ -33,8 +33,8 @@ pub const CELL_PER_DIAMETER: f64 = 1.0 / 100.0;
 /// Raster cell bounds, mm.
 pub const MIN_CELL_MM: f64 = 0.002;
 pub const MAX_CELL_MM: f64 = 0.5;
-/// Raster memory the analysis may use, cells over all slices (one byte each: 256 MiB).
-pub const MAX_RASTER_CELLS: f64 = 256.0 * 1024.0 * 1024.0;
+/// Raster memory the analysis may use, cells over all slices (one byte each: 128 MiB).
+pub const MAX_RASTER_CELLS: f64 = 128.0 * 1024.0 * 1024.0;
 /// Most series points a request may ask for.
 pub const MAX_SERIES_POINTS: usize = 100_000;
 
@@ -107,12 +107,8 @@ pub struct Analysis {
 /// The sample spacing and raster cell an analysis of `spec` uses.
 pub fn resolution(spec: &AnalysisSpec, bounds: Rect, slices: usize) -> (f64, f64) {
     let d = spec.tool.diameter_mm;
-    let spacing = spec
-        .sample_spacing_mm
-        .unwrap_or((SPACING_PER_DIAMETER * d).min(DEFAULT_MAX_SPACING_MM));
-    let wanted = spec
-        .cell_mm
-        .unwrap_or((CELL_PER_DIAMETER * d).clamp(MIN_CELL_MM, MAX_CELL_MM));
+    let spacing = spec.sample_spacing_mm.unwrap_or((SPACING_PER_DIAMETER * d).min(DEFAULT_MAX_SPACING_MM));
+    let wanted = spec.cell_mm.unwrap_or((CELL_PER_DIAMETER * d).clamp(MIN_CELL_MM, MAX_CELL_MM));
     let area = (bounds.x_max - bounds.x_min) * (bounds.y_max - bounds.y_min);
     let floor = (area * slices as f64 / MAX_RASTER_CELLS).sqrt();
     (spacing, wanted.max(floor))
@@ -128,61 +124,37 @@ fn validate(path: &Toolpath, spec: &AnalysisSpec) -> Result<(), CoreError> {
     }
     require_positive("rapid_mm_min", spec.rapid_mm_min)?;
     if !(spec.alpha_limit_deg > 0.0 && spec.alpha_limit_deg < 180.0) {
-        return Err(CoreError::invalid(
-            "alpha_limit_deg",
-            "must be between 0 and 180",
-        ));
+        return Err(CoreError::invalid("alpha_limit_deg", "must be between 0 and 180"));
     }
     if !(spec.z_top.is_finite() && spec.z_bottom.is_finite() && spec.z_top > spec.z_bottom) {
-        return Err(CoreError::invalid(
-            "layer",
-            "z_top must be finite and above z_bottom",
-        ));
+        return Err(CoreError::invalid("layer", "z_top must be finite and above z_bottom"));
     }
     if spec.series_points > MAX_SERIES_POINTS {
-        return Err(CoreError::invalid(
-            "series_points",
-            format!("at most {MAX_SERIES_POINTS}"),
-        ));
+        return Err(CoreError::invalid("series_points", format!("at most {MAX_SERIES_POINTS}")));
     }
     if spec.stock.is_empty() {
         return Err(CoreError::invalid("stock", "no stock region given"));
     }
     for m in &path.moves {
         if !matches!(m.motion, Motion::Rapid) && m.feed_mm_min.is_none_or(|f| f <= 0.0) {
-            return Err(CoreError::invalid(
-                "program",
-                format!("line {}: a feed move with no feed (F)", m.line),
-            ));
+            return Err(CoreError::invalid("program", format!("line {}: a feed move with no feed (F)", m.line)));
         }
     }
     Ok(())
 }
 
 /// Analyses `path` in the layer of `spec`.
-pub fn analyze(
-    path: &Toolpath,
-    spec: &AnalysisSpec,
-    progress: &dyn Progress,
-) -> Result<Analysis, CoreError> {
+pub fn analyze(path: &Toolpath, spec: &AnalysisSpec, progress: &dyn Progress) -> Result<Analysis, CoreError> {
     validate(path, spec)?;
     let bounds = region::union_bounds(&spec.stock);
     let levels = slices::slice_levels(path, spec.z_bottom, spec.z_top);
     let (spacing, cell) = resolution(spec, bounds, levels.len() - 1);
-    let mut slices = slices::build(&levels, bounds, cell, |raster| {
-        region::paint(raster, &spec.stock, &spec.open)
-    });
-    let initial: Vec<f64> = slices
-        .iter()
-        .map(|s| s.raster.material_area_mm2())
-        .collect();
+    let mut slices = slices::build(&levels, bounds, cell, |raster| region::paint(raster, &spec.stock, &spec.open));
+    let initial: Vec<f64> = slices.iter().map(|s| s.raster.material_area_mm2()).collect();
 
     let total_length: f64 = path.moves.iter().map(sampling::move_length).sum();
-    let total_samples: usize = path
-        .moves
-        .iter()
-        .map(|m| ((sampling::move_length(m) / spacing).ceil() as usize).max(1))
-        .sum();
+    let total_samples: usize =
+        path.moves.iter().map(|m| ((sampling::move_length(m) / spacing).ceil() as usize).max(1)).sum();
     let cutter = Cutter {
         radius_mm: spec.tool.radius_mm(),
         flutes: spec.tool.flutes,
@@ -191,18 +163,11 @@ pub fn analyze(
         spacing_mm: spacing,
         total_samples,
     };
-    let mut builder = ReportBuilder::new(
-        spec.alpha_limit_deg,
-        spec.tool.diameter_mm,
-        spec.series_points,
-        total_length,
-    );
+    let mut builder = ReportBuilder::new(spec.alpha_limit_deg, spec.tool.diameter_mm, spec.series_points, total_length);
     simulate(path, cutter, &mut slices, progress, |r| builder.add(r))?;
     progress.report(1.0);
     let report = builder.finish();
-    Ok(assemble(
-        path, spec, report, &slices, &initial, spacing, cell,
-    ))
+    Ok(assemble(path, spec, report, &slices, &initial, spacing, cell))
 }
 
 fn assemble(
@@ -216,22 +181,11 @@ fn assemble(
 ) -> Analysis {
     let mut warnings = path.warnings.clone();
     if report.rapid_in_material.iter().any(|_| true) {
-        let lines: Vec<String> = report
-            .rapid_in_material
-            .iter()
-            .take(10)
-            .map(u32::to_string)
-            .collect();
-        warnings.push(format!(
-            "rapid moves cut material at lines {}",
-            lines.join(", ")
-        ));
+        let lines: Vec<String> = report.rapid_in_material.iter().take(10).map(u32::to_string).collect();
+        warnings.push(format!("rapid moves cut material at lines {}", lines.join(", ")));
     }
     if report.plunge_samples > 0 {
-        warnings.push(format!(
-            "{} samples plunge straight down (no leading half to measure)",
-            report.plunge_samples
-        ));
+        warnings.push(format!("{} samples plunge straight down (no leading half to measure)", report.plunge_samples));
     }
     if spec.force_model.is_none() {
         warnings.push("no force model: forces are not predicted".to_string());
@@ -245,10 +199,7 @@ fn assemble(
             removed_area_mm2: a0 - s.raster.material_area_mm2(),
         })
         .collect();
-    let removed_volume_mm3 = slice_summaries
-        .iter()
-        .map(|s| s.removed_area_mm2 * (s.z_top - s.z_bottom))
-        .sum();
+    let removed_volume_mm3 = slice_summaries.iter().map(|s| s.removed_area_mm2 * (s.z_top - s.z_bottom)).sum();
     let (mut rapid_length, mut minutes) = (0.0, 0.0);
     for m in &path.moves {
         let len = sampling::move_length(m);

@@ -58,20 +58,11 @@ impl AngleTable {
             return false;
         }
         let r2 = site.radius * site.radius;
-        site.recent
-            .iter()
-            .all(|c| (x - c.0) * (x - c.0) + (y - c.1) * (y - c.1) >= r2)
+        site.recent.iter().all(|c| (x - c.0) * (x - c.0) + (y - c.1) * (y - c.1) >= r2)
     }
 
     /// First probe index in (a, b] whose state differs from index `a`'s.
-    fn boundary(
-        &self,
-        raster: &Raster,
-        site: &ProbeSite,
-        a: usize,
-        b: usize,
-        state_a: bool,
-    ) -> usize {
+    fn boundary(&self, raster: &Raster, site: &ProbeSite, a: usize, b: usize, state_a: bool) -> usize {
         let (mut lo, mut hi) = (a, b);
         while hi - lo > 1 {
             let mid = (lo + hi) / 2;
@@ -148,12 +139,7 @@ mod tests {
     use crate::core::stock::Rect;
 
     fn block() -> Raster {
-        let rect = Rect {
-            x_min: -20.0,
-            y_min: -20.0,
-            x_max: 20.0,
-            y_max: 20.0,
-        };
+        let rect = Rect { x_min: -20.0, y_min: -20.0, x_max: 20.0, y_max: 20.0 };
         let mut r = Raster::new(rect, 0.02);
         r.paint(
             true,
@@ -170,12 +156,7 @@ mod tests {
     #[test]
     fn a_tool_buried_in_material_engages_its_whole_leading_half() {
         let table = AngleTable::default();
-        let site = ProbeSite {
-            center: (0.0, 0.0),
-            radius: 5.0,
-            heading: (1.0, 0.0),
-            recent: &[],
-        };
+        let site = ProbeSite { center: (0.0, 0.0), radius: 5.0, heading: (1.0, 0.0), recent: &[] };
         let c = table.contact(&block(), &site);
         assert!((c.alpha_rad - PI).abs() < 1e-9);
         assert!((c.entry_rad + PI / 2.0).abs() < 1e-9 && (c.exit_rad - PI / 2.0).abs() < 1e-9);
@@ -187,30 +168,16 @@ mod tests {
         // A disc about (1, 0) covers the circle where cos θ > 0.1: what stays engaged is
         // 2 × (90° − acos 0.1).
         let recent = [(1.0, 0.0)];
-        let site = ProbeSite {
-            center: (0.0, 0.0),
-            radius: 5.0,
-            heading: (1.0, 0.0),
-            recent: &recent,
-        };
+        let site = ProbeSite { center: (0.0, 0.0), radius: 5.0, heading: (1.0, 0.0), recent: &recent };
         let c = table.contact(&block(), &site);
         let expected = 2.0 * (PI / 2.0 - 0.1f64.acos());
-        assert!(
-            (c.alpha_rad - expected).abs() < 0.2f64.to_radians(),
-            "{} vs {expected}",
-            c.alpha_rad
-        );
+        assert!((c.alpha_rad - expected).abs() < 0.2f64.to_radians(), "{} vs {expected}", c.alpha_rad);
     }
 
     #[test]
     fn a_tool_in_the_air_engages_nothing() {
         let table = AngleTable::default();
-        let site = ProbeSite {
-            center: (100.0, 0.0),
-            radius: 5.0,
-            heading: (0.0, 1.0),
-            recent: &[],
-        };
+        let site = ProbeSite { center: (100.0, 0.0), radius: 5.0, heading: (0.0, 1.0), recent: &[] };
         assert_eq!(table.contact(&block(), &site).alpha_rad, 0.0);
     }
 }

@@ -20,20 +20,10 @@ impl StockRegion {
     pub fn bounds(&self) -> Rect {
         match *self {
             StockRegion::Rect(r) => r,
-            StockRegion::Circle { cx, cy, r } => Rect {
-                x_min: cx - r,
-                y_min: cy - r,
-                x_max: cx + r,
-                y_max: cy + r,
-            },
+            StockRegion::Circle { cx, cy, r } => Rect { x_min: cx - r, y_min: cy - r, x_max: cx + r, y_max: cy + r },
             StockRegion::Pocket(ref p) => {
                 let b = p.bounds();
-                Rect {
-                    x_min: b.x_min,
-                    y_min: b.y_min,
-                    x_max: b.x_max,
-                    y_max: b.y_max,
-                }
+                Rect { x_min: b.x_min, y_min: b.y_min, x_max: b.x_max, y_max: b.y_max }
             }
         }
     }
@@ -84,12 +74,7 @@ impl StockRegion {
 /// Bounds of the union of `regions`.
 pub fn union_bounds(regions: &[StockRegion]) -> Rect {
     regions.iter().map(StockRegion::bounds).fold(
-        Rect {
-            x_min: f64::INFINITY,
-            y_min: f64::INFINITY,
-            x_max: f64::NEG_INFINITY,
-            y_max: f64::NEG_INFINITY,
-        },
+        Rect { x_min: f64::INFINITY, y_min: f64::INFINITY, x_max: f64::NEG_INFINITY, y_max: f64::NEG_INFINITY },
         |a, b| Rect {
             x_min: a.x_min.min(b.x_min),
             y_min: a.y_min.min(b.y_min),
@@ -102,17 +87,9 @@ pub fn union_bounds(regions: &[StockRegion]) -> Rect {
 /// Paints `stock` as material and clears `open`.
 pub fn paint(raster: &mut Raster, stock: &[StockRegion], open: &[StockRegion]) {
     for region in stock {
-        raster.paint(
-            true,
-            |y, out| region.row_intervals(y, out),
-            |x, y| region.signed_distance(x, y),
-        );
+        raster.paint(true, |y, out| region.row_intervals(y, out), |x, y| region.signed_distance(x, y));
     }
     for region in open {
-        raster.paint(
-            false,
-            |y, out| region.row_intervals(y, out),
-            |x, y| region.signed_distance(x, y),
-        );
+        raster.paint(false, |y, out| region.row_intervals(y, out), |x, y| region.signed_distance(x, y));
     }
 }

@@ -85,11 +85,7 @@ impl Accumulator {
             return Stats::default();
         }
         let mean = self.sum / self.weight;
-        Stats {
-            max: self.max,
-            mean,
-            std_dev: (self.sum_sq / self.weight - mean * mean).max(0.0).sqrt(),
-        }
+        Stats { max: self.max, mean, std_dev: (self.sum_sq / self.weight - mean * mean).max(0.0).sqrt() }
     }
 }
 
@@ -132,23 +128,12 @@ pub struct ReportBuilder {
 }
 
 fn point(r: &SampleResult) -> PathPoint {
-    PathPoint {
-        s_mm: r.s_mm,
-        line: r.sample.line,
-        x: r.sample.p.x,
-        y: r.sample.p.y,
-        z: r.sample.p.z,
-    }
+    PathPoint { s_mm: r.s_mm, line: r.sample.line, x: r.sample.p.x, y: r.sample.p.y, z: r.sample.p.z }
 }
 
 impl ReportBuilder {
     /// `series_points`: how many points of series to keep over `total_length_mm`.
-    pub fn new(
-        alpha_limit_deg: f64,
-        diameter_mm: f64,
-        series_points: usize,
-        total_length_mm: f64,
-    ) -> Self {
+    pub fn new(alpha_limit_deg: f64, diameter_mm: f64, series_points: usize, total_length_mm: f64) -> Self {
         let bins = (MAX_ALPHA_DEG / HISTOGRAM_BIN_DEG).ceil() as usize;
         ReportBuilder {
             alpha_limit_deg,
@@ -277,9 +262,7 @@ impl ReportBuilder {
             series.ad_mm.push(r.ad_mm);
             series.feed_mm_min.push(r.sample.feed_mm_min);
             let radius = r.sample.curvature.radius_mm();
-            series
-                .curvature_radius_mm
-                .push(radius.is_finite().then_some(radius));
+            series.curvature_radius_mm.push(radius.is_finite().then_some(radius));
         }
         FinishedReport {
             alpha_deg: self.alpha.stats(),

@@ -37,12 +37,7 @@ fn point_on(m: &Move, t: f64) -> (P3, (f64, f64)) {
             );
             (p, (m.end.x - m.start.x, m.end.y - m.start.y))
         }
-        Motion::Arc {
-            center,
-            clockwise,
-            plane,
-            turns,
-        } => {
+        Motion::Arc { center, clockwise, plane, turns } => {
             let (s, e, c) = in_plane(m.start, m.end, center, plane);
             let a0 = (s.1 - c.1).atan2(s.0 - c.0);
             let sweep = arc_sweep(s, e, c, clockwise, turns);
@@ -59,13 +54,7 @@ fn point_on(m: &Move, t: f64) -> (P3, (f64, f64)) {
 }
 
 /// Signed sweep of an arc (radians): negative for clockwise.
-pub fn arc_sweep(
-    s: (f64, f64, f64),
-    e: (f64, f64, f64),
-    c: (f64, f64, f64),
-    clockwise: bool,
-    turns: u32,
-) -> f64 {
+pub fn arc_sweep(s: (f64, f64, f64), e: (f64, f64, f64), c: (f64, f64, f64), clockwise: bool, turns: u32) -> f64 {
     let a0 = (s.1 - c.1).atan2(s.0 - c.0);
     let a1 = (e.1 - c.1).atan2(e.0 - c.0);
     let mut sweep = a1 - a0;
@@ -107,16 +96,10 @@ fn from_plane(p: (f64, f64, f64), d: (f64, f64, f64), plane: Plane) -> (P3, (f64
 /// Length of a move, mm.
 pub fn move_length(m: &Move) -> f64 {
     match m.motion {
-        Motion::Rapid | Motion::Linear => ((m.end.x - m.start.x).powi(2)
-            + (m.end.y - m.start.y).powi(2)
-            + (m.end.z - m.start.z).powi(2))
-        .sqrt(),
-        Motion::Arc {
-            center,
-            clockwise,
-            plane,
-            turns,
-        } => {
+        Motion::Rapid | Motion::Linear => {
+            ((m.end.x - m.start.x).powi(2) + (m.end.y - m.start.y).powi(2) + (m.end.z - m.start.z).powi(2)).sqrt()
+        }
+        Motion::Arc { center, clockwise, plane, turns } => {
             let (s, e, c) = in_plane(m.start, m.end, center, plane);
             let r = (s.0 - c.0).hypot(s.1 - c.1);
             let planar = r * arc_sweep(s, e, c, clockwise, turns).abs();
@@ -133,21 +116,11 @@ pub fn move_curvatures(path: &Toolpath) -> Vec<(PointCurvature, PointCurvature)>
     let mut i = 0;
     while i < moves.len() {
         let is_run_move = |m: &Move| {
-            matches!(m.motion, Motion::Linear)
-                && (m.end.x - m.start.x).hypot(m.end.y - m.start.y) > MIN_XY_MM
+            matches!(m.motion, Motion::Linear) && (m.end.x - m.start.x).hypot(m.end.y - m.start.y) > MIN_XY_MM
         };
-        if let Motion::Arc {
-            center,
-            clockwise,
-            plane: Plane::Xy,
-            ..
-        } = moves[i].motion
-        {
+        if let Motion::Arc { center, clockwise, plane: Plane::Xy, .. } = moves[i].motion {
             let r = (moves[i].start.x - center.x).hypot(moves[i].start.y - center.y);
-            let k = PointCurvature {
-                kappa: if clockwise { -1.0 / r } else { 1.0 / r },
-                corner: false,
-            };
+            let k = PointCurvature { kappa: if clockwise { -1.0 / r } else { 1.0 / r }, corner: false };
             out[i] = (k, k);
             i += 1;
             continue;
@@ -157,10 +130,7 @@ pub fn move_curvatures(path: &Toolpath) -> Vec<(PointCurvature, PointCurvature)>
             continue;
         }
         let start = i;
-        while i < moves.len()
-            && is_run_move(&moves[i])
-            && (i == start || connected(&moves[i - 1], &moves[i]))
-        {
+        while i < moves.len() && is_run_move(&moves[i]) && (i == start || connected(&moves[i - 1], &moves[i])) {
             i += 1;
         }
         let mut pts: Vec<(f64, f64)> = Vec::with_capacity(i - start + 1);
@@ -185,10 +155,7 @@ fn curvature_at(ends: (PointCurvature, PointCurvature), t: f64) -> PointCurvatur
         (true, true) => PointCurvature::STRAIGHT,
         (true, false) => ends.1,
         (false, true) => ends.0,
-        (false, false) => PointCurvature {
-            kappa: ends.0.kappa + (ends.1.kappa - ends.0.kappa) * t,
-            corner: false,
-        },
+        (false, false) => PointCurvature { kappa: ends.0.kappa + (ends.1.kappa - ends.0.kappa) * t, corner: false },
     }
 }
 
@@ -208,11 +175,7 @@ pub fn for_each_sample(
             let t = k as f64 / steps as f64;
             let (p, d) = point_on(m, t);
             let dl = d.0.hypot(d.1);
-            let heading = if dl > MIN_XY_MM {
-                (d.0 / dl, d.1 / dl)
-            } else {
-                (0.0, 0.0)
-            };
+            let heading = if dl > MIN_XY_MM { (d.0 / dl, d.1 / dl) } else { (0.0, 0.0) };
             let sample = Sample {
                 p,
                 heading,
@@ -236,26 +199,13 @@ mod tests {
     use super::*;
 
     fn mv(motion: Motion, start: P3, end: P3) -> Move {
-        Move {
-            motion,
-            start,
-            end,
-            feed_mm_min: Some(1000.0),
-            spindle_rpm: Some(9600.0),
-            tool: None,
-            line: 1,
-        }
+        Move { motion, start, end, feed_mm_min: Some(1000.0), spindle_rpm: Some(9600.0), tool: None, line: 1 }
     }
 
     #[test]
     fn a_quarter_arc_has_the_length_and_curvature_of_its_circle() {
         let m = mv(
-            Motion::Arc {
-                center: P3::new(0.0, 0.0, 0.0),
-                clockwise: false,
-                plane: Plane::Xy,
-                turns: 0,
-            },
+            Motion::Arc { center: P3::new(0.0, 0.0, 0.0), clockwise: false, plane: Plane::Xy, turns: 0 },
             P3::new(10.0, 0.0, 0.0),
             P3::new(0.0, 10.0, 0.0),
         );

@@ -8,7 +8,7 @@ use crate::core::toolpath::{Motion, Toolpath};
 /// z levels closer than this are one level, mm.
 pub const MIN_SLICE_MM: f64 = 0.05;
 /// Most slices one analysis keeps (the thinnest are merged beyond it).
-pub const MAX_SLICES: usize = 24;
+pub const MAX_SLICES: usize = 16;
 /// A tool tip this close to a slice top does not cut the slice, mm.
 pub const Z_CONTACT_EPS_MM: f64 = 1e-6;
 
@@ -45,9 +45,7 @@ pub fn slice_levels(path: &Toolpath, z_bottom: f64, z_top: f64) -> Vec<f64> {
     while merged.len() > MAX_SLICES + 1 {
         // Merge the thinnest slice into its neighbour by dropping an inner level.
         let thinnest = (1..merged.len() - 1)
-            .min_by(|&a, &b| {
-                (merged[a - 1] - merged[a + 1]).total_cmp(&(merged[b - 1] - merged[b + 1]))
-            })
+            .min_by(|&a, &b| (merged[a - 1] - merged[a + 1]).total_cmp(&(merged[b - 1] - merged[b + 1])))
             .unwrap_or(1);
         merged.remove(thinnest);
     }
@@ -55,30 +53,15 @@ pub fn slice_levels(path: &Toolpath, z_bottom: f64, z_top: f64) -> Vec<f64> {
 }
 
 /// Builds the slices with material painted by `paint`.
-pub fn build(
-    levels: &[f64],
-    bounds: Rect,
-    cell_mm: f64,
-    paint: impl Fn(&mut Raster),
-) -> Vec<Slice> {
+pub fn build(levels: &[f64], bounds: Rect, cell_mm: f64, paint: impl Fn(&mut Raster)) -> Vec<Slice> {
     let mut first = Raster::new(bounds, cell_mm);
     paint(&mut first);
-    levels
-        .windows(2)
-        .map(|w| Slice {
-            z_top: w[0],
-            z_bottom: w[1],
-            raster: first.clone(),
-        })
-        .collect()
+    levels.windows(2).map(|w| Slice { z_top: w[0], z_bottom: w[1], raster: first.clone() }).collect()
 }
 
 /// How many slices (from the top) a tool tip at `z` cuts.
 pub fn slices_cut(slices: &[Slice], z: f64) -> usize {
-    slices
-        .iter()
-        .take_while(|s| z < s.z_top - Z_CONTACT_EPS_MM)
-        .count()
+    slices.iter().take_while(|s| z < s.z_top - Z_CONTACT_EPS_MM).count()
 }
 
 #[cfg(test)]
@@ -99,12 +82,7 @@ mod tests {
                 line: 1,
             })
             .collect();
-        Toolpath {
-            moves,
-            events: vec![],
-            source_units: Units::Mm,
-            warnings: vec![],
-        }
+        Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] }
     }
 
     #[test]

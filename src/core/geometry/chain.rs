@@ -52,11 +52,7 @@ impl Piece {
         (0..=m)
             .map(|k| {
                 let v = self.vertices[m - k];
-                let bulge = if k < m {
-                    -self.vertices[m - k - 1].bulge
-                } else {
-                    0.0
-                };
+                let bulge = if k < m { -self.vertices[m - k - 1].bulge } else { 0.0 };
                 Vertex::new(v.x, v.y, bulge)
             })
             .collect()
@@ -79,25 +75,12 @@ struct End {
 pub fn chain_pieces(pieces: Vec<Piece>, tol_mm: f64) -> Result<Vec<(Source, Loop)>, CoreError> {
     let pieces: Vec<Piece> = pieces
         .into_iter()
-        .filter(|p| {
-            p.vertices.len() >= 2
-                && p.vertices
-                    .iter()
-                    .any(|v| !v.point().near(p.start(), tol_mm))
-        })
+        .filter(|p| p.vertices.len() >= 2 && p.vertices.iter().any(|v| !v.point().near(p.start(), tol_mm)))
         .collect();
     let mut ends: Vec<End> = Vec::with_capacity(2 * pieces.len());
     for (k, p) in pieces.iter().enumerate() {
-        ends.push(End {
-            point: p.start(),
-            piece: k,
-            is_end: false,
-        });
-        ends.push(End {
-            point: p.end(),
-            piece: k,
-            is_end: true,
-        });
+        ends.push(End { point: p.start(), piece: k, is_end: false });
+        ends.push(End { point: p.end(), piece: k, is_end: true });
     }
     ends.sort_unstable_by(|a, b| a.point.x.total_cmp(&b.point.x));
     let mut used = vec![false; pieces.len()];
@@ -119,10 +102,7 @@ pub fn chain_pieces(pieces: Vec<Piece>, tol_mm: f64) -> Result<Vec<(Source, Loop
             }
             let lo = ends.partition_point(|e| e.point.x < end.x - tol_mm);
             let mut found: Option<End> = None;
-            for e in ends[lo..]
-                .iter()
-                .take_while(|e| e.point.x <= end.x + tol_mm)
-            {
+            for e in ends[lo..].iter().take_while(|e| e.point.x <= end.x + tol_mm) {
                 if used[e.piece] || !e.point.near(end, tol_mm) {
                     continue;
                 }
@@ -148,20 +128,14 @@ pub fn chain_pieces(pieces: Vec<Piece>, tol_mm: f64) -> Result<Vec<(Source, Loop
                     tol_mm
                 );
                 if last != first {
-                    reason.push_str(&format!(
-                        " (the open chain starts with {})",
-                        pieces[first].source
-                    ));
+                    reason.push_str(&format!(" (the open chain starts with {})", pieces[first].source));
                 }
                 return Err(CoreError::invalid("dxf", reason));
             };
             used[next.piece] = true;
             last = next.piece;
-            let mut more = if next.is_end {
-                pieces[next.piece].reversed_vertices()
-            } else {
-                pieces[next.piece].vertices.clone()
-            };
+            let mut more =
+                if next.is_end { pieces[next.piece].reversed_vertices() } else { pieces[next.piece].vertices.clone() };
             chain.pop();
             more[0].x = end.x;
             more[0].y = end.y;
@@ -184,15 +158,8 @@ mod tests {
 
     fn piece(points: &[(f64, f64, f64)], line: usize) -> Piece {
         Piece {
-            vertices: points
-                .iter()
-                .map(|&(x, y, b)| Vertex::new(x, y, b))
-                .collect(),
-            source: Source {
-                kind: "LINE".into(),
-                line,
-                handle: Some(format!("H{line}")),
-            },
+            vertices: points.iter().map(|&(x, y, b)| Vertex::new(x, y, b)).collect(),
+            source: Source { kind: "LINE".into(), line, handle: Some(format!("H{line}")) },
         }
     }
 
@@ -216,10 +183,7 @@ mod tests {
     fn a_reversed_arc_piece_keeps_its_shape() {
         let arc = piece(&[(1.0, 0.0, 1.0), (-1.0, 0.0, 0.0)], 1);
         let rev = arc.reversed_vertices();
-        let expected = Loop::new(vec![
-            Vertex::new(-1.0, 0.0, -1.0),
-            Vertex::new(1.0, 0.0, 0.0),
-        ]);
+        let expected = Loop::new(vec![Vertex::new(-1.0, 0.0, -1.0), Vertex::new(1.0, 0.0, 0.0)]);
         assert!(loops_near(&Loop::new(rev), &expected, EXACT));
         let chord = piece(&[(-1.0, 0.0, 0.0), (1.0, 0.0, 0.0)], 2);
         let loops = chain_pieces(vec![arc, chord], TOL_MM).unwrap();
@@ -228,15 +192,10 @@ mod tests {
 
     #[test]
     fn a_dangling_piece_is_named_with_its_line_and_handle() {
-        let pieces = vec![
-            piece(&[(0.0, 0.0, 0.0), (10.0, 0.0, 0.0)], 7),
-            piece(&[(10.0, 0.0, 0.0), (10.0, 10.0, 0.0)], 9),
-        ];
+        let pieces =
+            vec![piece(&[(0.0, 0.0, 0.0), (10.0, 0.0, 0.0)], 7), piece(&[(10.0, 0.0, 0.0), (10.0, 10.0, 0.0)], 9)];
         let err = chain_pieces(pieces, TOL_MM).unwrap_err().to_string();
-        assert!(
-            err.contains("LINE at line 9 (handle H9) cannot be chained"),
-            "{err}"
-        );
+        assert!(err.contains("LINE at line 9 (handle H9) cannot be chained"), "{err}");
         assert!(err.contains("starts with LINE at line 7"), "{err}");
     }
 
@@ -248,10 +207,7 @@ mod tests {
             piece(&[(10.0, 0.0, 0.0), (20.0, 0.0, 0.0)], 3),
         ];
         let err = chain_pieces(pieces, TOL_MM).unwrap_err().to_string();
-        assert!(
-            err.contains("more than two contour ends meet at (10, 0)"),
-            "{err}"
-        );
+        assert!(err.contains("more than two contour ends meet at (10, 0)"), "{err}");
         let dot = vec![piece(&[(5.0, 5.0, 0.0), (5.0, 5.0, 0.0)], 1)];
         assert!(chain_pieces(dot, TOL_MM).unwrap().is_empty());
     }

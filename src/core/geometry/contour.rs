@@ -56,10 +56,7 @@ impl Loop {
     /// The circle of centre `(cx, cy)` and radius `r` (mm) as two counter-clockwise half
     /// circles starting at its rightmost point.
     pub fn circle(cx: f64, cy: f64, r: f64) -> Loop {
-        Loop::new(vec![
-            Vertex::new(cx + r, cy, 1.0),
-            Vertex::new(cx - r, cy, 1.0),
-        ])
+        Loop::new(vec![Vertex::new(cx + r, cy, 1.0), Vertex::new(cx - r, cy, 1.0)])
     }
 
     /// The segment leaving vertex `i` (`i < vertices.len()`).
@@ -119,8 +116,7 @@ impl Loop {
 
     /// Exact bounding box, arcs' extreme points included.
     pub fn bounds(&self) -> Bounds {
-        self.segments()
-            .fold(Bounds::EMPTY, |acc, s| acc.union(s.bounds()))
+        self.segments().fold(Bounds::EMPTY, |acc, s| acc.union(s.bounds()))
     }
 
     /// Calls `emit(x)` for each crossing of the row at `y` with the loop, in segment order,
@@ -202,12 +198,7 @@ mod tests {
         let r = Loop::rectangle(1.0, 2.0, 11.0, 7.0);
         assert!((r.signed_area() - 50.0).abs() < TOL);
         assert!(r.is_ccw());
-        let expected = Bounds {
-            x_min: 1.0,
-            y_min: 2.0,
-            x_max: 11.0,
-            y_max: 7.0,
-        };
+        let expected = Bounds { x_min: 1.0, y_min: 2.0, x_max: 11.0, y_max: 7.0 };
         assert!(bounds_near(&r.bounds(), &expected, TOL));
         assert!((r.perimeter_mm() - 30.0).abs() < TOL);
     }
@@ -288,9 +279,7 @@ mod tests {
 
     #[test]
     fn loops_round_trip_through_json_with_the_bulge_defaulting_to_zero() {
-        let lp: Loop =
-            serde_json::from_str(r#"{"vertices":[{"x":0,"y":0},{"x":1,"y":0,"bulge":1}]}"#)
-                .unwrap();
+        let lp: Loop = serde_json::from_str(r#"{"vertices":[{"x":0,"y":0},{"x":1,"y":0,"bulge":1}]}"#).unwrap();
         assert!((lp.vertices[0].bulge).abs() < TOL);
         let back: Loop = serde_json::from_str(&serde_json::to_string(&lp).unwrap()).unwrap();
         assert!(loops_near(&back, &lp, TOL));

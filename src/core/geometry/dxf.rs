@@ -9,9 +9,7 @@
 
 use super::chain::{chain_pieces, Piece, Source};
 use super::contour::{Loop, Vertex};
-use super::dxf_groups::{
-    entities_section, mm_per_unit, read_groups, split_entities, Entity, Group,
-};
+use super::dxf_groups::{entities_section, mm_per_unit, read_groups, split_entities, Entity, Group};
 use super::point::Bounds;
 use crate::core::error::CoreError;
 
@@ -69,11 +67,7 @@ pub fn loops_from_dxf(text: &str) -> Result<Vec<Loop>, CoreError> {
         v.y *= scale;
     }
     let mut bounds = Bounds::EMPTY;
-    for v in closed
-        .iter()
-        .flat_map(|(_, l)| &l.vertices)
-        .chain(pieces.iter().flat_map(|p| &p.vertices))
-    {
+    for v in closed.iter().flat_map(|(_, l)| &l.vertices).chain(pieces.iter().flat_map(|p| &p.vertices)) {
         bounds.include(v.point());
     }
     let tol_mm = CHAIN_MIN_TOL_MM.max(CHAIN_REL_TOL * bounds.diagonal_mm());
@@ -85,10 +79,9 @@ pub fn loops_from_dxf(text: &str) -> Result<Vec<Loop>, CoreError> {
         .map(|(source, lp)| {
             let lp = without_duplicate_vertices(lp, tol_mm);
             lp.validate("loop").map_err(|e| match e {
-                CoreError::InvalidInput { field, reason } => CoreError::invalid(
-                    "dxf",
-                    format!("the loop starting with {source}: {field}: {reason}"),
-                ),
+                CoreError::InvalidInput { field, reason } => {
+                    CoreError::invalid("dxf", format!("the loop starting with {source}: {field}: {reason}"))
+                }
                 other => other,
             })?;
             Ok(lp)
@@ -126,10 +119,7 @@ fn read_entities(groups: &[Group<'_>]) -> Result<Shapes, CoreError> {
             if is_closed {
                 closed.push((e.source.clone(), Loop::new(vertices)));
             } else {
-                pieces.push(Piece {
-                    vertices,
-                    source: e.source.clone(),
-                });
+                pieces.push(Piece { vertices, source: e.source.clone() });
             }
         };
         match e.source.kind.as_str() {
@@ -145,11 +135,7 @@ fn read_entities(groups: &[Group<'_>]) -> Result<Shapes, CoreError> {
                 if r <= 0.0 {
                     return Err(e.error(format!("radius (group 40) must be > 0, got {r}")));
                 }
-                let (from, to) = if e.source.kind == "ARC" {
-                    (e.required(50)?, e.required(51)?)
-                } else {
-                    (0.0, 0.0)
-                };
+                let (from, to) = if e.source.kind == "ARC" { (e.required(50)?, e.required(51)?) } else { (0.0, 0.0) };
                 let (vertices, is_closed) = arc_vertices(cx, cy, r, from, to);
                 shape(mirror(vertices, e.mirrored()?), is_closed);
             }
@@ -160,10 +146,7 @@ fn read_entities(groups: &[Group<'_>]) -> Result<Shapes, CoreError> {
                         10 => vertices.push(Vertex::new(e.number_of(g)?, 0.0, 0.0)),
                         20 | 42 => {
                             let v = vertices.last_mut().ok_or_else(|| {
-                                e.error(format!(
-                                    "line {}: group {} before the first vertex",
-                                    g.line, g.code
-                                ))
+                                e.error(format!("line {}: group {} before the first vertex", g.line, g.code))
                             })?;
                             let value = e.number_of(g)?;
                             if g.code == 20 {
@@ -180,9 +163,7 @@ fn read_entities(groups: &[Group<'_>]) -> Result<Shapes, CoreError> {
             "POLYLINE" => {
                 let flags = e.flags()?;
                 if flags & FLAGS_MESH != 0 {
-                    return Err(e.error(format!(
-                        "flags {flags}: polygon and polyface meshes are not contours"
-                    )));
+                    return Err(e.error(format!("flags {flags}: polygon and polyface meshes are not contours")));
                 }
                 let mirrored = flags & FLAG_3D_POLYLINE == 0 && e.mirrored()?;
                 let mut vertices = Vec::new();
@@ -190,11 +171,7 @@ fn read_entities(groups: &[Group<'_>]) -> Result<Shapes, CoreError> {
                     let v = &entities[k];
                     k += 1;
                     if v.flags()? & VERTEX_SPLINE_FRAME == 0 {
-                        vertices.push(Vertex::new(
-                            v.required(10)?,
-                            v.required(20)?,
-                            v.optional(42)?.unwrap_or(0.0),
-                        ));
+                        vertices.push(Vertex::new(v.required(10)?, v.required(20)?, v.optional(42)?.unwrap_or(0.0)));
                     }
                 }
                 if k < entities.len() && entities[k].source.kind == "SEQEND" {
@@ -216,10 +193,7 @@ fn polyline_shape(
     shape: &mut impl FnMut(Vec<Vertex>, bool),
 ) -> Result<(), CoreError> {
     if vertices.len() < 2 {
-        return Err(e.error(format!(
-            "a polyline needs at least 2 vertices, got {}",
-            vertices.len()
-        )));
+        return Err(e.error(format!("a polyline needs at least 2 vertices, got {}", vertices.len())));
     }
     shape(mirror(vertices, mirrored), flags & FLAG_CLOSED != 0);
     Ok(())
@@ -230,10 +204,7 @@ fn mirror(vertices: Vec<Vertex>, mirrored: bool) -> Vec<Vertex> {
     if !mirrored {
         return vertices;
     }
-    vertices
-        .into_iter()
-        .map(|v| Vertex::new(-v.x, v.y, -v.bulge))
-        .collect()
+    vertices.into_iter().map(|v| Vertex::new(-v.x, v.y, -v.bulge)).collect()
 }
 
 /// Vertices of the counter-clockwise arc from `from_deg` to `to_deg` (DXF ARC), with a middle
@@ -250,24 +221,14 @@ fn arc_vertices(cx: f64, cy: f64, r: f64, from_deg: f64, to_deg: f64) -> (Vec<Ve
     let closed = sweep > FULL_TURN_DEG - FULL_CIRCLE_EPS_DEG;
     if sweep > HALF_TURN_DEG {
         // A full circle is two exact half circles.
-        let bulge = if closed {
-            1.0
-        } else {
-            (sweep / 8.0).to_radians().tan()
-        };
+        let bulge = if closed { 1.0 } else { (sweep / 8.0).to_radians().tan() };
         let mut v = vec![at(from_deg, bulge), at(from_deg + sweep / 2.0, bulge)];
         if !closed {
             v.push(at(from_deg + sweep, 0.0));
         }
         (v, closed)
     } else {
-        (
-            vec![
-                at(from_deg, (sweep / 4.0).to_radians().tan()),
-                at(from_deg + sweep, 0.0),
-            ],
-            false,
-        )
+        (vec![at(from_deg, (sweep / 4.0).to_radians().tan()), at(from_deg + sweep, 0.0)], false)
     }
 }
 

@@ -12,8 +12,7 @@ const EXACT: f64 = 1e-12;
 
 /// A minimal DXF file with the given entities (already formatted) in its ENTITIES section.
 fn dxf(entities: &[String]) -> String {
-    let mut text =
-        String::from("  0\nSECTION\n  2\nHEADER\n  9\n$ACADVER\n  1\nAC1009\n  0\nENDSEC\n");
+    let mut text = String::from("  0\nSECTION\n  2\nHEADER\n  9\n$ACADVER\n  1\nAC1009\n  0\nENDSEC\n");
     text.push_str("  0\nSECTION\n  2\nENTITIES\n");
     for e in entities {
         text.push_str(e);
@@ -26,23 +25,9 @@ fn dxf(entities: &[String]) -> String {
 fn unit_square_in(units: &str) -> String {
     let square = entity(
         "LWPOLYLINE",
-        &[
-            (70, "1"),
-            (10, "0"),
-            (20, "0"),
-            (10, "1"),
-            (20, "0"),
-            (10, "1"),
-            (20, "1"),
-            (10, "0"),
-            (20, "1"),
-        ],
+        &[(70, "1"), (10, "0"), (20, "0"), (10, "1"), (20, "0"), (10, "1"), (20, "1"), (10, "0"), (20, "1")],
     );
-    dxf(&[square]).replacen(
-        "$ACADVER\n  1\nAC1009\n",
-        &format!("$INSUNITS\n 70\n{units}\n"),
-        1,
-    )
+    dxf(&[square]).replacen("$ACADVER\n  1\nAC1009\n", &format!("$INSUNITS\n 70\n{units}\n"), 1)
 }
 
 /// One entity: `0 / kind` followed by the groups.
@@ -56,12 +41,7 @@ fn entity(kind: &str, groups: &[(i32, &str)]) -> String {
 
 /// The 1-based line holding the value `value` for the `nth` time.
 fn line_of(text: &str, value: &str, nth: usize) -> usize {
-    text.lines()
-        .enumerate()
-        .filter(|(_, l)| *l == value)
-        .nth(nth)
-        .map(|(i, _)| i + 1)
-        .unwrap()
+    text.lines().enumerate().filter(|(_, l)| *l == value).nth(nth).map(|(i, _)| i + 1).unwrap()
 }
 
 fn reason(err: CoreError) -> String {
@@ -94,11 +74,7 @@ fn border_dxf_loads_as_one_rounded_rectangle_of_four_lines_and_four_arcs() {
     assert!(b.y_min.abs() < TOL && (b.y_max - 137.0).abs() < TOL);
     // 102 × 137 minus the four corner squares 10 × 10 plus four quarter discs of radius 10.
     let area = 102.0 * 137.0 - 4.0 * 100.0 + PI * 100.0;
-    assert!(
-        (lp.signed_area() - area).abs() < TOL,
-        "{} vs {area}",
-        lp.signed_area()
-    );
+    assert!((lp.signed_area() - area).abs() < TOL, "{} vs {area}", lp.signed_area());
     for s in segments.iter().filter(|s| s.is_arc()) {
         let arc = s.arc().unwrap();
         assert!((arc.radius_mm - 10.0).abs() < TOL && (arc.sweep_rad - PI / 2.0).abs() < TOL);
@@ -110,17 +86,7 @@ fn border_dxf_loads_as_one_rounded_rectangle_of_four_lines_and_four_arcs() {
 #[test]
 fn a_circle_inside_a_bulged_polyline_gives_a_pocket_with_one_island_and_text_is_ignored() {
     let text = dxf(&[
-        entity(
-            "TEXT",
-            &[
-                (5, "1A"),
-                (8, "0"),
-                (10, "5"),
-                (20, "5"),
-                (40, "2.5"),
-                (1, "part 7"),
-            ],
-        ),
+        entity("TEXT", &[(5, "1A"), (8, "0"), (10, "5"), (20, "5"), (40, "2.5"), (1, "part 7")]),
         entity(
             "LWPOLYLINE",
             &[
@@ -150,11 +116,7 @@ fn a_circle_inside_a_bulged_polyline_gives_a_pocket_with_one_island_and_text_is_
     let theta = 4.0 * b.atan();
     let bulge_area = 0.5 * r * r * (theta - theta.sin());
     let expected = 6000.0 + bulge_area - PI * 100.0;
-    assert!(
-        (pocket.area() - expected).abs() < TOL,
-        "{} vs {expected}",
-        pocket.area()
-    );
+    assert!((pocket.area() - expected).abs() < TOL, "{} vs {expected}", pocket.area());
     let sagitta = b * c / 2.0;
     assert!((pocket.bounds().x_max - (100.0 + sagitta)).abs() < TOL);
     assert!(!pocket.contains(40.0, 30.0));
@@ -164,30 +126,13 @@ fn a_circle_inside_a_bulged_polyline_gives_a_pocket_with_one_island_and_text_is_
 #[test]
 fn an_open_chain_is_refused_naming_the_dangling_entitys_line_and_handle() {
     let text = dxf(&[
-        entity(
-            "LINE",
-            &[(5, "10"), (10, "0"), (20, "0"), (11, "50"), (21, "0")],
-        ),
-        entity(
-            "LINE",
-            &[(5, "11"), (10, "50"), (20, "0"), (11, "50"), (21, "30")],
-        ),
+        entity("LINE", &[(5, "10"), (10, "0"), (20, "0"), (11, "50"), (21, "0")]),
+        entity("LINE", &[(5, "11"), (10, "50"), (20, "0"), (11, "50"), (21, "30")]),
     ]);
     let why = reason(loops_from_dxf(&text).unwrap_err());
     let second = line_of(&text, "LINE", 1);
-    assert!(
-        why.contains(&format!(
-            "LINE at line {second} (handle 11) cannot be chained"
-        )),
-        "{why}"
-    );
-    assert!(
-        why.contains(&format!(
-            "starts with LINE at line {}",
-            line_of(&text, "LINE", 0)
-        )),
-        "{why}"
-    );
+    assert!(why.contains(&format!("LINE at line {second} (handle 11) cannot be chained")), "{why}");
+    assert!(why.contains(&format!("starts with LINE at line {}", line_of(&text, "LINE", 0))), "{why}");
 }
 
 #[test]
@@ -196,14 +141,8 @@ fn lines_and_arcs_in_any_direction_chain_into_a_slot() {
     let text = dxf(&[
         entity("LINE", &[(10, "10"), (20, "0"), (11, "50"), (21, "0")]),
         entity("LINE", &[(10, "10"), (20, "20"), (11, "50"), (21, "20")]),
-        entity(
-            "ARC",
-            &[(10, "50"), (20, "10"), (40, "10"), (50, "270"), (51, "90")],
-        ),
-        entity(
-            "ARC",
-            &[(10, "10"), (20, "10"), (40, "10"), (50, "90"), (51, "270")],
-        ),
+        entity("ARC", &[(10, "50"), (20, "10"), (40, "10"), (50, "270"), (51, "90")]),
+        entity("ARC", &[(10, "10"), (20, "10"), (40, "10"), (50, "90"), (51, "270")]),
     ]);
     let loops = loops_from_dxf(&text).unwrap();
     assert_eq!(loops.len(), 1);
@@ -237,17 +176,7 @@ fn long_full_and_mirrored_arcs_keep_their_shape() {
     assert!((Loop::new(full).signed_area() - 4.0 * PI).abs() < TOL);
     // Extrusion −Z: the OCS centre (5, 0) is the world centre (−5, 0), and the arc runs
     // clockwise in the world; the loop is still a valid circle of radius 1.
-    let text = dxf(&[entity(
-        "CIRCLE",
-        &[
-            (10, "5"),
-            (20, "0"),
-            (40, "1"),
-            (210, "0"),
-            (220, "0"),
-            (230, "-1"),
-        ],
-    )]);
+    let text = dxf(&[entity("CIRCLE", &[(10, "5"), (20, "0"), (40, "1"), (210, "0"), (220, "0"), (230, "-1")])]);
     let loops = loops_from_dxf(&text).unwrap();
     let b = loops[0].bounds();
     assert!((b.x_min + 6.0).abs() < TOL && (b.x_max + 4.0).abs() < TOL);
@@ -273,20 +202,11 @@ fn a_self_intersecting_polyline_and_bad_numbers_are_refused_with_their_line() {
     )]);
     let why = reason(loops_from_dxf(&bow).unwrap_err());
     let line = line_of(&bow, "LWPOLYLINE", 0);
-    assert!(
-        why.contains(&format!("LWPOLYLINE at line {line} (handle 77)")),
-        "{why}"
-    );
+    assert!(why.contains(&format!("LWPOLYLINE at line {line} (handle 77)")), "{why}");
     assert!(why.contains("intersects itself"), "{why}");
-    let bad = dxf(&[entity(
-        "LINE",
-        &[(10, "zero"), (20, "0"), (11, "5"), (21, "0")],
-    )]);
+    let bad = dxf(&[entity("LINE", &[(10, "zero"), (20, "0"), (11, "5"), (21, "0")])]);
     let why = reason(loops_from_dxf(&bad).unwrap_err());
-    assert!(
-        why.contains(&format!("line {}: group 10", line_of(&bad, "zero", 0))),
-        "{why}"
-    );
+    assert!(why.contains(&format!("line {}: group 10", line_of(&bad, "zero", 0))), "{why}");
     assert!(reason(loops_from_dxf("  0\nEOF\n").unwrap_err()).contains("no ENTITIES"));
     assert!(reason(loops_from_dxf("oops\n").unwrap_err()).contains("line 1"));
 }
@@ -298,10 +218,7 @@ fn drawing_units_from_the_header_are_converted_to_mm() {
     let mm = loops_from_dxf(&unit_square_in("4")).unwrap();
     assert!((mm[0].signed_area() - 1.0).abs() < EXACT);
     let why = reason(loops_from_dxf(&unit_square_in("13")).unwrap_err());
-    assert!(
-        why.contains("unsupported drawing units $INSUNITS = 13"),
-        "{why}"
-    );
+    assert!(why.contains("unsupported drawing units $INSUNITS = 13"), "{why}");
 }
 
 #[test]

@@ -46,9 +46,7 @@ impl Segment {
             (None, None) => line_line(self, other, tol, &mut candidates, &mut overlap_at),
             (Some(circle), None) => line_circle(other, circle, tol, &mut candidates),
             (None, Some(circle)) => line_circle(self, circle, tol, &mut candidates),
-            (Some(a), Some(b)) => {
-                circle_circle(self, other, a, b, tol, &mut candidates, &mut overlap_at)
-            }
+            (Some(a), Some(b)) => circle_circle(self, other, a, b, tol, &mut candidates, &mut overlap_at),
         }
         for q in [self.start, self.end, other.start, other.end] {
             candidates.push(q);
@@ -69,11 +67,7 @@ impl Segment {
     }
 
     fn intersection_at(&self, other: &Segment, point: Point) -> Intersection {
-        Intersection {
-            point,
-            t_self: self.parameter_of(point),
-            t_other: other.parameter_of(point),
-        }
+        Intersection { point, t_self: self.parameter_of(point), t_other: other.parameter_of(point) }
     }
 }
 
@@ -91,13 +85,7 @@ fn tolerance_mm(a: &Segment, b: &Segment) -> f64 {
     POINT_EPS_MM + RATIO_EPS * scale
 }
 
-fn line_line(
-    a: &Segment,
-    b: &Segment,
-    tol: f64,
-    out: &mut Vec<Point>,
-    overlap: &mut Option<Point>,
-) {
+fn line_line(a: &Segment, b: &Segment, tol: f64, out: &mut Vec<Point>, overlap: &mut Option<Point>) {
     let da = a.start.vector_to(a.end);
     let db = b.start.vector_to(b.end);
     let (la, lb) = (dot(da, da).sqrt(), dot(db, db).sqrt());
@@ -169,11 +157,7 @@ fn circle_circle(
     let u = (ca.vector_to(cb).0 / d, ca.vector_to(cb).1 / d);
     if (d - (ra + rb)).abs() <= tol || (d - (ra - rb).abs()).abs() <= tol {
         // Tangent: the touching point lies on the line of centres.
-        let sign = if (d - (ra + rb)).abs() <= tol || ra > rb {
-            1.0
-        } else {
-            -1.0
-        };
+        let sign = if (d - (ra + rb)).abs() <= tol || ra > rb { 1.0 } else { -1.0 };
         out.push(ca.offset(sign * ra * u.0, sign * ra * u.1));
         return;
     }
@@ -190,11 +174,7 @@ fn common_arc_point(a: &Segment, b: &Segment, r: f64, tol: f64) -> Option<Point>
     // Each arc as a counter-clockwise interval [start, start + width].
     let ccw = |arc: &super::segment::ArcGeometry| {
         let w = arc.sweep_rad.abs();
-        let s = if arc.sweep_rad > 0.0 {
-            arc.start_angle_rad
-        } else {
-            arc.start_angle_rad + arc.sweep_rad
-        };
+        let s = if arc.sweep_rad > 0.0 { arc.start_angle_rad } else { arc.start_angle_rad + arc.sweep_rad };
         (s, w)
     };
     let ((s1, w1), (s2, w2)) = (ccw(&arc_a), ccw(&arc_b));
@@ -236,16 +216,11 @@ mod tests {
     #[test]
     fn collinear_lines_running_over_each_other_overlap_and_end_to_end_ones_touch() {
         let a = Segment::line(p(0.0, 0.0), p(10.0, 0.0));
-        assert!(
-            a.intersections(&Segment::line(p(5.0, 0.0), p(15.0, 0.0)))
-                .overlap
-        );
+        assert!(a.intersections(&Segment::line(p(5.0, 0.0), p(15.0, 0.0))).overlap);
         let touch = a.intersections(&Segment::line(p(10.0, 0.0), p(20.0, 0.0)));
         assert!(!touch.overlap);
         assert_eq!(touch.points.len(), 1);
-        assert!(a
-            .intersections(&Segment::line(p(0.0, 1.0), p(10.0, 1.0)))
-            .is_empty());
+        assert!(a.intersections(&Segment::line(p(0.0, 1.0), p(10.0, 1.0))).is_empty());
     }
 
     #[test]
@@ -266,10 +241,7 @@ mod tests {
         let a = Segment::new(p(1.0, 0.0), p(-1.0, 0.0), 1.0); // upper half of unit circle
         let b = Segment::new(p(2.0, 0.0), p(0.0, 0.0), 1.0); // upper half around (1, 0)
         let hits = a.intersections(&b);
-        assert!(hits
-            .points
-            .iter()
-            .any(|h| h.point.distance_mm(p(0.5, 0.75_f64.sqrt())) < TOL));
+        assert!(hits.points.iter().any(|h| h.point.distance_mm(p(0.5, 0.75_f64.sqrt())) < TOL));
         let lower = Segment::new(p(-1.0, 0.0), p(1.0, 0.0), 1.0); // lower half, same circle
         let touch = a.intersections(&lower);
         assert!(!touch.overlap);

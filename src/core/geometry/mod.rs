@@ -36,11 +36,7 @@ pub const MIN_LOOP_AREA_MM2: f64 = 1e-9;
 /// Formats a length for an error message: at most 6 decimals, trailing zeros dropped.
 pub(crate) fn fmt_mm(value: f64) -> String {
     let text = format!("{value:.6}");
-    let text = if text.contains('.') {
-        text.trim_end_matches('0').trim_end_matches('.')
-    } else {
-        text.as_str()
-    };
+    let text = if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.') } else { text.as_str() };
     if text == "-0" {
         "0".to_string()
     } else {
@@ -70,11 +66,10 @@ pub(crate) mod test_support {
     /// within `tol` of the other's.
     pub fn loops_near(a: &Loop, b: &Loop, tol: f64) -> bool {
         a.vertices.len() == b.vertices.len()
-            && a.vertices.iter().zip(&b.vertices).all(|(u, v)| {
-                (u.x - v.x).abs() <= tol
-                    && (u.y - v.y).abs() <= tol
-                    && (u.bulge - v.bulge).abs() <= tol
-            })
+            && a.vertices
+                .iter()
+                .zip(&b.vertices)
+                .all(|(u, v)| (u.x - v.x).abs() <= tol && (u.y - v.y).abs() <= tol && (u.bulge - v.bulge).abs() <= tol)
     }
 }
 

@@ -56,12 +56,7 @@ impl Pocket {
 
     /// Area of the region (mm²): the outer area minus the islands'.
     pub fn area(&self) -> f64 {
-        self.outer.signed_area().abs()
-            - self
-                .islands
-                .iter()
-                .map(|i| i.signed_area().abs())
-                .sum::<f64>()
+        self.outer.signed_area().abs() - self.islands.iter().map(|i| i.signed_area().abs()).sum::<f64>()
     }
 
     /// Exact bounding box (the outer loop's).
@@ -95,21 +90,9 @@ fn arrange(
     outer_field: &str,
     island_field: &dyn Fn(usize) -> String,
 ) -> Result<Pocket, CoreError> {
-    let outer = if outer.signed_area() < 0.0 {
-        outer.reversed()
-    } else {
-        outer
-    };
-    let islands: Vec<Loop> = islands
-        .into_iter()
-        .map(|i| {
-            if i.signed_area() > 0.0 {
-                i.reversed()
-            } else {
-                i
-            }
-        })
-        .collect();
+    let outer = if outer.signed_area() < 0.0 { outer.reversed() } else { outer };
+    let islands: Vec<Loop> =
+        islands.into_iter().map(|i| if i.signed_area() > 0.0 { i.reversed() } else { i }).collect();
     for (k, island) in islands.iter().enumerate() {
         if let Some((i, j, point)) = first_contact(island, &outer) {
             return Err(CoreError::invalid(
@@ -166,28 +149,18 @@ fn arrange(
 /// outer one, all others must lie inside it and become islands. Errors name `loops[k]`.
 pub fn pocket_from_loops(loops: Vec<Loop>) -> Result<Pocket, CoreError> {
     if loops.is_empty() {
-        return Err(CoreError::invalid(
-            "loops",
-            "no closed loop to make a pocket from",
-        ));
+        return Err(CoreError::invalid("loops", "no closed loop to make a pocket from"));
     }
     for (k, lp) in loops.iter().enumerate() {
         lp.validate(&format!("loops[{k}]"))?;
     }
     let outer_index = (0..loops.len())
-        .max_by(|&a, &b| {
-            loops[a]
-                .signed_area()
-                .abs()
-                .total_cmp(&loops[b].signed_area().abs())
-        })
+        .max_by(|&a, &b| loops[a].signed_area().abs().total_cmp(&loops[b].signed_area().abs()))
         .unwrap_or(0);
     let original: Vec<usize> = (0..loops.len()).filter(|&k| k != outer_index).collect();
     let mut loops = loops;
     let outer = loops.remove(outer_index);
-    arrange(outer, loops, &format!("loops[{outer_index}]"), &|k| {
-        format!("loops[{}]", original[k])
-    })
+    arrange(outer, loops, &format!("loops[{outer_index}]"), &|k| format!("loops[{}]", original[k]))
 }
 
 #[cfg(test)]

@@ -24,20 +24,13 @@ fn field_and_reason(err: CoreError) -> (String, String) {
 
 /// 100 × 50 rectangle with a circular island of radius 10 at (50, 25).
 fn plate_with_hole() -> Pocket {
-    Pocket::new(
-        Loop::rectangle(0.0, 0.0, 100.0, 50.0),
-        vec![Loop::circle(50.0, 25.0, 10.0)],
-    )
-    .unwrap()
+    Pocket::new(Loop::rectangle(0.0, 0.0, 100.0, 50.0), vec![Loop::circle(50.0, 25.0, 10.0)]).unwrap()
 }
 
 fn assert_intervals(actual: &[(f64, f64)], expected: &[(f64, f64)]) {
     assert_eq!(actual.len(), expected.len(), "{actual:?} vs {expected:?}");
     for (a, e) in actual.iter().zip(expected) {
-        assert!(
-            (a.0 - e.0).abs() < TOL && (a.1 - e.1).abs() < TOL,
-            "{actual:?} vs {expected:?}"
-        );
+        assert!((a.0 - e.0).abs() < TOL && (a.1 - e.1).abs() < TOL, "{actual:?} vs {expected:?}");
     }
 }
 
@@ -49,12 +42,7 @@ fn a_clockwise_outer_is_accepted_and_turned_counter_clockwise_and_islands_clockw
     assert!(pocket.outer.is_ccw());
     assert!(!pocket.islands[0].is_ccw());
     assert!((pocket.area() - (100.0 - PI * 4.0)).abs() < TOL);
-    let expected = Bounds {
-        x_min: 0.0,
-        y_min: 0.0,
-        x_max: 10.0,
-        y_max: 10.0,
-    };
+    let expected = Bounds { x_min: 0.0, y_min: 0.0, x_max: 10.0, y_max: 10.0 };
     assert!(bounds_near(&pocket.bounds(), &expected, TOL));
     assert!(pocket.contains(1.0, 1.0));
     assert!(!pocket.contains(5.0, 5.0));
@@ -87,25 +75,12 @@ fn an_island_crossing_or_touching_the_outer_loop_is_refused_with_the_point() {
 #[test]
 fn two_overlapping_islands_are_refused_and_so_are_nested_ones() {
     let outer = Loop::rectangle(0.0, 0.0, 100.0, 100.0);
-    let err = Pocket::new(
-        outer.clone(),
-        vec![
-            Loop::circle(30.0, 50.0, 15.0),
-            Loop::circle(50.0, 50.0, 15.0),
-        ],
-    )
-    .unwrap_err();
+    let err =
+        Pocket::new(outer.clone(), vec![Loop::circle(30.0, 50.0, 15.0), Loop::circle(50.0, 50.0, 15.0)]).unwrap_err();
     let (field, reason) = field_and_reason(err);
     assert_eq!(field, "islands[1]");
     assert!(reason.contains("islands must be apart"), "{reason}");
-    let nested = Pocket::new(
-        outer,
-        vec![
-            Loop::circle(50.0, 50.0, 5.0),
-            Loop::circle(50.0, 50.0, 20.0),
-        ],
-    )
-    .unwrap_err();
+    let nested = Pocket::new(outer, vec![Loop::circle(50.0, 50.0, 5.0), Loop::circle(50.0, 50.0, 20.0)]).unwrap_err();
     let (field, reason) = field_and_reason(nested);
     assert_eq!(field, "islands[0]");
     assert!(reason.contains("lies inside islands[1]"), "{reason}");
@@ -125,18 +100,12 @@ fn an_invalid_island_is_named_by_its_index_and_vertex() {
 
 #[test]
 fn the_largest_loop_becomes_the_outer_one_whatever_the_order() {
-    let pocket = pocket_from_loops(vec![
-        Loop::circle(5.0, 5.0, 2.0),
-        Loop::rectangle(0.0, 0.0, 10.0, 10.0).reversed(),
-    ])
-    .unwrap();
+    let pocket =
+        pocket_from_loops(vec![Loop::circle(5.0, 5.0, 2.0), Loop::rectangle(0.0, 0.0, 10.0, 10.0).reversed()]).unwrap();
     assert_eq!(pocket.islands.len(), 1);
     assert!((pocket.area() - (100.0 - 4.0 * PI)).abs() < TOL);
-    let apart = pocket_from_loops(vec![
-        Loop::rectangle(0.0, 0.0, 10.0, 10.0),
-        Loop::circle(50.0, 5.0, 2.0),
-    ])
-    .unwrap_err();
+    let apart =
+        pocket_from_loops(vec![Loop::rectangle(0.0, 0.0, 10.0, 10.0), Loop::circle(50.0, 5.0, 2.0)]).unwrap_err();
     assert_eq!(field_and_reason(apart).0, "loops[1]");
     let nested = pocket_from_loops(vec![
         Loop::circle(50.0, 50.0, 5.0),
@@ -185,9 +154,7 @@ fn rows_along_horizontal_edges_and_tangent_to_the_hole_are_stable() {
     // Through the vertices where the hole's two half circles meet.
     pocket.row_intervals(25.0, &mut out);
     // Deterministic: repeated calls give bit-identical intervals.
-    let bits = |v: &[(f64, f64)]| -> Vec<(u64, u64)> {
-        v.iter().map(|(a, b)| (a.to_bits(), b.to_bits())).collect()
-    };
+    let bits = |v: &[(f64, f64)]| -> Vec<(u64, u64)> { v.iter().map(|(a, b)| (a.to_bits(), b.to_bits())).collect() };
     let first = bits(&out);
     for _ in 0..3 {
         pocket.row_intervals(25.0, &mut out);
@@ -220,10 +187,9 @@ fn a_row_through_a_notch_vertex_and_along_its_floor_is_counted_once() {
 
 #[test]
 fn a_pocket_deserialises_only_when_valid() {
-    let ok: Pocket = serde_json::from_str(
-        r#"{"outer":{"vertices":[{"x":0,"y":10},{"x":10,"y":10},{"x":10,"y":0},{"x":0,"y":0}]}}"#,
-    )
-    .unwrap();
+    let ok: Pocket =
+        serde_json::from_str(r#"{"outer":{"vertices":[{"x":0,"y":10},{"x":10,"y":10},{"x":10,"y":0},{"x":0,"y":0}]}}"#)
+            .unwrap();
     assert!(ok.outer.is_ccw());
     let bad = serde_json::from_str::<Pocket>(
         r#"{"outer":{"vertices":[{"x":0,"y":0},{"x":10,"y":10},{"x":10,"y":0},{"x":0,"y":10}]}}"#,
@@ -247,23 +213,10 @@ fn integrated_area(pocket: &Pocket, rows: usize) -> f64 {
 fn shapes() -> impl Strategy<Value = Pocket> {
     let circle = (-100.0f64..100.0, -100.0f64..100.0, 0.5f64..50.0)
         .prop_map(|(x, y, r)| Pocket::new(Loop::circle(x, y, r), Vec::new()).unwrap());
-    let rectangle = (
-        -100.0f64..100.0,
-        -100.0f64..100.0,
-        0.5f64..80.0,
-        0.5f64..80.0,
-    )
-        .prop_map(|(x, y, w, h)| {
-            Pocket::new(Loop::rectangle(x, y, x + w, y + h), Vec::new()).unwrap()
-        });
-    let holed = (
-        -100.0f64..100.0,
-        -100.0f64..100.0,
-        4.0f64..80.0,
-        4.0f64..80.0,
-        0.1f64..0.45,
-    )
-        .prop_map(|(x, y, w, h, f)| {
+    let rectangle = (-100.0f64..100.0, -100.0f64..100.0, 0.5f64..80.0, 0.5f64..80.0)
+        .prop_map(|(x, y, w, h)| Pocket::new(Loop::rectangle(x, y, x + w, y + h), Vec::new()).unwrap());
+    let holed =
+        (-100.0f64..100.0, -100.0f64..100.0, 4.0f64..80.0, 4.0f64..80.0, 0.1f64..0.45).prop_map(|(x, y, w, h, f)| {
             let island = Loop::circle(x + w / 2.0, y + h / 2.0, f * w.min(h));
             Pocket::new(Loop::rectangle(x, y, x + w, y + h), vec![island]).unwrap()
         });

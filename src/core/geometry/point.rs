@@ -63,21 +63,12 @@ pub struct Bounds {
 
 impl Bounds {
     /// The empty box: the neutral element of [`Bounds::union`].
-    pub const EMPTY: Bounds = Bounds {
-        x_min: f64::INFINITY,
-        y_min: f64::INFINITY,
-        x_max: f64::NEG_INFINITY,
-        y_max: f64::NEG_INFINITY,
-    };
+    pub const EMPTY: Bounds =
+        Bounds { x_min: f64::INFINITY, y_min: f64::INFINITY, x_max: f64::NEG_INFINITY, y_max: f64::NEG_INFINITY };
 
     /// The box of a single point.
     pub fn of_point(p: Point) -> Bounds {
-        Bounds {
-            x_min: p.x,
-            y_min: p.y,
-            x_max: p.x,
-            y_max: p.y,
-        }
+        Bounds { x_min: p.x, y_min: p.y, x_max: p.x, y_max: p.y }
     }
 
     /// `true` when the box contains no point.
@@ -141,13 +132,8 @@ mod tests {
 
     #[test]
     fn the_union_with_the_empty_box_is_the_box_itself() {
-        let b =
-            Bounds::of_point(Point::new(1.0, 2.0)).union(Bounds::of_point(Point::new(3.0, -1.0)));
-        assert!(crate::core::geometry::test_support::bounds_near(
-            &b.union(Bounds::EMPTY),
-            &b,
-            TOL
-        ));
+        let b = Bounds::of_point(Point::new(1.0, 2.0)).union(Bounds::of_point(Point::new(3.0, -1.0)));
+        assert!(crate::core::geometry::test_support::bounds_near(&b.union(Bounds::EMPTY), &b, TOL));
         assert!(Bounds::EMPTY.is_empty());
         assert!(!b.is_empty());
         assert!((b.width_mm() - 2.0).abs() < TOL);

@@ -40,10 +40,7 @@ impl ArcGeometry {
 
     /// The point of the circle in direction `angle_rad` (mm).
     pub fn point_at_angle(&self, angle_rad: f64) -> Point {
-        self.center.offset(
-            self.radius_mm * angle_rad.cos(),
-            self.radius_mm * angle_rad.sin(),
-        )
+        self.center.offset(self.radius_mm * angle_rad.cos(), self.radius_mm * angle_rad.sin())
     }
 }
 
@@ -71,18 +68,8 @@ impl Segment {
 
     /// The arc of the circle (`center`, `radius_mm`) from direction `start_angle_rad` over the
     /// signed `sweep_rad` (|sweep| < 2π).
-    pub fn from_arc(
-        center: Point,
-        radius_mm: f64,
-        start_angle_rad: f64,
-        sweep_rad: f64,
-    ) -> Segment {
-        let arc = ArcGeometry {
-            center,
-            radius_mm,
-            start_angle_rad,
-            sweep_rad,
-        };
+    pub fn from_arc(center: Point, radius_mm: f64, start_angle_rad: f64, sweep_rad: f64) -> Segment {
+        let arc = ArcGeometry { center, radius_mm, start_angle_rad, sweep_rad };
         Segment::new(
             arc.point_at_angle(start_angle_rad),
             arc.point_at_angle(start_angle_rad + sweep_rad),
@@ -117,10 +104,7 @@ impl Segment {
         let b = self.bulge;
         let (dx, dy) = self.start.vector_to(self.end);
         let k = (1.0 - b * b) / (4.0 * b);
-        let center = Point::new(
-            0.5 * (self.start.x + self.end.x) - dy * k,
-            0.5 * (self.start.y + self.end.y) + dx * k,
-        );
+        let center = Point::new(0.5 * (self.start.x + self.end.x) - dy * k, 0.5 * (self.start.y + self.end.y) + dx * k);
         let radius = self.chord_mm() * (1.0 + b * b) / (4.0 * b.abs());
         Some((center, radius))
     }
@@ -129,12 +113,7 @@ impl Segment {
     pub fn arc(&self) -> Option<ArcGeometry> {
         let (center, radius_mm) = self.circle()?;
         let (sx, sy) = center.vector_to(self.start);
-        Some(ArcGeometry {
-            center,
-            radius_mm,
-            start_angle_rad: sy.atan2(sx),
-            sweep_rad: self.sweep_rad(),
-        })
+        Some(ArcGeometry { center, radius_mm, start_angle_rad: sy.atan2(sx), sweep_rad: self.sweep_rad() })
     }
 
     /// Length along the segment (mm): `chord·(1 + b²)·atan(b)/b` for an arc.
@@ -158,10 +137,7 @@ impl Segment {
         }
         match self.arc() {
             Some(arc) => arc.point_at_angle(arc.start_angle_rad + t * arc.sweep_rad),
-            None => self.start.offset(
-                t * (self.end.x - self.start.x),
-                t * (self.end.y - self.start.y),
-            ),
+            None => self.start.offset(t * (self.end.x - self.start.x), t * (self.end.y - self.start.y)),
         }
     }
 
@@ -169,10 +145,7 @@ impl Segment {
     pub fn midpoint(&self) -> Point {
         let b = if self.is_arc() { self.bulge } else { 0.0 };
         let (dx, dy) = self.start.vector_to(self.end);
-        Point::new(
-            0.5 * (self.start.x + self.end.x) + 0.5 * b * dy,
-            0.5 * (self.start.y + self.end.y) - 0.5 * b * dx,
-        )
+        Point::new(0.5 * (self.start.x + self.end.x) + 0.5 * b * dy, 0.5 * (self.start.y + self.end.y) - 0.5 * b * dx)
     }
 
     /// The same segment traversed from `end` to `start`.
@@ -186,8 +159,7 @@ impl Segment {
             Some(arc) => {
                 let (px, py) = arc.center.vector_to(p);
                 let span = arc.sweep_rad.abs();
-                let along =
-                    ((py.atan2(px) - arc.start_angle_rad) * arc.sweep_rad.signum()).rem_euclid(TAU);
+                let along = ((py.atan2(px) - arc.start_angle_rad) * arc.sweep_rad.signum()).rem_euclid(TAU);
                 if along <= span {
                     along / span
                 } else if along - span < TAU - along {
@@ -230,12 +202,7 @@ impl Segment {
         b.include(self.end);
         if let Some(arc) = self.arc() {
             let r = arc.radius_mm;
-            let extremes = [
-                (0.0, r, 0.0),
-                (FRAC_PI_2, 0.0, r),
-                (PI, -r, 0.0),
-                (-FRAC_PI_2, 0.0, -r),
-            ];
+            let extremes = [(0.0, r, 0.0), (FRAC_PI_2, 0.0, r), (PI, -r, 0.0), (-FRAC_PI_2, 0.0, -r)];
             for (angle, dx, dy) in extremes {
                 if arc.sweep_fraction(angle, 0.0).is_some() {
                     b.include(arc.center.offset(dx, dy));
@@ -265,8 +232,7 @@ impl Segment {
         // (|b|·chord/2 ≤ |b|·(|dx| + |dy|)/2) of the chord's y-range.
         let b_abs = self.bulge.abs();
         if b_abs <= 1.0 {
-            let margin =
-                0.5 * b_abs * ((e.x - s.x).abs() + (e.y - s.y).abs()) + super::POINT_EPS_MM;
+            let margin = 0.5 * b_abs * ((e.x - s.x).abs() + (e.y - s.y).abs()) + super::POINT_EPS_MM;
             if s.y.min(e.y) - margin > y || s.y.max(e.y) + margin <= y {
                 return;
             }
@@ -292,11 +258,8 @@ impl Segment {
         let top_first = (s.x > c.x) == ccw;
         let mut ys = [s.y; 4];
         let mut n = 1;
-        let splits = if top_first {
-            [(has_top, top), (has_bottom, bottom)]
-        } else {
-            [(has_bottom, bottom), (has_top, top)]
-        };
+        let splits =
+            if top_first { [(has_top, top), (has_bottom, bottom)] } else { [(has_bottom, bottom), (has_top, top)] };
         for (present, split_y) in splits {
             if present {
                 ys[n] = split_y;

@@ -26,10 +26,7 @@ pub fn validate_loop(lp: &Loop, field: &str) -> Result<(), CoreError> {
         if !(v.x.is_finite() && v.y.is_finite() && v.bulge.is_finite()) {
             return Err(CoreError::invalid(
                 at(i),
-                format!(
-                    "x, y and bulge must be finite, got ({}, {}, {})",
-                    v.x, v.y, v.bulge
-                ),
+                format!("x, y and bulge must be finite, got ({}, {}, {})", v.x, v.y, v.bulge),
             ));
         }
     }
@@ -119,12 +116,7 @@ fn pair_problem(n: usize, i: usize, j: usize, a: &Segment, b: &Segment) -> Optio
     }
     hits.points
         .iter()
-        .find(|h| {
-            shared
-                .iter()
-                .flatten()
-                .all(|v| !h.point.near(*v, MIN_SEGMENT_LENGTH_MM))
-        })
+        .find(|h| shared.iter().flatten().all(|v| !h.point.near(*v, MIN_SEGMENT_LENGTH_MM)))
         .map(|h| (h.point, false))
 }
 
@@ -163,47 +155,24 @@ mod tests {
     }
 
     fn lp(points: &[(f64, f64, f64)]) -> Loop {
-        Loop::new(
-            points
-                .iter()
-                .map(|&(x, y, b)| Vertex::new(x, y, b))
-                .collect(),
-        )
+        Loop::new(points.iter().map(|&(x, y, b)| Vertex::new(x, y, b)).collect())
     }
 
     #[test]
     fn a_bow_tie_is_refused_naming_the_two_crossing_segments_and_the_point() {
-        let bow = lp(&[
-            (0.0, 0.0, 0.0),
-            (10.0, 10.0, 0.0),
-            (10.0, 0.0, 0.0),
-            (0.0, 10.0, 0.0),
-        ]);
+        let bow = lp(&[(0.0, 0.0, 0.0), (10.0, 10.0, 0.0), (10.0, 0.0, 0.0), (0.0, 10.0, 0.0)]);
         let (field, reason) = field_and_reason(bow.validate("outer").unwrap_err());
         assert_eq!(field, "outer.vertices[0]");
-        assert!(
-            reason.contains("segment 0 (vertices[0] → vertices[1])"),
-            "{reason}"
-        );
-        assert!(
-            reason.contains("segment 2 (vertices[2] → vertices[3])"),
-            "{reason}"
-        );
+        assert!(reason.contains("segment 0 (vertices[0] → vertices[1])"), "{reason}");
+        assert!(reason.contains("segment 2 (vertices[2] → vertices[3])"), "{reason}");
         assert!(reason.contains("at (5, 5)"), "{reason}");
     }
 
     #[test]
     fn simple_loops_with_tangent_arcs_and_two_vertex_circles_are_accepted() {
         Loop::circle(0.0, 0.0, 5.0).validate("outer").unwrap();
-        Loop::rectangle(0.0, 0.0, 3.0, 2.0)
-            .validate("outer")
-            .unwrap();
-        let slot = lp(&[
-            (0.0, 0.0, 0.0),
-            (10.0, 0.0, 1.0),
-            (10.0, 4.0, 0.0),
-            (0.0, 4.0, 1.0),
-        ]);
+        Loop::rectangle(0.0, 0.0, 3.0, 2.0).validate("outer").unwrap();
+        let slot = lp(&[(0.0, 0.0, 0.0), (10.0, 0.0, 1.0), (10.0, 4.0, 0.0), (0.0, 4.0, 1.0)]);
         slot.validate("outer").unwrap();
         let crescent = lp(&[(0.0, 0.0, 1.0), (10.0, 0.0, -0.5)]);
         crescent.validate("outer").unwrap();
@@ -211,24 +180,15 @@ mod tests {
 
     #[test]
     fn too_few_vertices_non_finite_values_and_zero_length_segments_are_refused() {
-        let (field, _) =
-            field_and_reason(lp(&[(0.0, 0.0, 0.0)]).validate("islands[1]").unwrap_err());
+        let (field, _) = field_and_reason(lp(&[(0.0, 0.0, 0.0)]).validate("islands[1]").unwrap_err());
         assert_eq!(field, "islands[1].vertices");
         let two_lines = lp(&[(0.0, 0.0, 0.0), (1.0, 0.0, 0.0)]);
         let (field, reason) = field_and_reason(two_lines.validate("outer").unwrap_err());
         assert_eq!(field, "outer.vertices[0]");
         assert!(reason.contains("bulge"), "{reason}");
         let nan = lp(&[(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (1.0, f64::NAN, 0.0)]);
-        assert_eq!(
-            field_and_reason(nan.validate("outer").unwrap_err()).0,
-            "outer.vertices[2]"
-        );
-        let dup = lp(&[
-            (0.0, 0.0, 0.0),
-            (5.0, 0.0, 0.0),
-            (5.0, 0.0, 0.0),
-            (0.0, 5.0, 0.0),
-        ]);
+        assert_eq!(field_and_reason(nan.validate("outer").unwrap_err()).0, "outer.vertices[2]");
+        let dup = lp(&[(0.0, 0.0, 0.0), (5.0, 0.0, 0.0), (5.0, 0.0, 0.0), (0.0, 5.0, 0.0)]);
         let (field, reason) = field_and_reason(dup.validate("islands[0]").unwrap_err());
         assert_eq!(field, "islands[0].vertices[1]");
         assert!(reason.contains("zero length"), "{reason}");
@@ -236,12 +196,7 @@ mod tests {
 
     #[test]
     fn an_edge_folding_back_onto_the_previous_one_is_refused_as_an_overlap() {
-        let spike = lp(&[
-            (0.0, 0.0, 0.0),
-            (10.0, 0.0, 0.0),
-            (5.0, 0.0, 0.0),
-            (5.0, 5.0, 0.0),
-        ]);
+        let spike = lp(&[(0.0, 0.0, 0.0), (10.0, 0.0, 0.0), (5.0, 0.0, 0.0), (5.0, 5.0, 0.0)]);
         let (field, reason) = field_and_reason(spike.validate("outer").unwrap_err());
         assert_eq!(field, "outer.vertices[0]");
         assert!(reason.contains("overlap"), "{reason}");
@@ -250,12 +205,7 @@ mod tests {
     #[test]
     fn an_arc_curling_back_across_its_neighbour_is_refused() {
         // The big clockwise arc from (10,0) to (10,5) swings below y = 0 across the bottom edge.
-        let curl = lp(&[
-            (0.0, 0.0, 0.0),
-            (10.0, 0.0, -3.0),
-            (10.0, 5.0, 0.0),
-            (0.0, 5.0, 0.0),
-        ]);
+        let curl = lp(&[(0.0, 0.0, 0.0), (10.0, 0.0, -3.0), (10.0, 5.0, 0.0), (0.0, 5.0, 0.0)]);
         let (_, reason) = field_and_reason(curl.validate("outer").unwrap_err());
         assert!(reason.contains("intersect"), "{reason}");
     }

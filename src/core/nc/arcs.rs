@@ -52,19 +52,9 @@ pub(crate) fn with_coord(mut p: P3, axis: usize, value: f64) -> P3 {
 /// The centre of an arc from its offsets along the plane's a and b axes: relative to the
 /// start (`absolute` false, G91.1) or absolute coordinates (G90.1). The centre's normal
 /// coordinate is the start's.
-pub(crate) fn centre_from_offsets(
-    start: P3,
-    plane: Plane,
-    a_mm: f64,
-    b_mm: f64,
-    absolute: bool,
-) -> P3 {
+pub(crate) fn centre_from_offsets(start: P3, plane: Plane, a_mm: f64, b_mm: f64, absolute: bool) -> P3 {
     let [a, b, _] = plane_axes(plane);
-    let (base_a, base_b) = if absolute {
-        (0.0, 0.0)
-    } else {
-        (coord(start, a), coord(start, b))
-    };
+    let (base_a, base_b) = if absolute { (0.0, 0.0) } else { (coord(start, a), coord(start, b)) };
     with_coord(with_coord(start, a, base_a + a_mm), b, base_b + b_mm)
 }
 
@@ -89,9 +79,7 @@ pub(crate) fn centre_from_radius(
     let (da, db) = (coord(end, a) - sa, coord(end, b) - sb);
     let chord = da.hypot(db);
     if chord <= LENGTH_EPS_MM {
-        return Err(
-            "an R arc cannot end where it starts: program a full circle with I/J/K".to_string(),
-        );
+        return Err("an R arc cannot end where it starts: program a full circle with I/J/K".to_string());
     }
     let half = chord / 2.0;
     if half - r > arc_radius_tolerance_mm(r) {
@@ -138,9 +126,7 @@ mod tests {
     const CENTRE_TOL_MM: f64 = 1e-9;
 
     fn close(p: P3, q: P3) -> bool {
-        approx_eq(p.x, q.x, CENTRE_TOL_MM)
-            && approx_eq(p.y, q.y, CENTRE_TOL_MM)
-            && approx_eq(p.z, q.z, CENTRE_TOL_MM)
+        approx_eq(p.x, q.x, CENTRE_TOL_MM) && approx_eq(p.y, q.y, CENTRE_TOL_MM) && approx_eq(p.z, q.z, CENTRE_TOL_MM)
     }
 
     #[test]
@@ -202,20 +188,9 @@ mod tests {
         let s = P3::new(10.0, 0.0, 0.0);
         assert!(check_arc(s, c, P3::new(0.0, 10.005, 0.0), Plane::Xy).is_ok());
         let err = check_arc(s, c, P3::new(0.0, 10.5, 0.0), Plane::Xy).unwrap_err();
-        assert!(
-            err.contains("10.0000 mm") && err.contains("10.5000 mm"),
-            "{err}"
-        );
-        assert!(approx_eq(
-            arc_radius_tolerance_mm(1.0),
-            0.002,
-            CENTRE_TOL_MM
-        ));
-        assert!(approx_eq(
-            arc_radius_tolerance_mm(100.0),
-            0.1,
-            CENTRE_TOL_MM
-        ));
+        assert!(err.contains("10.0000 mm") && err.contains("10.5000 mm"), "{err}");
+        assert!(approx_eq(arc_radius_tolerance_mm(1.0), 0.002, CENTRE_TOL_MM));
+        assert!(approx_eq(arc_radius_tolerance_mm(100.0), 0.1, CENTRE_TOL_MM));
     }
 
     mod in_gcode {
@@ -230,16 +205,10 @@ mod tests {
         const PROPTEST_CENTRE_TOL_MM: f64 = 1e-6;
 
         fn arc(text: &str) -> (Move, P3, bool, Plane, u32) {
-            let path =
-                parse_gcode(text, &ParseOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+            let path = parse_gcode(text, &ParseOptions::default()).unwrap_or_else(|e| panic!("{e}"));
             let m = *path.moves.last().unwrap();
             match m.motion {
-                Motion::Arc {
-                    center,
-                    clockwise,
-                    plane,
-                    turns,
-                } => (m, center, clockwise, plane, turns),
+                Motion::Arc { center, clockwise, plane, turns } => (m, center, clockwise, plane, turns),
                 other => panic!("not an arc: {other:?}"),
             }
         }
@@ -325,9 +294,7 @@ mod tests {
                 1.0f64..179.0,
                 any::<bool>(),
             )
-                .prop_map(|(cx, cy, r, a0, sweep_deg, cw)| {
-                    (cx, cy, r, a0, sweep_deg.to_radians(), cw)
-                })
+                .prop_map(|(cx, cy, r, a0, sweep_deg, cw)| (cx, cy, r, a0, sweep_deg.to_radians(), cw))
         }
 
         proptest! {

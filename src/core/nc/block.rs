@@ -110,21 +110,17 @@ enum Class<T> {
     Unknown,
 }
 
-const CUTTER_COMPENSATION: &str =
-    "cutter radius compensation (G41/G42) is not supported: send the tool-centre path";
+const CUTTER_COMPENSATION: &str = "cutter radius compensation (G41/G42) is not supported: send the tool-centre path";
 const INVERSE_TIME: &str = "inverse-time feed (G93) is not supported: send feeds per minute (G94)";
-const FEED_PER_REVOLUTION: &str =
-    "feed per revolution (G95) is not supported: send feeds per minute (G94)";
+const FEED_PER_REVOLUTION: &str = "feed per revolution (G95) is not supported: send feeds per minute (G94)";
 const POSITION_CHANGE: &str = "G10/G28/G30/G53/G92 change positions or offsets the planner \
      cannot know: send the moves in one work coordinate system";
 const OTHER_CYCLES: &str = "only the G81, G82 and G83 canned cycles are supported";
 const ROTARY_AXES: &str = "rotary and secondary axes (A/B/C/U/V/W) are not supported";
-pub(crate) const SUBPROGRAMS: &str =
-    "O words and subprograms (O, M98, M99) are not supported: send the \
+pub(crate) const SUBPROGRAMS: &str = "O words and subprograms (O, M98, M99) are not supported: send the \
      program with its subprograms and loops expanded";
 pub(crate) const PARAMETERS: &str = "# parameters are not supported: send the program with numbers";
-pub(crate) const EXPRESSIONS: &str =
-    "[ ] expressions are not supported: send the program with numbers";
+pub(crate) const EXPRESSIONS: &str = "[ ] expressions are not supported: send the program with numbers";
 
 fn classify_g(code: u32) -> Class<GCode> {
     use Class::{Known, Refused};
@@ -136,10 +132,7 @@ fn classify_g(code: u32) -> Class<GCode> {
         20 => Known(G::Motion(MotionCode::Arc { clockwise: true }), K::Motion),
         30 => Known(G::Motion(MotionCode::Arc { clockwise: false }), K::Motion),
         810 => Known(G::Motion(MotionCode::Cycle(CycleKind::Drill)), K::Motion),
-        820 => Known(
-            G::Motion(MotionCode::Cycle(CycleKind::DwellAtBottom)),
-            K::Motion,
-        ),
+        820 => Known(G::Motion(MotionCode::Cycle(CycleKind::DwellAtBottom)), K::Motion),
         830 => Known(G::Motion(MotionCode::Cycle(CycleKind::Peck)), K::Motion),
         730 | 740 | 760 | 840 | 850 | 860 | 870 | 880 | 890 => Refused(OTHER_CYCLES),
         40 => Known(G::Dwell, K::NonModal),
@@ -265,10 +258,7 @@ impl Block {
                         let clash = self.m_clash(group, code);
                         if let Some(j) = clash {
                             let other = line.word_text(j);
-                            line.error_at(
-                                i,
-                                format!("{other} on the same line is of the same group"),
-                            );
+                            line.error_at(i, format!("{other} on the same line is of the same group"));
                         }
                         self.m.push((code, group, i));
                     }
@@ -277,8 +267,7 @@ impl Block {
                 },
                 b'N' => {}
                 b'A' | b'B' | b'C' | b'U' | b'V' | b'W' => line.error_at(i, ROTARY_AXES).ignore(),
-                b'X' | b'Y' | b'Z' | b'I' | b'J' | b'K' | b'R' | b'F' | b'S' | b'T' | b'P'
-                | b'Q' | b'H' | b'L' => {
+                b'X' | b'Y' | b'Z' | b'I' | b'J' | b'K' | b'R' | b'F' | b'S' | b'T' | b'P' | b'Q' | b'H' | b'L' => {
                     let slot = usize::from(w.letter - b'A');
                     if self.present & bit(w.letter) != 0 {
                         let letter = char::from(w.letter);
@@ -296,16 +285,9 @@ impl Block {
 
     /// The earlier M word of `group` that `code` cannot share a line with (M7 and M8 can).
     fn m_clash(&self, group: Group, code: MCode) -> Option<usize> {
-        let both_on = |other: MCode| {
-            matches!(
-                (other, code),
-                (MCode::Coolant { on: true }, MCode::Coolant { on: true })
-            )
-        };
-        self.m
-            .iter()
-            .find(|m| m.1 == group && !both_on(m.0))
-            .map(|m| m.2)
+        let both_on =
+            |other: MCode| matches!((other, code), (MCode::Coolant { on: true }, MCode::Coolant { on: true }));
+        self.m.iter().find(|m| m.1 == group && !both_on(m.0)).map(|m| m.2)
     }
 }
 

@@ -73,9 +73,7 @@ pub(crate) fn expand_hole(from: P3, hole: &Hole, steps: &mut Vec<Step>) -> Resul
     steps.clear();
     let (x, y, r, bottom) = (hole.x_mm, hole.y_mm, hole.r_plane_mm, hole.bottom_z_mm);
     if r < bottom {
-        return Err(format!(
-            "the R plane ({r} mm) is below the bottom of the hole (Z {bottom} mm)"
-        ));
+        return Err(format!("the R plane ({r} mm) is below the bottom of the hole (Z {bottom} mm)"));
     }
     let pecks = if hole.kind == CycleKind::Peck {
         if hole.peck_mm <= 0.0 {
@@ -83,10 +81,7 @@ pub(crate) fn expand_hole(from: P3, hole: &Hole, steps: &mut Vec<Step>) -> Resul
         }
         let pecks = ((r - bottom) / hole.peck_mm).ceil();
         if pecks > f64::from(MAX_PECKS_PER_HOLE) {
-            return Err(format!(
-                "Q {} mm would make {pecks} pecks (at most {MAX_PECKS_PER_HOLE})",
-                hole.peck_mm
-            ));
+            return Err(format!("Q {} mm would make {pecks} pecks (at most {MAX_PECKS_PER_HOLE})", hole.peck_mm));
         }
         pecks as u32
     } else {
@@ -104,9 +99,7 @@ pub(crate) fn expand_hole(from: P3, hole: &Hole, steps: &mut Vec<Step>) -> Resul
         CycleKind::Drill => steps.push(Step::Feed(at(bottom))),
         CycleKind::DwellAtBottom => {
             steps.push(Step::Feed(at(bottom)));
-            steps.push(Step::Dwell {
-                seconds: hole.dwell_s,
-            });
+            steps.push(Step::Dwell { seconds: hole.dwell_s });
         }
         CycleKind::Peck => {
             for k in 1..pecks {
@@ -153,15 +146,7 @@ mod tests {
     fn a_drill_from_above_goes_over_down_to_r_feeds_and_returns_to_the_start_height() {
         let s = steps(P3::new(0.0, 0.0, 10.0), &hole(CycleKind::Drill));
         let at = |z| P3::new(10.0, 20.0, z);
-        assert_eq!(
-            s,
-            vec![
-                Step::Rapid(at(10.0)),
-                Step::Rapid(at(2.0)),
-                Step::Feed(at(-5.0)),
-                Step::Rapid(at(10.0))
-            ]
-        );
+        assert_eq!(s, vec![Step::Rapid(at(10.0)), Step::Rapid(at(2.0)), Step::Feed(at(-5.0)), Step::Rapid(at(10.0))]);
     }
 
     #[test]
@@ -232,10 +217,7 @@ mod tests {
 
         /// (rapid?, end) of each move.
         fn path_of(path: &Toolpath) -> Vec<(bool, P3)> {
-            path.moves
-                .iter()
-                .map(|m| (m.motion == Motion::Rapid, m.end))
-                .collect()
+            path.moves.iter().map(|m| (m.motion == Motion::Rapid, m.end)).collect()
         }
 
         fn same(a: &[(bool, P3)], b: &[(bool, P3)]) -> bool {
@@ -285,11 +267,7 @@ mod tests {
         #[test]
         fn g82_dwells_at_the_bottom_of_each_hole() {
             let path = parse("G0 Z10\nG82 X1 Y1 Z-5 R2 P0.25 F100\nX2");
-            let dwells: Vec<_> = path
-                .events
-                .iter()
-                .map(|e| (e.kind, e.before_move))
-                .collect();
+            let dwells: Vec<_> = path.events.iter().map(|e| (e.kind, e.before_move)).collect();
             let dwell = EventKind::Dwell { seconds: 0.25 };
             // Moves: Z10, hole 1 (over, down to R, feed, up), hole 2 (over, R, feed, up).
             assert_eq!(dwells, [(dwell, 4), (dwell, 8)]);
@@ -299,45 +277,25 @@ mod tests {
         #[test]
         fn g83_pecks_by_q_and_keeps_q_for_the_next_hole() {
             let path = parse("G0 Z10\nG83 X1 Y1 Z-5 R2 Q3 F100\nX2");
-            let feeds: Vec<f64> = path
-                .moves
-                .iter()
-                .filter(|m| m.motion == Motion::Linear)
-                .map(|m| m.end.z)
-                .collect();
+            let feeds: Vec<f64> = path.moves.iter().filter(|m| m.motion == Motion::Linear).map(|m| m.end.z).collect();
             let expected = [-1.0, -4.0, -5.0, -1.0, -4.0, -5.0];
             assert_eq!(feeds.len(), expected.len());
-            assert!(feeds
-                .iter()
-                .zip(expected)
-                .all(|(a, b)| approx_eq(*a, b, TOL_MM)));
+            assert!(feeds.iter().zip(expected).all(|(a, b)| approx_eq(*a, b, TOL_MM)));
             let back_down = path.moves[5].end.z;
             assert!(approx_eq(back_down, -1.0 + G83_PECK_CLEARANCE_MM, TOL_MM));
         }
 
         #[test]
         fn cycles_are_refused_when_asked_naming_the_line() {
-            let options = ParseOptions {
-                canned_cycles: CannedCycles::Refuse,
-                ..ParseOptions::default()
-            };
-            let e = parse_gcode("G0 Z10\nG81 X1 Y1 Z-5 R2 F100", &options)
-                .unwrap_err()
-                .0;
+            let options = ParseOptions { canned_cycles: CannedCycles::Refuse, ..ParseOptions::default() };
+            let e = parse_gcode("G0 Z10\nG81 X1 Y1 Z-5 R2 F100", &options).unwrap_err().0;
             assert_eq!((e[0].line, e[0].word.as_str()), (2, "G81"));
-            assert_eq!(
-                e[0].reason,
-                "canned cycles are not expanded: send the moves, or let the service expand them"
-            );
+            assert_eq!(e[0].reason, "canned cycles are not expanded: send the moves, or let the service expand them");
         }
 
         #[test]
         fn bad_cycles_are_errors_and_l_repeats_are_a_warning() {
-            let error = |text: &str| {
-                parse_gcode(text, &ParseOptions::default())
-                    .unwrap_err()
-                    .to_string()
-            };
+            let error = |text: &str| parse_gcode(text, &ParseOptions::default()).unwrap_err().to_string();
             assert!(error("G91 G81 X1 Y1 Z-5 R2 F100").contains("G91"));
             assert!(error("G81 X1 Y1 Z-5 F100").contains("needs R"));
             assert!(error("G81 X1 Y1 R2 F100").contains("needs Z"));
@@ -346,10 +304,7 @@ mod tests {
             assert!(error("G81 X1 Y1 Z-5 R-6 F100").contains("below the bottom"));
             assert!(error("G18 G81 X1 Y1 Z-5 R2 F100").contains("XY plane"));
             let path = parse("G0 Z5\nG81 X1 Y1 Z-5 R2 L3 F100");
-            assert_eq!(
-                path.warnings,
-                ["line 2: L3 ignored: each position is drilled once"]
-            );
+            assert_eq!(path.warnings, ["line 2: L3 ignored: each position is drilled once"]);
         }
     }
 }

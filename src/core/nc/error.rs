@@ -64,10 +64,7 @@ impl NcErrors {
     /// The errors as one [`CoreError::InvalidInput`] on `field`: the first error, and how
     /// many others there are.
     pub fn to_core_error(&self, field: &str) -> CoreError {
-        let first = self
-            .0
-            .first()
-            .map_or_else(|| "invalid program".to_string(), ToString::to_string);
+        let first = self.0.first().map_or_else(|| "invalid program".to_string(), ToString::to_string);
         let reason = match self.0.len() {
             0 | 1 => first,
             2 => format!("{first} (and 1 more error)"),
@@ -131,21 +128,13 @@ mod tests {
     use super::*;
 
     fn error(line: u32, word: &str) -> NcError {
-        NcError {
-            line,
-            column: 5,
-            word: word.to_string(),
-            reason: "no good".to_string(),
-        }
+        NcError { line, column: 5, word: word.to_string(), reason: "no good".to_string() }
     }
 
     #[test]
     fn errors_are_listed_one_a_line_with_line_column_and_word() {
         let errors = NcErrors(vec![error(12, "Q3"), error(13, "")]);
-        assert_eq!(
-            errors.to_string(),
-            "line 12, column 5 (Q3): no good\nline 13, column 5: no good"
-        );
+        assert_eq!(errors.to_string(), "line 12, column 5 (Q3): no good\nline 13, column 5: no good");
     }
 
     #[test]

@@ -139,10 +139,7 @@ pub fn toolpath_from_json(program: &JsonProgram) -> Result<Toolpath, NcErrors> {
     }
     if let Some(s) = program.spindle_rpm {
         if !(s.is_finite() && s >= 0.0) {
-            report(
-                0,
-                refuse("spindle_rpm", "the spindle speed must be finite and ≥ 0"),
-            );
+            report(0, refuse("spindle_rpm", "the spindle speed must be finite and ≥ 0"));
         }
     }
     let mut position = start;
@@ -170,9 +167,7 @@ pub fn toolpath_from_json(program: &JsonProgram) -> Result<Toolpath, NcErrors> {
                 continue;
             }
         };
-        let zero_length = ![0, 1, 2]
-            .iter()
-            .any(|&axis| !approx_eq(coord(from, axis), coord(end, axis), LENGTH_EPS_MM));
+        let zero_length = ![0, 1, 2].iter().any(|&axis| !approx_eq(coord(from, axis), coord(end, axis), LENGTH_EPS_MM));
         if zero_length && !matches!(motion, Motion::Arc { .. }) {
             continue;
         }
@@ -189,12 +184,7 @@ pub fn toolpath_from_json(program: &JsonProgram) -> Result<Toolpath, NcErrors> {
     if !errors.is_empty() {
         return Err(NcErrors(errors));
     }
-    Ok(Toolpath {
-        moves,
-        events: Vec::new(),
-        source_units: Units::Mm,
-        warnings: Vec::new(),
-    })
+    Ok(Toolpath { moves, events: Vec::new(), source_units: Units::Mm, warnings: Vec::new() })
 }
 
 /// The end of a move: the given coordinates, the others kept.
@@ -212,27 +202,14 @@ fn target(from: P3, given: [Option<f64>; 3]) -> Result<P3, Refusal> {
 }
 
 /// The motion of one move, updating the modal feed.
-fn motion(
-    json: &JsonMove,
-    from: P3,
-    end: P3,
-    f: Option<f64>,
-    feed: &mut Option<f64>,
-) -> Result<Motion, Refusal> {
+fn motion(json: &JsonMove, from: P3, end: P3, f: Option<f64>, feed: &mut Option<f64>) -> Result<Motion, Refusal> {
     if let Some(f) = f {
         if !(f.is_finite() && f > 0.0) {
             return Err(refuse("f", "the feed must be finite and > 0"));
         }
         *feed = Some(f);
     }
-    let JsonMove::Arc {
-        center,
-        clockwise,
-        plane,
-        turns,
-        ..
-    } = *json
-    else {
+    let JsonMove::Arc { center, clockwise, plane, turns, .. } = *json else {
         return match json {
             JsonMove::Rapid { .. } => Ok(Motion::Rapid),
             _ if feed.is_none() => Err(no_feed()),
@@ -245,19 +222,11 @@ fn motion(
     let plane = plane.unwrap_or(Plane::Xy);
     let centre = arc_centre(center, from, plane)?;
     arcs::check_arc(from, centre, end, plane).map_err(|reason| refuse("center", reason))?;
-    Ok(Motion::Arc {
-        center: centre,
-        clockwise,
-        plane,
-        turns: turns.unwrap_or(0),
-    })
+    Ok(Motion::Arc { center: centre, clockwise, plane, turns: turns.unwrap_or(0) })
 }
 
 fn no_feed() -> Refusal {
-    refuse(
-        "f",
-        "a feed move with no feed rate: give f on this move or an earlier one",
-    )
+    refuse("f", "a feed move with no feed rate: give f on this move or an earlier one")
 }
 
 /// The absolute centre of an arc starting at `from`.
@@ -268,10 +237,7 @@ fn arc_centre(center: JsonCenter, from: P3, plane: Plane) -> Result<P3, Refusal>
     let mut centre = from;
     for axis in [a, b] {
         let Some(v) = given[axis] else {
-            return Err(refuse(
-                names[axis],
-                "an arc needs both in-plane centre coordinates",
-            ));
+            return Err(refuse(names[axis], "an arc needs both in-plane centre coordinates"));
         };
         if !v.is_finite() {
             return Err(refuse(names[axis], "the centre must be finite"));
@@ -324,10 +290,7 @@ mod tests {
         );
         let gcode = "S8000\nG0 X10 Y0\nG1 Z-1 F300\nG1 Z-1\nG3 X0 Y10 I-10 J0\n\
                      G2 X0 Y10 Z-3 I0 J-10 P2 F150\nG18 G3 X10 I5 K0\nG0 Z5\n";
-        let options = ParseOptions {
-            initial_position: P3::new(0.0, 0.0, 5.0),
-            ..ParseOptions::default()
-        };
+        let options = ParseOptions { initial_position: P3::new(0.0, 0.0, 5.0), ..ParseOptions::default() };
         let from_json = toolpath_from_json(&json).unwrap();
         let from_gcode = parse_gcode(gcode, &options).unwrap();
         assert_eq!(from_json.moves.len(), 6);
@@ -360,29 +323,12 @@ mod tests {
                 {"type": "linear", "x": 3, "f": -5}
             ]}"#,
         );
-        json.moves[1] = JsonMove::Rapid {
-            x: Some(f64::NAN),
-            y: None,
-            z: None,
-        };
+        json.moves[1] = JsonMove::Rapid { x: Some(f64::NAN), y: None, z: None };
         let errors = toolpath_from_json(&json).unwrap_err().0;
         let found: Vec<_> = errors.iter().map(|e| (e.line, e.word.as_str())).collect();
-        assert_eq!(
-            found,
-            [
-                (1, "f"),
-                (2, "x"),
-                (4, "center"),
-                (5, "center.y"),
-                (6, "center.z"),
-                (7, "f")
-            ]
-        );
+        assert_eq!(found, [(1, "f"), (2, "x"), (4, "center"), (5, "center.y"), (6, "center.z"), (7, "f")]);
         assert!(errors[2].reason.contains("5.0000 mm") && errors[2].reason.contains("5.0359 mm"));
-        assert_eq!(
-            errors[0].to_string(),
-            format!("line 1 (f): {}", errors[0].reason)
-        );
+        assert_eq!(errors[0].to_string(), format!("line 1 (f): {}", errors[0].reason));
     }
 
     #[test]

@@ -55,8 +55,8 @@ const FAST_MANTISSA_LIMIT: u64 = 1 << 53;
 /// Powers of ten that are exact `f64` values (10⁰..10²²): dividing an exact mantissa by
 /// one of them is a single correctly rounded operation (Clinger's fast path).
 const EXACT_POWERS_OF_TEN: [f64; 23] = [
-    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
-    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20,
+    1e21, 1e22,
 ];
 
 /// Digits accumulated in a `u64` before the fast path gives up (10¹⁹ < 2⁶⁴).
@@ -110,16 +110,9 @@ pub(crate) fn read_number(bytes: &[u8], mut i: usize) -> Option<(f64, usize)> {
     let magnitude = if fast {
         mantissa as f64 / EXACT_POWERS_OF_TEN[fraction_digits as usize]
     } else {
-        let unsigned = if negative || bytes[start] == b'+' {
-            start + 1
-        } else {
-            start
-        };
+        let unsigned = if negative || bytes[start] == b'+' { start + 1 } else { start };
         // Only ASCII digits and one point are in this slice, so both steps succeed.
-        std::str::from_utf8(&bytes[unsigned..i])
-            .ok()?
-            .parse::<f64>()
-            .ok()?
+        std::str::from_utf8(&bytes[unsigned..i]).ok()?.parse::<f64>().ok()?
     };
     Some((if negative { -magnitude } else { magnitude }, i))
 }
@@ -176,12 +169,7 @@ pub(crate) fn scan_line(line: &[u8], words: &mut Vec<Word>, issues: &mut Vec<Iss
                 }
                 match read_number(line, j) {
                     Some((value, end)) => {
-                        words.push(Word {
-                            letter: c.to_ascii_uppercase(),
-                            value,
-                            start: i as u32,
-                            end: end as u32,
-                        });
+                        words.push(Word { letter: c.to_ascii_uppercase(), value, start: i as u32, end: end as u32 });
                         i = end;
                     }
                     None => {
@@ -201,11 +189,7 @@ pub(crate) fn scan_line(line: &[u8], words: &mut Vec<Word>, issues: &mut Vec<Iss
 }
 
 fn issue(kind: IssueKind, start: usize, end: usize) -> Issue {
-    Issue {
-        kind,
-        start: start as u32,
-        end: end as u32,
-    }
+    Issue { kind, start: start as u32, end: end as u32 }
 }
 
 fn is_blank(c: u8) -> bool {
@@ -230,11 +214,7 @@ mod tests {
         let mut words = Vec::new();
         let mut issues = Vec::new();
         let shape = scan_line(text.as_bytes(), &mut words, &mut issues);
-        (
-            words.iter().map(|w| (w.letter, w.value)).collect(),
-            issues.iter().map(|i| i.kind).collect(),
-            shape,
-        )
+        (words.iter().map(|w| (w.letter, w.value)).collect(), issues.iter().map(|i| i.kind).collect(), shape)
     }
 
     #[test]
@@ -270,10 +250,7 @@ mod tests {
     fn letters_are_case_insensitive_and_spaces_may_separate_letter_and_number() {
         let (words, issues, _) = scan("g1x2 Y -3.5\tz .5");
         assert!(issues.is_empty());
-        assert_eq!(
-            words,
-            vec![(b'G', 1.0), (b'X', 2.0), (b'Y', -3.5), (b'Z', 0.5)]
-        );
+        assert_eq!(words, vec![(b'G', 1.0), (b'X', 2.0), (b'Y', -3.5), (b'Z', 0.5)]);
     }
 
     #[test]
@@ -295,10 +272,7 @@ mod tests {
     #[test]
     fn parameters_expressions_and_o_words_stop_the_line() {
         assert_eq!(scan("#1=5 G1").1, vec![IssueKind::Parameter]);
-        assert_eq!(
-            scan("G1 X[1+2] Y3").1,
-            vec![IssueKind::NoNumber, IssueKind::Expression]
-        );
+        assert_eq!(scan("G1 X[1+2] Y3").1, vec![IssueKind::NoNumber, IssueKind::Expression]);
         assert_eq!(scan("o100 sub").1, vec![IssueKind::Subprogram]);
     }
 
@@ -308,10 +282,7 @@ mod tests {
         let mut issues = Vec::new();
         scan_line("G1 X Y2 é*".as_bytes(), &mut words, &mut issues);
         assert_eq!(issues.len(), 3);
-        assert_eq!(
-            (issues[0].kind, issues[0].start, issues[0].end),
-            (IssueKind::NoNumber, 3, 4)
-        );
+        assert_eq!((issues[0].kind, issues[0].start, issues[0].end), (IssueKind::NoNumber, 3, 4));
         assert_eq!((issues[1].start, issues[1].end), (8, 10));
         assert_eq!((issues[2].start, issues[2].end), (10, 11));
         assert_eq!(words[1].start, 5);

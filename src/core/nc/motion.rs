@@ -17,16 +17,13 @@ use crate::core::tolerance::{approx_eq, LENGTH_EPS_MM};
 use crate::core::toolpath::{EventKind, Motion, Move, Plane, P3};
 
 /// What [`CannedCycles::Refuse`] says about a canned cycle.
-const CYCLES_NOT_EXPANDED: &str =
-    "canned cycles are not expanded: send the moves, or let the service expand them";
+const CYCLES_NOT_EXPANDED: &str = "canned cycles are not expanded: send the moves, or let the service expand them";
 
 /// The arc-centre letters I, J, K by axis (X, Y, Z).
 const CENTRE_LETTERS: [u8; 3] = [b'I', b'J', b'K'];
 
 fn same_point(p: P3, q: P3) -> bool {
-    approx_eq(p.x, q.x, LENGTH_EPS_MM)
-        && approx_eq(p.y, q.y, LENGTH_EPS_MM)
-        && approx_eq(p.z, q.z, LENGTH_EPS_MM)
+    approx_eq(p.x, q.x, LENGTH_EPS_MM) && approx_eq(p.y, q.y, LENGTH_EPS_MM) && approx_eq(p.z, q.z, LENGTH_EPS_MM)
 }
 
 fn plane_code(plane: Plane) -> &'static str {
@@ -123,11 +120,7 @@ impl Machine {
         for (axis, letter) in [b'X', b'Y', b'Z'].into_iter().enumerate() {
             if let Some(v) = b.value(letter) {
                 let v = v * scale;
-                let value = if self.modal.absolute {
-                    v
-                } else {
-                    coord(p, axis) + v
-                };
+                let value = if self.modal.absolute { v } else { coord(p, axis) + v };
                 if !value.is_finite() {
                     return Err(line.error_at(b.word(letter), "the coordinate is out of range"));
                 }
@@ -137,13 +130,7 @@ impl Machine {
         Ok(p)
     }
 
-    fn arc(
-        &mut self,
-        b: &Block,
-        line: &mut Line,
-        clockwise: bool,
-        anchor: Option<usize>,
-    ) -> Result<u32, Failed> {
+    fn arc(&mut self, b: &Block, line: &mut Line, clockwise: bool, anchor: Option<usize>) -> Result<u32, Failed> {
         let plane = self.modal.plane;
         let [a, bb, n] = plane_axes(plane);
         let (la, lb) = (CENTRE_LETTERS[a], CENTRE_LETTERS[bb]);
@@ -184,8 +171,7 @@ impl Machine {
                 let oa = b.value(la).unwrap_or(0.0) * scale;
                 let ob = b.value(lb).unwrap_or(0.0) * scale;
                 let centre = arcs::centre_from_offsets(start, plane, oa, ob, absolute);
-                arcs::check_arc(start, centre, end, plane)
-                    .map_err(|reason| line.error_near(anchor, reason))?;
+                arcs::check_arc(start, centre, end, plane).map_err(|reason| line.error_near(anchor, reason))?;
                 centre
             }
             (None, false) => {
@@ -204,23 +190,12 @@ impl Machine {
                 p.round() as u32 - 1
             }
         };
-        let motion = Motion::Arc {
-            center: centre,
-            clockwise,
-            plane,
-            turns,
-        };
+        let motion = Motion::Arc { center: centre, clockwise, plane, turns };
         self.push_move(motion, end, line.number);
         Ok(read)
     }
 
-    fn cycle(
-        &mut self,
-        b: &Block,
-        line: &mut Line,
-        kind: CycleKind,
-        anchor: Option<usize>,
-    ) -> Result<u32, Failed> {
+    fn cycle(&mut self, b: &Block, line: &mut Line, kind: CycleKind, anchor: Option<usize>) -> Result<u32, Failed> {
         let code = kind.code();
         let mut read = AXES | bit(b'R') | bit(b'L');
         self.require_feed(line, anchor)?;
@@ -271,9 +246,7 @@ impl Machine {
             (_, dwell) => dwell.unwrap_or(0.0),
         };
         let peck_mm = match (kind, memory.peck_mm) {
-            (CycleKind::Peck, None) => {
-                return Err(line.error_near(anchor, missing("Q (the peck depth)")))
-            }
+            (CycleKind::Peck, None) => return Err(line.error_near(anchor, missing("Q (the peck depth)"))),
             (_, peck) => peck.unwrap_or(0.0),
         };
         if let Some(l) = b.value(b'L') {
@@ -317,8 +290,5 @@ impl Machine {
 
 /// The index of the first word of the line whose letter is in `letters`.
 fn first_word(b: &Block, letters: u32) -> Option<usize> {
-    (b'A'..=b'Z')
-        .filter(|&l| letters & b.present() & bit(l) != 0)
-        .map(|l| b.word(l))
-        .min()
+    (b'A'..=b'Z').filter(|&l| letters & b.present() & bit(l) != 0).map(|l| b.word(l)).min()
 }

@@ -79,13 +79,7 @@ pub fn parse_gcode(text: &str, options: &ParseOptions) -> Result<Toolpath, NcErr
             continue;
         }
         let number = u32::try_from(index + 1).unwrap_or(u32::MAX);
-        let mut line = Line::new(
-            number,
-            text,
-            &words,
-            &mut diagnostics,
-            options.unknown_words,
-        );
+        let mut line = Line::new(number, text, &words, &mut diagnostics, options.unknown_words);
         if shape.block_delete {
             line.warn("block delete (/) is not honoured: the line is read");
         }
@@ -98,12 +92,7 @@ pub fn parse_gcode(text: &str, options: &ParseOptions) -> Result<Toolpath, NcErr
         }
     }
     let warnings = diagnostics.finish()?;
-    Ok(Toolpath {
-        moves: machine.moves,
-        events: machine.events,
-        source_units: machine.modal.units,
-        warnings,
-    })
+    Ok(Toolpath { moves: machine.moves, events: machine.events, source_units: machine.modal.units, warnings })
 }
 
 /// Whether `value` is a whole number (within [`INTEGER_TOLERANCE`]).
@@ -161,32 +150,16 @@ impl Machine {
 
     /// Records an event before the next move.
     pub fn event(&mut self, kind: EventKind, line: u32) {
-        self.events.push(Event {
-            kind,
-            before_move: self.moves.len(),
-            line,
-        });
+        self.events.push(Event { kind, before_move: self.moves.len(), line });
     }
 
     /// Notes that word `letter` is read by `reader`; a second reader is an error.
-    pub fn claim(
-        &mut self,
-        b: &Block,
-        line: &mut Line,
-        letter: u8,
-        reader: &'static str,
-    ) -> Result<(), Failed> {
-        let slot = if letter == b'P' {
-            &mut self.p_reader
-        } else {
-            &mut self.q_reader
-        };
+    pub fn claim(&mut self, b: &Block, line: &mut Line, letter: u8, reader: &'static str) -> Result<(), Failed> {
+        let slot = if letter == b'P' { &mut self.p_reader } else { &mut self.q_reader };
         match slot.replace(reader) {
             Some(first) if first != reader => Err(line.error_at(
                 b.word(letter),
-                format!(
-                    "{first} and {reader} would both read this word: put them on separate lines"
-                ),
+                format!("{first} and {reader} would both read this word: put them on separate lines"),
             )),
             _ => Ok(()),
         }

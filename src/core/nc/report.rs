@@ -43,14 +43,7 @@ impl<'a> Line<'a> {
         diagnostics: &'a mut Diagnostics,
         unknown: UnknownWords,
     ) -> Self {
-        Line {
-            number,
-            text,
-            words,
-            diagnostics,
-            unknown,
-            failed: false,
-        }
+        Line { number, text, words, diagnostics, unknown, failed: false }
     }
 
     /// The text of word `i` as written.
@@ -72,12 +65,7 @@ impl<'a> Line<'a> {
 
     fn error_span(&mut self, start: u32, end: u32, reason: String) -> Failed {
         self.failed = true;
-        let error = NcError {
-            line: self.number,
-            column: self.column(start),
-            word: self.span_text(start, end),
-            reason,
-        };
+        let error = NcError { line: self.number, column: self.column(start), word: self.span_text(start, end), reason };
         self.diagnostics.error(error);
         Failed
     }

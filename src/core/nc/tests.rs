@@ -17,9 +17,7 @@ fn data(name: &str) -> String {
 
 /// Lines whose first word is a G0 or G1 motion code.
 fn motion_lines(text: &str) -> usize {
-    text.lines()
-        .filter(|l| l.starts_with("G0 ") || l.starts_with("G1 "))
-        .count()
+    text.lines().filter(|l| l.starts_with("G0 ") || l.starts_with("G1 ")).count()
 }
 
 #[test]
@@ -44,10 +42,7 @@ fn tiger_gives_one_move_per_motion_line_with_feed_and_speed_as_written() {
     assert_eq!(third.line, 4);
     assert!(approx_eq(third.feed_mm_min.unwrap(), 150.0, VALUE_TOL));
     assert!(approx_eq(third.spindle_rpm.unwrap(), 2000.0, VALUE_TOL));
-    assert_eq!(
-        path.events[0].kind,
-        EventKind::SpindleOn { clockwise: true }
-    );
+    assert_eq!(path.events[0].kind, EventKind::SpindleOn { clockwise: true });
     let end = path.events.last().unwrap();
     assert_eq!((end.kind, end.before_move), (EventKind::End, 67_424));
 }
@@ -71,11 +66,7 @@ fn trochoidal_parses_and_ends_with_its_m30() {
         18..11_373 => 3600.0,
         _ => 150.0,
     };
-    assert!(path.moves.iter().all(|m| approx_eq(
-        m.feed_mm_min.unwrap(),
-        feed_at(m.line),
-        VALUE_TOL
-    )));
+    assert!(path.moves.iter().all(|m| approx_eq(m.feed_mm_min.unwrap(), feed_at(m.line), VALUE_TOL)));
 }
 
 #[test]
@@ -122,9 +113,7 @@ mod gcode {
     }
 
     fn at(m: &Move, x: f64, y: f64, z: f64) -> bool {
-        approx_eq(m.end.x, x, TOL_MM)
-            && approx_eq(m.end.y, y, TOL_MM)
-            && approx_eq(m.end.z, z, TOL_MM)
+        approx_eq(m.end.x, x, TOL_MM) && approx_eq(m.end.y, y, TOL_MM) && approx_eq(m.end.z, z, TOL_MM)
     }
 
     #[test]
@@ -154,27 +143,19 @@ mod gcode {
         assert!(at(&path.moves[1], 2.0, 0.0, 0.0));
         let empty = parse("");
         assert!(empty.moves.is_empty() && empty.events.is_empty() && empty.warnings.is_empty());
-        assert!(errors("G80 X1")[0]
-            .reason
-            .contains("G80 ends the motion mode"));
+        assert!(errors("G80 X1")[0].reason.contains("G80 ends the motion mode"));
     }
 
     #[test]
     fn a_line_with_axis_words_only_uses_the_modal_motion() {
         let path = parse("G1 X1 F100\nY1\nG0 Z5\nX0");
         let kinds: Vec<_> = path.moves.iter().map(|m| m.motion).collect();
-        assert_eq!(
-            kinds,
-            [Motion::Linear, Motion::Linear, Motion::Rapid, Motion::Rapid]
-        );
+        assert_eq!(kinds, [Motion::Linear, Motion::Linear, Motion::Rapid, Motion::Rapid]);
     }
 
     #[test]
     fn the_first_move_starts_at_the_initial_position() {
-        let options = ParseOptions {
-            initial_position: P3::new(1.0, 2.0, 50.0),
-            ..ParseOptions::default()
-        };
+        let options = ParseOptions { initial_position: P3::new(1.0, 2.0, 50.0), ..ParseOptions::default() };
         let path = parse_gcode("G0 X5", &options).unwrap();
         assert_eq!(path.moves[0].start, P3::new(1.0, 2.0, 50.0));
         assert!(at(&path.moves[0], 5.0, 2.0, 50.0));
@@ -207,14 +188,8 @@ mod gcode {
 
     #[test]
     fn spindle_tool_coolant_dwell_and_stop_become_events_between_moves() {
-        let path = parse(
-            "T3 M6\nS8000 M3\nM8\nG0 X1\nG4 P0.5\nM0\nG1 X2 F100\nM9 M5\nM30\nG0 X99\nthis is not G-code",
-        );
-        let kinds: Vec<_> = path
-            .events
-            .iter()
-            .map(|e| (e.kind, e.before_move, e.line))
-            .collect();
+        let path = parse("T3 M6\nS8000 M3\nM8\nG0 X1\nG4 P0.5\nM0\nG1 X2 F100\nM9 M5\nM30\nG0 X99\nthis is not G-code");
+        let kinds: Vec<_> = path.events.iter().map(|e| (e.kind, e.before_move, e.line)).collect();
         assert_eq!(
             kinds,
             [
@@ -229,10 +204,7 @@ mod gcode {
             ]
         );
         assert_eq!(path.moves.len(), 2);
-        assert_eq!(
-            (path.moves[0].tool, path.moves[0].spindle_rpm),
-            (Some(3), Some(8000.0))
-        );
+        assert_eq!((path.moves[0].tool, path.moves[0].spindle_rpm), (Some(3), Some(8000.0)));
     }
 
     #[test]
@@ -245,14 +217,9 @@ mod gcode {
 
     #[test]
     fn accepted_modal_codes_change_nothing_and_a_g64_tolerance_is_a_warning() {
-        let path = parse(
-            "G17 G21 G40 G49 G54 G61 G80 G90 G94 G98 G15 G69\nG43 H1\nG59.3 G61.1\nG64 P0.01 Q0.005\nG64",
-        );
+        let path = parse("G17 G21 G40 G49 G54 G61 G80 G90 G94 G98 G15 G69\nG43 H1\nG59.3 G61.1\nG64 P0.01 Q0.005\nG64");
         assert!(path.moves.is_empty() && path.events.is_empty());
-        assert_eq!(
-            path.warnings,
-            ["line 4: the G64 blending tolerance (P/Q) is ignored"]
-        );
+        assert_eq!(path.warnings, ["line 4: the G64 blending tolerance (P/Q) is ignored"]);
     }
 
     #[test]
@@ -266,10 +233,7 @@ mod gcode {
     fn a_block_delete_line_is_read_with_a_warning() {
         let path = parse("/G0 X1");
         assert_eq!(path.moves.len(), 1);
-        assert_eq!(
-            path.warnings,
-            ["line 1: block delete (/) is not honoured: the line is read"]
-        );
+        assert_eq!(path.warnings, ["line 1: block delete (/) is not honoured: the line is read"]);
     }
 
     #[test]
@@ -278,23 +242,11 @@ mod gcode {
         let e = errors(text);
         assert_eq!((e[0].line, e[0].column, e[0].word.as_str()), (2, 7, "E5"));
         assert_eq!((e[1].line, e[1].column, e[1].word.as_str()), (3, 1, "G5.1"));
-        assert_eq!(
-            e[0].to_string(),
-            format!("line 2, column 7 (E5): {}", e[0].reason)
-        );
-        let options = ParseOptions {
-            unknown_words: UnknownWords::Warn,
-            ..ParseOptions::default()
-        };
+        assert_eq!(e[0].to_string(), format!("line 2, column 7 (E5): {}", e[0].reason));
+        let options = ParseOptions { unknown_words: UnknownWords::Warn, ..ParseOptions::default() };
         let path = parse_gcode(text, &options).unwrap();
         assert_eq!(path.moves.len(), 3);
-        assert_eq!(
-            path.warnings,
-            [
-                "line 2: unknown word E5 ignored",
-                "line 3: unknown word G5.1 ignored"
-            ]
-        );
+        assert_eq!(path.warnings, ["line 2: unknown word E5 ignored", "line 3: unknown word G5.1 ignored"]);
     }
 
     #[test]
@@ -305,10 +257,7 @@ mod gcode {
 
     #[test]
     fn refused_features_give_their_reason_even_when_unknown_words_are_warnings() {
-        let options = ParseOptions {
-            unknown_words: UnknownWords::Warn,
-            ..ParseOptions::default()
-        };
+        let options = ParseOptions { unknown_words: UnknownWords::Warn, ..ParseOptions::default() };
         let cases = [
             ("G41 D1", "G41", "send the tool-centre path"),
             ("G93", "G93", "inverse-time"),
@@ -326,10 +275,7 @@ mod gcode {
         ];
         for (text, word, reason) in cases {
             let e = parse_gcode(text, &options).unwrap_err().0;
-            let hit = e
-                .iter()
-                .find(|e| e.word == word)
-                .unwrap_or_else(|| panic!("{text}: {e:?}"));
+            let hit = e.iter().find(|e| e.word == word).unwrap_or_else(|| panic!("{text}: {e:?}"));
             assert!(hit.reason.contains(reason), "{text}: {}", hit.reason);
         }
     }
@@ -353,10 +299,7 @@ mod gcode {
         ];
         for (text, word, reason) in cases {
             let e = errors(text);
-            let hit = e
-                .iter()
-                .find(|e| e.word == word)
-                .unwrap_or_else(|| panic!("{text}: {e:?}"));
+            let hit = e.iter().find(|e| e.word == word).unwrap_or_else(|| panic!("{text}: {e:?}"));
             assert!(hit.reason.contains(reason), "{text}: {}", hit.reason);
         }
     }
@@ -380,10 +323,7 @@ mod gcode {
             panic!("not an invalid input");
         };
         assert_eq!(field, "gcode");
-        assert!(
-            reason.starts_with("line 1, column 1 (G41): cutter radius"),
-            "{reason}"
-        );
+        assert!(reason.starts_with("line 1, column 1 (G41): cutter radius"), "{reason}");
         assert!(reason.ends_with("(and 1 more error)"), "{reason}");
     }
 }

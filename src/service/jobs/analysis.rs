@@ -62,10 +62,7 @@ pub struct AnalysisPrepared {
 }
 
 /// Checks the request (parsing the program and the stock) and resolves it.
-pub async fn prepare(
-    pool: &SqlitePool,
-    request: AnalysisRequest,
-) -> Result<AnalysisPrepared, ApiError> {
+pub async fn prepare(pool: &SqlitePool, request: AnalysisRequest) -> Result<AnalysisPrepared, ApiError> {
     let mut v = Validator::new();
     if let Some(a) = request.alpha_limit_deg {
         v.within("alpha_limit_deg", a, f64::MIN_POSITIVE, 179.9);
@@ -85,11 +82,7 @@ pub async fn prepare(
     if let Some(c) = request.cell_mm {
         v.within("cell_mm", c, 1e-3, 5.0);
     }
-    v.check(
-        request.series_points <= MAX_SERIES_POINTS,
-        "series_points",
-        format!("at most {MAX_SERIES_POINTS}"),
-    );
+    v.check(request.series_points <= MAX_SERIES_POINTS, "series_points", format!("at most {MAX_SERIES_POINTS}"));
     v.finish()?;
     let (program, stock) = (request.program.clone(), request.stock.clone());
     tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
@@ -101,48 +94,28 @@ pub async fn prepare(
     .map_err(|e| ApiError::Internal(e.to_string()))??;
 
     let material = lookup::material(pool, request.material_id, request.material.as_deref()).await?;
-    let tool = lookup::tool(
-        pool,
-        request.tool_id,
-        request.tool_type,
-        request.diameter_mm,
-    )
-    .await?;
-    let force_model = lookup::force_model(pool, tool.id, material.id)
-        .await?
-        .map(|m| ForceModelRef {
-            id: m.id,
-            source: m.data.source,
-            reference: m.data.reference.clone(),
-            model: m.data.model(),
-        });
+    let tool = lookup::tool(pool, request.tool_id, request.tool_type, request.diameter_mm).await?;
+    let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(|m| ForceModelRef {
+        id: m.id,
+        source: m.data.source,
+        reference: m.data.reference.clone(),
+        model: m.data.model(),
+    });
     let machine = match request.machine_id {
         Some(id) => {
-            sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = ?")
-                .bind(id)
-                .fetch_optional(pool)
-                .await?
+            sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = ?").bind(id).fetch_optional(pool).await?
         }
-        None => {
-            sqlx::query_as::<_, Machine>("SELECT * FROM machines ORDER BY id LIMIT 1")
-                .fetch_optional(pool)
-                .await?
-        }
+        None => sqlx::query_as::<_, Machine>("SELECT * FROM machines ORDER BY id LIMIT 1").fetch_optional(pool).await?,
     }
     .ok_or_else(|| ApiError::field("machine_id", "no such machine (add one at /v1/machines)"))?;
     let default_spindle_rpm = match request.spindle_rpm {
         Some(s) => Some(s),
-        None => {
-            lookup::standard_conditions(pool, tool.id, material.id, Operation::StandardSideCutting)
-                .await?
-                .map(|c| c.data.spindle_rpm)
-        }
+        None => lookup::standard_conditions(pool, tool.id, material.id, Operation::StandardSideCutting)
+            .await?
+            .map(|c| c.data.spindle_rpm),
     };
     Ok(AnalysisPrepared {
-        material: NamedRef {
-            id: material.id,
-            name: material.data.name,
-        },
+        material: NamedRef { id: material.id, name: material.data.name },
         tool: ToolRef {
             id: tool.id,
             name: tool.data.name.clone(),
@@ -154,10 +127,7 @@ pub async fn prepare(
             },
         },
         force_model,
-        machine: NamedRef {
-            id: machine.id,
-            name: machine.data.name.clone(),
-        },
+        machine: NamedRef { id: machine.id, name: machine.data.name.clone() },
         rapid_mm_min: machine.data.rapid_mm_min,
         default_spindle_rpm,
     })

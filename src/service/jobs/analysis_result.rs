@@ -2,9 +2,7 @@
 
 use super::analysis::AnalysisPrepared;
 use super::conditions::{NamedRef, ToolRef};
-use crate::core::analysis::report::{
-    CriticalRegion, HistogramBin, PathPoint, RegionKind, Series, Stats,
-};
+use crate::core::analysis::report::{CriticalRegion, HistogramBin, PathPoint, RegionKind, Series, Stats};
 use crate::core::analysis::{Analysis, SliceSummary, Summary};
 use serde::Serialize;
 use utoipa::ToSchema;
@@ -19,11 +17,7 @@ pub struct StatsDto {
 
 impl From<Stats> for StatsDto {
     fn from(s: Stats) -> Self {
-        StatsDto {
-            max: s.max,
-            mean: s.mean,
-            std_dev: s.std_dev,
-        }
+        StatsDto { max: s.max, mean: s.mean, std_dev: s.std_dev }
     }
 }
 
@@ -87,13 +81,7 @@ pub struct PathPointDto {
 
 impl From<PathPoint> for PathPointDto {
     fn from(p: PathPoint) -> Self {
-        PathPointDto {
-            s_mm: p.s_mm,
-            line: p.line,
-            x: p.x,
-            y: p.y,
-            z: p.z,
-        }
+        PathPointDto { s_mm: p.s_mm, line: p.line, x: p.x, y: p.y, z: p.z }
     }
 }
 
@@ -193,17 +181,7 @@ fn summary(moves: usize, s: Summary, regions: usize) -> SummaryDto {
         slices: s
             .slices
             .iter()
-            .map(
-                |&SliceSummary {
-                     z_top,
-                     z_bottom,
-                     removed_area_mm2,
-                 }| SliceDto {
-                    z_top,
-                    z_bottom,
-                    removed_area_mm2,
-                },
-            )
+            .map(|&SliceSummary { z_top, z_bottom, removed_area_mm2 }| SliceDto { z_top, z_bottom, removed_area_mm2 })
             .collect(),
         cutting_length_mm: s.cutting_length_mm,
         air_cut_length_mm: s.air_cut_length_mm,
@@ -216,17 +194,7 @@ fn summary(moves: usize, s: Summary, regions: usize) -> SummaryDto {
         alpha_histogram: s
             .alpha_histogram
             .iter()
-            .map(
-                |&HistogramBin {
-                     from_deg,
-                     to_deg,
-                     length_mm,
-                 }| HistogramBinDto {
-                    from_deg,
-                    to_deg,
-                    length_mm,
-                },
-            )
+            .map(|&HistogramBin { from_deg, to_deg, length_mm }| HistogramBinDto { from_deg, to_deg, length_mm })
             .collect(),
         alpha_limit_deg: s.alpha_limit_deg,
         critical_regions: regions,

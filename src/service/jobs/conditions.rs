@@ -114,10 +114,7 @@ pub struct ForceModelRef {
 }
 
 /// Checks the request and resolves it against the database.
-pub async fn prepare(
-    pool: &SqlitePool,
-    request: ConditionsRequest,
-) -> Result<ConditionsPrepared, ApiError> {
+pub async fn prepare(pool: &SqlitePool, request: ConditionsRequest) -> Result<ConditionsPrepared, ApiError> {
     let mut v = Validator::new();
     for (field, value) in [
         ("spindle_rpm", request.spindle_rpm),
@@ -131,10 +128,7 @@ pub async fn prepare(
         }
     }
     if request.tool_id.is_some() && (request.tool_type.is_some() || request.diameter_mm.is_some()) {
-        v.fail(
-            "tool_id",
-            "give tool_id or tool_type with diameter_mm, not both",
-        );
+        v.fail("tool_id", "give tool_id or tool_type with diameter_mm, not both");
     }
     if request.material_id.is_some() && request.material.is_some() {
         v.fail("material_id", "give material_id or material, not both");
@@ -142,28 +136,20 @@ pub async fn prepare(
     v.finish()?;
 
     let material = lookup::material(pool, request.material_id, request.material.as_deref()).await?;
-    let tool = lookup::tool(
-        pool,
-        request.tool_id,
-        request.tool_type,
-        request.diameter_mm,
-    )
-    .await?;
+    let tool = lookup::tool(pool, request.tool_id, request.tool_type, request.diameter_mm).await?;
     let operation = request.operation.unwrap_or(DEFAULT_OPERATION);
-    let standard = lookup::standard_conditions(pool, tool.id, material.id, operation)
-        .await?
-        .ok_or_else(|| {
-            ApiError::field(
-                "operation",
-                format!(
-                    "no standard conditions for {} with tool {} ({}) in {}: add them at /v1/conditions/standard",
-                    operation.as_str(),
-                    tool.id,
-                    tool.data.name,
-                    material.data.name
-                ),
-            )
-        })?;
+    let standard = lookup::standard_conditions(pool, tool.id, material.id, operation).await?.ok_or_else(|| {
+        ApiError::field(
+            "operation",
+            format!(
+                "no standard conditions for {} with tool {} ({}) in {}: add them at /v1/conditions/standard",
+                operation.as_str(),
+                tool.id,
+                tool.data.name,
+                material.data.name
+            ),
+        )
+    })?;
     let base = standard.data.conditions();
     let mut overridden = Vec::new();
     let mut pick = |name: &str, given: Option<f64>, standard: f64| match given {
@@ -179,14 +165,12 @@ pub async fn prepare(
         rd_mm: pick("rd_mm", request.rd_mm, base.rd_mm),
         ad_mm: pick("ad_mm", request.ad_mm, base.ad_mm),
     };
-    let force_model = lookup::force_model(pool, tool.id, material.id)
-        .await?
-        .map(|m| ForceModelRef {
-            id: m.id,
-            source: m.data.source,
-            reference: m.data.reference.clone(),
-            model: m.data.model(),
-        });
+    let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(|m| ForceModelRef {
+        id: m.id,
+        source: m.data.source,
+        reference: m.data.reference.clone(),
+        model: m.data.model(),
+    });
     let geometry = ToolGeometry {
         tool_type: tool.data.tool_type,
         diameter_mm: tool.data.diameter_mm,
@@ -194,21 +178,10 @@ pub async fn prepare(
         corner_radius_mm: tool.data.corner_radius_mm,
     };
     // Refuse now what the computation would refuse later.
-    evaluate_conditions(
-        &geometry.into(),
-        conditions,
-        force_model.as_ref().map(|f| &f.model),
-    )?;
+    evaluate_conditions(&geometry.into(), conditions, force_model.as_ref().map(|f| &f.model))?;
     Ok(ConditionsPrepared {
-        material: NamedRef {
-            id: material.id,
-            name: material.data.name,
-        },
-        tool: ToolRef {
-            id: tool.id,
-            name: tool.data.name,
-            geometry,
-        },
+        material: NamedRef { id: material.id, name: material.data.name },
+        tool: ToolRef { id: tool.id, name: tool.data.name, geometry },
         operation,
         standard: StandardRef {
             id: standard.id,
@@ -297,11 +270,7 @@ pub struct ConditionsResult {
 /// Runs the computation on a prepared request.
 pub fn run(prepared: ConditionsPrepared) -> Result<ConditionsResult, CoreError> {
     let model = prepared.force_model.as_ref();
-    let report = evaluate_conditions(
-        &prepared.tool.geometry.into(),
-        prepared.conditions,
-        model.map(|f| &f.model),
-    )?;
+    let report = evaluate_conditions(&prepared.tool.geometry.into(), prepared.conditions, model.map(|f| &f.model))?;
     Ok(ConditionsResult {
         conditions: RecommendedConditions {
             spindle_rpm: report.conditions.spindle_rpm,

@@ -3,9 +3,7 @@
 
 use crate::core::analysis::StockRegion;
 use crate::core::geometry::{loops_from_dxf, pocket_from_loops, Loop, Pocket, Vertex};
-use crate::core::nc::{
-    parse_gcode, toolpath_from_json, CannedCycles, JsonProgram, ParseOptions, UnknownWords,
-};
+use crate::core::nc::{parse_gcode, toolpath_from_json, CannedCycles, JsonProgram, ParseOptions, UnknownWords};
 use crate::core::stock::Rect;
 use crate::core::toolpath::Toolpath;
 use crate::service::error::{ApiError, FieldError};
@@ -61,12 +59,7 @@ pub fn read_program(input: &ProgramInput) -> Result<Toolpath, ApiError> {
     let (path, field) = match (&input.gcode, &input.moves) {
         (Some(text), None) => (parse_gcode(text, &options), "program.gcode"),
         (None, Some(moves)) => (toolpath_from_json(moves), "program.moves"),
-        _ => {
-            return Err(ApiError::field(
-                "program",
-                "give exactly one of gcode and moves",
-            ))
-        }
+        _ => return Err(ApiError::field("program", "give exactly one of gcode and moves")),
     };
     let path = path.map_err(|errors| {
         ApiError::Validation(
@@ -82,10 +75,7 @@ pub fn read_program(input: &ProgramInput) -> Result<Toolpath, ApiError> {
                     reason: if e.word.is_empty() {
                         format!("line {}, column {}: {}", e.line, e.column, e.reason)
                     } else {
-                        format!(
-                            "line {}, column {} ({}): {}",
-                            e.line, e.column, e.word, e.reason
-                        )
+                        format!("line {}, column {} ({}): {}", e.line, e.column, e.word, e.reason)
                     },
                 })
                 .collect(),
@@ -169,20 +159,9 @@ fn vertices(field: &str, raw: &[Vec<f64>]) -> Result<Loop, ApiError> {
         .iter()
         .enumerate()
         .map(|(i, v)| match v.as_slice() {
-            [x, y] => Ok(Vertex {
-                x: *x,
-                y: *y,
-                bulge: 0.0,
-            }),
-            [x, y, b] => Ok(Vertex {
-                x: *x,
-                y: *y,
-                bulge: *b,
-            }),
-            _ => Err(ApiError::field(
-                format!("{field}[{i}]"),
-                "a vertex is [x, y] or [x, y, bulge]",
-            )),
+            [x, y] => Ok(Vertex { x: *x, y: *y, bulge: 0.0 }),
+            [x, y, b] => Ok(Vertex { x: *x, y: *y, bulge: *b }),
+            _ => Err(ApiError::field(format!("{field}[{i}]"), "a vertex is [x, y] or [x, y, bulge]")),
         })
         .collect::<Result<Vec<_>, _>>()?;
     Ok(Loop::new(vertices))
@@ -194,10 +173,7 @@ fn under(prefix: &str, err: crate::core::CoreError) -> ApiError {
         ApiError::Validation(errors) => ApiError::Validation(
             errors
                 .into_iter()
-                .map(|e| FieldError {
-                    field: format!("{prefix}.{}", e.field),
-                    reason: e.reason,
-                })
+                .map(|e| FieldError { field: format!("{prefix}.{}", e.field), reason: e.reason })
                 .collect(),
         ),
         other => other,
@@ -208,10 +184,7 @@ fn finite(field: &str, values: &[f64]) -> Result<(), ApiError> {
     if values.iter().all(|v| v.is_finite()) {
         Ok(())
     } else {
-        Err(ApiError::field(
-            field,
-            "every value must be a finite number",
-        ))
+        Err(ApiError::field(field, "every value must be a finite number"))
     }
 }
 
@@ -219,22 +192,11 @@ fn finite(field: &str, values: &[f64]) -> Result<(), ApiError> {
 pub fn read_stock(input: &StockInput) -> Result<Stock, ApiError> {
     let (regions, default_z) = match (&input.stock_box, &input.contour, &input.dxf) {
         (Some(b), None, None) => {
-            finite(
-                "stock.box",
-                &[b.x_min, b.y_min, b.z_min, b.x_max, b.y_max, b.z_max],
-            )?;
+            finite("stock.box", &[b.x_min, b.y_min, b.z_min, b.x_max, b.y_max, b.z_max])?;
             if !(b.x_max > b.x_min && b.y_max > b.y_min && b.z_max > b.z_min) {
-                return Err(ApiError::field(
-                    "stock.box",
-                    "every max must be above its min",
-                ));
+                return Err(ApiError::field("stock.box", "every max must be above its min"));
             }
-            let rect = Rect {
-                x_min: b.x_min,
-                y_min: b.y_min,
-                x_max: b.x_max,
-                y_max: b.y_max,
-            };
+            let rect = Rect { x_min: b.x_min, y_min: b.y_min, x_max: b.x_max, y_max: b.y_max };
             (vec![StockRegion::Rect(rect)], Some((b.z_max, b.z_min)))
         }
         (None, Some(c), None) => {
@@ -253,12 +215,7 @@ pub fn read_stock(input: &StockInput) -> Result<Stock, ApiError> {
             let pocket = pocket_from_loops(loops).map_err(|e| under("stock.dxf", e))?;
             (vec![StockRegion::Pocket(pocket)], None)
         }
-        _ => {
-            return Err(ApiError::field(
-                "stock",
-                "give exactly one of box, contour and dxf",
-            ))
-        }
+        _ => return Err(ApiError::field("stock", "give exactly one of box, contour and dxf")),
     };
     let z_top = input
         .z_top
@@ -285,29 +242,15 @@ pub fn read_stock(input: &StockInput) -> Result<Stock, ApiError> {
                     if c.r <= 0.0 {
                         return Err(ApiError::field(format!("{field}.circle.r"), "must be > 0"));
                     }
-                    Ok(StockRegion::Circle {
-                        cx: c.cx,
-                        cy: c.cy,
-                        r: c.r,
-                    })
+                    Ok(StockRegion::Circle { cx: c.cx, cy: c.cy, r: c.r })
                 }
                 (None, Some(raw)) => {
                     let lp = vertices(&format!("{field}.contour"), raw)?;
-                    Pocket::new(lp, vec![])
-                        .map(StockRegion::Pocket)
-                        .map_err(|e| under(&field, e))
+                    Pocket::new(lp, vec![]).map(StockRegion::Pocket).map_err(|e| under(&field, e))
                 }
-                _ => Err(ApiError::field(
-                    field,
-                    "give exactly one of circle and contour",
-                )),
+                _ => Err(ApiError::field(field, "give exactly one of circle and contour")),
             }
         })
         .collect::<Result<Vec<_>, _>>()?;
-    Ok(Stock {
-        regions,
-        open,
-        z_top,
-        z_bottom,
-    })
+    Ok(Stock { regions, open, z_top, z_bottom })
 }

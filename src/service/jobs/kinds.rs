@@ -76,15 +76,8 @@ fn to_json<T: Serialize>(value: &T) -> Result<serde_json::Value, ApiError> {
 
 /// Runs a prepared job from its input as submitted and what `prepare` resolved.
 /// CPU-bound: call it on a blocking thread.
-pub fn run(
-    kind: JobKind,
-    input: &str,
-    prepared: &str,
-    progress: &dyn Progress,
-) -> Result<JobOutput, CoreError> {
-    let unreadable = |e: serde_json::Error| {
-        CoreError::invalid("prepared", format!("stored job input unreadable: {e}"))
-    };
+pub fn run(kind: JobKind, input: &str, prepared: &str, progress: &dyn Progress) -> Result<JobOutput, CoreError> {
+    let unreadable = |e: serde_json::Error| CoreError::invalid("prepared", format!("stored job input unreadable: {e}"));
     progress.checkpoint()?;
     let result = match kind {
         JobKind::Conditions => {
@@ -98,8 +91,5 @@ pub fn run(
         }
     };
     progress.report(1.0);
-    Ok(JobOutput {
-        result,
-        program: None,
-    })
+    Ok(JobOutput { result, program: None })
 }

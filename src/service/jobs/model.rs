@@ -27,23 +27,14 @@ impl JobStatus {
     }
 
     pub fn parse(text: &str) -> Option<JobStatus> {
-        [
-            JobStatus::Queued,
-            JobStatus::Running,
-            JobStatus::Succeeded,
-            JobStatus::Failed,
-            JobStatus::Cancelled,
-        ]
-        .into_iter()
-        .find(|s| s.as_str() == text)
+        [JobStatus::Queued, JobStatus::Running, JobStatus::Succeeded, JobStatus::Failed, JobStatus::Cancelled]
+            .into_iter()
+            .find(|s| s.as_str() == text)
     }
 
     /// `true` once the job will not change any more.
     pub fn is_terminal(self) -> bool {
-        matches!(
-            self,
-            JobStatus::Succeeded | JobStatus::Failed | JobStatus::Cancelled
-        )
+        matches!(self, JobStatus::Succeeded | JobStatus::Failed | JobStatus::Cancelled)
     }
 }
 
@@ -68,9 +59,7 @@ impl JobKind {
     }
 
     pub fn parse(text: &str) -> Option<JobKind> {
-        [JobKind::Conditions, JobKind::Analysis]
-            .into_iter()
-            .find(|k| k.as_str() == text)
+        [JobKind::Conditions, JobKind::Analysis].into_iter().find(|k| k.as_str() == text)
     }
 }
 

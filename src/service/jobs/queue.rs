@@ -35,8 +35,7 @@ pub struct JobControl {
 
 impl Progress for JobControl {
     fn report(&self, fraction: f64) {
-        self.progress_bits
-            .store(fraction.clamp(0.0, 1.0).to_bits(), Ordering::Relaxed);
+        self.progress_bits.store(fraction.clamp(0.0, 1.0).to_bits(), Ordering::Relaxed);
     }
 
     fn cancelled(&self) -> bool {
@@ -89,11 +88,7 @@ impl JobQueue {
                 tokio::spawn(async move { worker_loop(inner, n).await })
             })
             .collect();
-        *queue
-            .inner
-            .workers
-            .lock()
-            .unwrap_or_else(|p| p.into_inner()) = handles;
+        *queue.inner.workers.lock().unwrap_or_else(|p| p.into_inner()) = handles;
         Ok(queue)
     }
 
@@ -109,13 +104,7 @@ impl JobQueue {
 
     /// Asks a running job to stop.
     pub fn cancel_running(&self, id: &str) {
-        if let Some(control) = self
-            .inner
-            .running
-            .lock()
-            .unwrap_or_else(|p| p.into_inner())
-            .get(id)
-        {
+        if let Some(control) = self.inner.running.lock().unwrap_or_else(|p| p.into_inner()).get(id) {
             control.cancel.store(true, Ordering::Relaxed);
         }
     }
@@ -125,8 +114,7 @@ impl JobQueue {
     pub async fn shutdown(&self, grace: Duration) {
         self.inner.shutdown.store(true, Ordering::SeqCst);
         self.inner.wake.notify_waiters();
-        let handles =
-            std::mem::take(&mut *self.inner.workers.lock().unwrap_or_else(|p| p.into_inner()));
+        let handles = std::mem::take(&mut *self.inner.workers.lock().unwrap_or_else(|p| p.into_inner()));
         let all = futures_join(handles);
         if tokio::time::timeout(grace, all).await.is_err() {
             tracing::warn!("workers did not stop in time; their jobs resume at the next start");
@@ -163,11 +151,7 @@ async fn run_one(inner: &Arc<Inner>, row: store::JobRow) {
     if let Err(e) = outcome {
         tracing::error!(job = %id, error = %e, "could not record the outcome of a job");
     }
-    inner
-        .running
-        .lock()
-        .unwrap_or_else(|p| p.into_inner())
-        .remove(&id);
+    inner.running.lock().unwrap_or_else(|p| p.into_inner()).remove(&id);
     let _ = inner.finished.send(id);
 }
 
@@ -197,17 +181,11 @@ async fn execute(inner: &Arc<Inner>, row: &store::JobRow) -> Result<(), sqlx::Er
         shutdown: inner.shutdown.clone(),
         progress_bits: AtomicU64::new(0f64.to_bits()),
     });
-    inner
-        .running
-        .lock()
-        .unwrap_or_else(|p| p.into_inner())
-        .insert(id.to_string(), control.clone());
+    inner.running.lock().unwrap_or_else(|p| p.into_inner()).insert(id.to_string(), control.clone());
 
     let (input, prepared) = (row.input.clone(), row.prepared.clone());
     let worker_control = control.clone();
-    let mut task = tokio::task::spawn_blocking(move || {
-        kinds::run(kind, &input, &prepared, worker_control.as_ref())
-    });
+    let mut task = tokio::task::spawn_blocking(move || kinds::run(kind, &input, &prepared, worker_control.as_ref()));
     let mut tick = tokio::time::interval(PROGRESS_FLUSH);
     let mut last = 0.0;
     let joined = loop {
@@ -239,12 +217,7 @@ async fn execute(inner: &Arc<Inner>, row: &store::JobRow) -> Result<(), sqlx::Er
         Ok(Err(err)) => store::fail(pool, id, &ApiError::from(err).problem()).await,
         Err(join_error) => {
             tracing::error!(job = %id, error = %join_error, "job panicked");
-            store::fail(
-                pool,
-                id,
-                &ApiError::Internal(join_error.to_string()).problem(),
-            )
-            .await
+            store::fail(pool, id, &ApiError::Internal(join_error.to_string()).problem()).await
         }
     }
 }

@@ -40,8 +40,7 @@ fn preferred_wait(headers: &HeaderMap) -> Option<u64> {
         .flat_map(|v| v.split([',', ';']))
         .filter_map(|pref| {
             let (name, value) = pref.split_once('=')?;
-            (name.trim().eq_ignore_ascii_case("wait"))
-                .then(|| value.trim().trim_matches('"').parse::<u64>().ok())?
+            (name.trim().eq_ignore_ascii_case("wait")).then(|| value.trim().trim_matches('"').parse::<u64>().ok())?
         })
         .next()
 }
@@ -57,14 +56,7 @@ async fn submit(
     let prepared = kinds::prepare(&state.pool, kind, input.clone(), prefix).await?;
     let id = uuid::Uuid::new_v4().to_string();
     let mut finished = state.jobs.subscribe();
-    store::insert(
-        &state.pool,
-        &id,
-        kind,
-        &input.to_string(),
-        &prepared.to_string(),
-    )
-    .await?;
+    store::insert(&state.pool, &id, kind, &input.to_string(), &prepared.to_string()).await?;
     state.jobs.wake();
     tracing::info!(job = %id, kind = kind.as_str(), "job queued");
 
@@ -78,17 +70,12 @@ async fn submit(
                 let mut response = (StatusCode::CREATED, axum::Json(row.to_job()?)).into_response();
                 let h = response.headers_mut();
                 h.insert(header::LOCATION, header_value(&location));
-                h.insert(
-                    "preference-applied",
-                    header_value(&format!("wait={seconds}")),
-                );
+                h.insert("preference-applied", header_value(&format!("wait={seconds}")));
                 return Ok(response);
             }
             match tokio::time::timeout_at(deadline, finished.recv()).await {
                 Err(_) => break,
-                Ok(Ok(_)) | Ok(Err(tokio::sync::broadcast::error::RecvError::Lagged(_))) => {
-                    continue
-                }
+                Ok(Ok(_)) | Ok(Err(tokio::sync::broadcast::error::RecvError::Lagged(_))) => continue,
                 Ok(Err(tokio::sync::broadcast::error::RecvError::Closed)) => break,
             }
         }
@@ -175,10 +162,7 @@ pub async fn create_analysis(
     responses(
         (status = 200, description = "The job", body = Job),
         (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json")))]
-pub async fn get_job(
-    State(state): State<AppState>,
-    ApiPath(id): ApiPath<String>,
-) -> Result<axum::Json<Job>, ApiError> {
+pub async fn get_job(State(state): State<AppState>, ApiPath(id): ApiPath<String>) -> Result<axum::Json<Job>, ApiError> {
     Ok(axum::Json(store::get(&state.pool, &id).await?.to_job()?))
 }
 
@@ -212,16 +196,8 @@ pub async fn list_jobs(
         });
     }
     let (rows, total) = store::list(&state.pool, filter.status, filter.kind, limit, offset).await?;
-    let items = rows
-        .iter()
-        .map(|r| r.to_job().map(JobSummary::from))
-        .collect::<Result<Vec<_>, _>>()?;
-    Ok(axum::Json(Page {
-        items,
-        total,
-        limit,
-        offset,
-    }))
+    let items = rows.iter().map(|r| r.to_job().map(JobSummary::from)).collect::<Result<Vec<_>, _>>()?;
+    Ok(axum::Json(Page { items, total, limit, offset }))
 }
 
 /// Cancels a job. A queued job is cancelled at once (200); a running one is asked to
@@ -233,10 +209,7 @@ pub async fn list_jobs(
         (status = 202, description = "Cancellation requested; the job stops shortly", body = Job),
         (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json"),
         (status = 409, description = "Already finished", body = Problem, content_type = "application/problem+json")))]
-pub async fn cancel_job(
-    State(state): State<AppState>,
-    ApiPath(id): ApiPath<String>,
-) -> Result<Response, ApiError> {
+pub async fn cancel_job(State(state): State<AppState>, ApiPath(id): ApiPath<String>) -> Result<Response, ApiError> {
     let row = store::get(&state.pool, &id).await?;
     let status = if store::cancel_queued(&state.pool, &id).await? {
         StatusCode::OK
@@ -244,10 +217,7 @@ pub async fn cancel_job(
         state.jobs.cancel_running(&id);
         StatusCode::ACCEPTED
     } else {
-        return Err(ApiError::Conflict(format!(
-            "job {id} has already finished ({})",
-            row.status
-        )));
+        return Err(ApiError::Conflict(format!("job {id} has already finished ({})", row.status)));
     };
     let job = store::get(&state.pool, &id).await?.to_job()?;
     Ok((status, axum::Json(job)).into_response())
@@ -260,25 +230,14 @@ pub async fn cancel_job(
         (status = 200, description = "The NC program", body = String, content_type = "text/plain"),
         (status = 404, description = "No such job, or this job makes no program", body = Problem, content_type = "application/problem+json"),
         (status = 409, description = "Not finished yet", body = Problem, content_type = "application/problem+json")))]
-pub async fn get_program(
-    State(state): State<AppState>,
-    ApiPath(id): ApiPath<String>,
-) -> Result<Response, ApiError> {
+pub async fn get_program(State(state): State<AppState>, ApiPath(id): ApiPath<String>) -> Result<Response, ApiError> {
     let row = store::get(&state.pool, &id).await?;
     match (row.status()?, row.program) {
-        (_, Some(program)) => Ok((
-            [(header::CONTENT_TYPE, "text/plain; charset=utf-8")],
-            program,
-        )
-            .into_response()),
-        (JobStatus::Queued | JobStatus::Running, None) => Err(ApiError::Conflict(format!(
-            "job {id} is {}; its program is not ready",
-            row.status
-        ))),
-        (_, None) => Err(ApiError::not_found(format!(
-            "job {id} ({}) has no NC program",
-            row.kind
-        ))),
+        (_, Some(program)) => Ok(([(header::CONTENT_TYPE, "text/plain; charset=utf-8")], program).into_response()),
+        (JobStatus::Queued | JobStatus::Running, None) => {
+            Err(ApiError::Conflict(format!("job {id} is {}; its program is not ready", row.status)))
+        }
+        (_, None) => Err(ApiError::not_found(format!("job {id} ({}) has no NC program", row.kind))),
     }
 }
 

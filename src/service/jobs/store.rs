@@ -26,31 +26,26 @@ pub struct JobRow {
 
 impl JobRow {
     pub fn kind(&self) -> Result<JobKind, ApiError> {
-        JobKind::parse(&self.kind).ok_or_else(|| {
-            ApiError::Internal(format!("job {} has unknown kind {}", self.id, self.kind))
-        })
+        JobKind::parse(&self.kind)
+            .ok_or_else(|| ApiError::Internal(format!("job {} has unknown kind {}", self.id, self.kind)))
     }
 
     pub fn status(&self) -> Result<JobStatus, ApiError> {
-        JobStatus::parse(&self.status).ok_or_else(|| {
-            ApiError::Internal(format!(
-                "job {} has unknown status {}",
-                self.id, self.status
-            ))
-        })
+        JobStatus::parse(&self.status)
+            .ok_or_else(|| ApiError::Internal(format!("job {} has unknown status {}", self.id, self.status)))
     }
 
     /// The job as the API shows it.
     pub fn to_job(&self) -> Result<Job, ApiError> {
         let parse = |text: &str| -> Result<serde_json::Value, ApiError> {
-            serde_json::from_str(text).map_err(|e| {
-                ApiError::Internal(format!("job {}: stored JSON unreadable: {e}", self.id))
-            })
+            serde_json::from_str(text)
+                .map_err(|e| ApiError::Internal(format!("job {}: stored JSON unreadable: {e}", self.id)))
         };
         let error = match &self.error {
-            Some(text) => Some(serde_json::from_str::<Problem>(text).map_err(|e| {
-                ApiError::Internal(format!("job {}: stored error unreadable: {e}", self.id))
-            })?),
+            Some(text) => Some(
+                serde_json::from_str::<Problem>(text)
+                    .map_err(|e| ApiError::Internal(format!("job {}: stored error unreadable: {e}", self.id)))?,
+            ),
             None => None,
         };
         Ok(Job {
@@ -69,32 +64,21 @@ impl JobRow {
             error,
             links: JobLinks {
                 this: format!("/v1/jobs/{}", self.id),
-                program: self
-                    .program
-                    .as_ref()
-                    .map(|_| format!("/v1/jobs/{}/program", self.id)),
+                program: self.program.as_ref().map(|_| format!("/v1/jobs/{}/program", self.id)),
             },
         })
     }
 }
 
 /// Inserts a queued job.
-pub async fn insert(
-    pool: &SqlitePool,
-    id: &str,
-    kind: JobKind,
-    input: &str,
-    prepared: &str,
-) -> Result<(), ApiError> {
-    sqlx::query(
-        "INSERT INTO jobs (id, kind, status, input, prepared) VALUES (?, ?, 'queued', ?, ?)",
-    )
-    .bind(id)
-    .bind(kind.as_str())
-    .bind(input)
-    .bind(prepared)
-    .execute(pool)
-    .await?;
+pub async fn insert(pool: &SqlitePool, id: &str, kind: JobKind, input: &str, prepared: &str) -> Result<(), ApiError> {
+    sqlx::query("INSERT INTO jobs (id, kind, status, input, prepared) VALUES (?, ?, 'queued', ?, ?)")
+        .bind(id)
+        .bind(kind.as_str())
+        .bind(input)
+        .bind(prepared)
+        .execute(pool)
+        .await?;
     Ok(())
 }
 
@@ -117,13 +101,12 @@ pub async fn list(
 ) -> Result<(Vec<JobRow>, i64), ApiError> {
     let status = status.map(JobStatus::as_str);
     let kind = kind.map(JobKind::as_str);
-    let total: i64 = sqlx::query_scalar(
-        "SELECT COUNT(*) FROM jobs WHERE (?1 IS NULL OR status = ?1) AND (?2 IS NULL OR kind = ?2)",
-    )
-    .bind(status)
-    .bind(kind)
-    .fetch_one(pool)
-    .await?;
+    let total: i64 =
+        sqlx::query_scalar("SELECT COUNT(*) FROM jobs WHERE (?1 IS NULL OR status = ?1) AND (?2 IS NULL OR kind = ?2)")
+            .bind(status)
+            .bind(kind)
+            .fetch_one(pool)
+            .await?;
     let rows = sqlx::query_as::<_, JobRow>(
         "SELECT * FROM jobs WHERE (?1 IS NULL OR status = ?1) AND (?2 IS NULL OR kind = ?2)
          ORDER BY created_at DESC, rowid DESC LIMIT ?3 OFFSET ?4",
@@ -170,12 +153,7 @@ pub async fn set_progress(pool: &SqlitePool, id: &str, progress: f64) -> Result<
 }
 
 /// Marks a running job succeeded with its result (and NC program, if any).
-pub async fn succeed(
-    pool: &SqlitePool,
-    id: &str,
-    result: &str,
-    program: Option<&str>,
-) -> Result<(), sqlx::Error> {
+pub async fn succeed(pool: &SqlitePool, id: &str, result: &str, program: Option<&str>) -> Result<(), sqlx::Error> {
     sqlx::query("UPDATE jobs SET status = 'succeeded', progress = 1, result = ?, program = ?, finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now')
          WHERE id = ?")
     .bind(result)

@@ -26,14 +26,8 @@ pub struct CostRatesData {
 impl Resource for CostRatesData {
     const TABLE: &'static str = "cost_rates";
     const SINGULAR: &'static str = "cost-rates row";
-    const COLUMNS: &'static [&'static str] = &[
-        "name",
-        "currency",
-        "machine_rate_per_hour",
-        "default_tool_price",
-        "source",
-        "reference",
-    ];
+    const COLUMNS: &'static [&'static str] =
+        &["name", "currency", "machine_rate_per_hour", "default_tool_price", "source", "reference"];
 
     fn values(&self) -> Vec<SqlValue> {
         vec![

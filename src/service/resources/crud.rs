@@ -27,19 +27,12 @@ macro_rules! bind_values {
 }
 
 /// Lists the rows matching `filter`, one page.
-pub async fn list<R: Record, F: ListFilter>(
-    pool: &SqlitePool,
-    filter: &F,
-) -> Result<Page<R>, ApiError> {
+pub async fn list<R: Record, F: ListFilter>(pool: &SqlitePool, filter: &F) -> Result<Page<R>, ApiError> {
     let page = filter.page();
     let limit = page.limit.unwrap_or(DEFAULT_PAGE_LIMIT);
     let offset = page.offset.unwrap_or(0);
     let mut v = Validator::new();
-    v.check(
-        (1..=MAX_PAGE_LIMIT).contains(&limit),
-        "limit",
-        format!("must be between 1 and {MAX_PAGE_LIMIT}"),
-    );
+    v.check((1..=MAX_PAGE_LIMIT).contains(&limit), "limit", format!("must be between 1 and {MAX_PAGE_LIMIT}"));
     v.check(offset >= 0, "offset", "must be >= 0");
     filter.validate(&mut v);
     if v.has_errors() {
@@ -56,26 +49,14 @@ pub async fn list<R: Record, F: ListFilter>(
     let table = R::Data::TABLE;
 
     let count_sql = format!("SELECT COUNT(*) FROM {table}{where_sql}");
-    let total = bind_values!(
-        sqlx::query_scalar::<_, i64>(AssertSqlSafe(count_sql)),
-        &values
-    )
-    .fetch_one(pool)
-    .await?;
+    let total = bind_values!(sqlx::query_scalar::<_, i64>(AssertSqlSafe(count_sql)), &values).fetch_one(pool).await?;
 
     let sql = format!("SELECT * FROM {table}{where_sql} ORDER BY id LIMIT ? OFFSET ?");
     let mut all = values.clone();
     all.push(SqlValue::Int(limit));
     all.push(SqlValue::Int(offset));
-    let items = bind_values!(sqlx::query_as::<_, R>(AssertSqlSafe(sql)), &all)
-        .fetch_all(pool)
-        .await?;
-    Ok(Page {
-        items,
-        total,
-        limit,
-        offset,
-    })
+    let items = bind_values!(sqlx::query_as::<_, R>(AssertSqlSafe(sql)), &all).fetch_all(pool).await?;
+    Ok(Page { items, total, limit, offset })
 }
 
 fn to_bad_query(v: Validator) -> ApiError {
@@ -88,9 +69,7 @@ fn to_bad_query(v: Validator) -> ApiError {
                 .collect::<Vec<_>>()
                 .join("; "),
         },
-        other => other
-            .err()
-            .unwrap_or_else(|| ApiError::BadRequest("invalid query".into())),
+        other => other.err().unwrap_or_else(|| ApiError::BadRequest("invalid query".into())),
     }
 }
 
@@ -113,13 +92,10 @@ async fn check<D: Resource>(conn: &mut SqliteConnection, data: &D) -> Result<(),
     let mut v = Validator::new();
     data.validate(&mut v);
     for r in data.references() {
-        let exists: Option<i64> = sqlx::query_scalar(AssertSqlSafe(format!(
-            "SELECT id FROM {} WHERE id = ?",
-            r.table
-        )))
-        .bind(r.id)
-        .fetch_optional(&mut *conn)
-        .await?;
+        let exists: Option<i64> = sqlx::query_scalar(AssertSqlSafe(format!("SELECT id FROM {} WHERE id = ?", r.table)))
+            .bind(r.id)
+            .fetch_optional(&mut *conn)
+            .await?;
         if exists.is_none() {
             v.fail(r.field, format!("no row with id {} in {}", r.id, r.table));
         }
@@ -133,15 +109,9 @@ pub async fn create<R: Record>(pool: &SqlitePool, data: R::Data) -> Result<R, Ap
     check(&mut tx, &data).await?;
     let columns = R::Data::COLUMNS;
     let placeholders = vec!["?"; columns.len()].join(", ");
-    let sql = format!(
-        "INSERT INTO {} ({}) VALUES ({placeholders}) RETURNING id",
-        R::Data::TABLE,
-        columns.join(", ")
-    );
+    let sql = format!("INSERT INTO {} ({}) VALUES ({placeholders}) RETURNING id", R::Data::TABLE, columns.join(", "));
     let values = data.values();
-    let row: SqliteRow = bind_values!(sqlx::query(AssertSqlSafe(sql)), &values)
-        .fetch_one(&mut *tx)
-        .await?;
+    let row: SqliteRow = bind_values!(sqlx::query(AssertSqlSafe(sql)), &values).fetch_one(&mut *tx).await?;
     let id: i64 = sqlx::Row::try_get(&row, "id")?;
     let record = fetch::<R>(&mut tx, id).await?;
     tx.commit().await?;
@@ -153,10 +123,7 @@ pub async fn replace<R: Record>(pool: &SqlitePool, id: i64, data: R::Data) -> Re
     let mut tx = pool.begin().await?;
     fetch::<R>(&mut tx, id).await?;
     check(&mut tx, &data).await?;
-    let sets: Vec<String> = R::Data::COLUMNS
-        .iter()
-        .map(|c| format!("{c} = ?"))
-        .collect();
+    let sets: Vec<String> = R::Data::COLUMNS.iter().map(|c| format!("{c} = ?")).collect();
     let sql = format!(
         "UPDATE {} SET {}, edited = 1, updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ?",
         R::Data::TABLE,
@@ -164,9 +131,7 @@ pub async fn replace<R: Record>(pool: &SqlitePool, id: i64, data: R::Data) -> Re
     );
     let mut values = data.values();
     values.push(SqlValue::Int(id));
-    bind_values!(sqlx::query(AssertSqlSafe(sql)), &values)
-        .execute(&mut *tx)
-        .await?;
+    bind_values!(sqlx::query(AssertSqlSafe(sql)), &values).execute(&mut *tx).await?;
     let record = fetch::<R>(&mut tx, id).await?;
     tx.commit().await?;
     Ok(record)
@@ -176,14 +141,10 @@ pub async fn replace<R: Record>(pool: &SqlitePool, id: i64, data: R::Data) -> Re
 /// `source` marks the row as the shop's (`source = user`).
 pub async fn patch<R: Record>(pool: &SqlitePool, id: i64, patch: Value) -> Result<R, ApiError> {
     if !patch.is_object() {
-        return Err(ApiError::field(
-            "body",
-            "a merge patch must be a JSON object",
-        ));
+        return Err(ApiError::field("body", "a merge patch must be a JSON object"));
     }
     let current = get::<R>(pool, id).await?;
-    let mut merged =
-        serde_json::to_value(current.data()).map_err(|e| ApiError::Internal(e.to_string()))?;
+    let mut merged = serde_json::to_value(current.data()).map_err(|e| ApiError::Internal(e.to_string()))?;
     if patch.get("source").is_none() {
         merged["source"] = Value::from("user");
     }
@@ -219,12 +180,10 @@ pub async fn delete<R: Record>(pool: &SqlitePool, id: i64) -> Result<(), ApiErro
     fetch::<R>(&mut tx, id).await?;
     let mut users = Vec::new();
     for (table, column, what) in R::Data::REFERENCED_BY {
-        let n: i64 = sqlx::query_scalar(AssertSqlSafe(format!(
-            "SELECT COUNT(*) FROM {table} WHERE {column} = ?"
-        )))
-        .bind(id)
-        .fetch_one(&mut *tx)
-        .await?;
+        let n: i64 = sqlx::query_scalar(AssertSqlSafe(format!("SELECT COUNT(*) FROM {table} WHERE {column} = ?")))
+            .bind(id)
+            .fetch_one(&mut *tx)
+            .await?;
         if n > 0 {
             users.push(format!("{n} {what}"));
         }
@@ -236,13 +195,10 @@ pub async fn delete<R: Record>(pool: &SqlitePool, id: i64) -> Result<(), ApiErro
             users.join(", ")
         )));
     }
-    sqlx::query(AssertSqlSafe(format!(
-        "DELETE FROM {} WHERE id = ?",
-        R::Data::TABLE
-    )))
-    .bind(id)
-    .execute(&mut *tx)
-    .await?;
+    sqlx::query(AssertSqlSafe(format!("DELETE FROM {} WHERE id = ?", R::Data::TABLE)))
+        .bind(id)
+        .execute(&mut *tx)
+        .await?;
     tx.commit().await?;
     Ok(())
 }

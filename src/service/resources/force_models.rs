@@ -113,14 +113,9 @@ impl Resource for ForceModelData {
         ] {
             v.positive(field, value);
         }
-        for (field, value) in [
-            ("b0", self.b0),
-            ("b1", self.b1),
-            ("b2", self.b2),
-            ("b11", self.b11),
-            ("b22", self.b22),
-            ("b12", self.b12),
-        ] {
+        for (field, value) in
+            [("b0", self.b0), ("b1", self.b1), ("b2", self.b2), ("b11", self.b11), ("b22", self.b22), ("b12", self.b12)]
+        {
             v.finite(field, value);
         }
         if let Some(r2) = self.r_squared {
@@ -130,16 +125,8 @@ impl Resource for ForceModelData {
 
     fn references(&self) -> Vec<Reference> {
         vec![
-            Reference {
-                field: "tool_id",
-                table: "tools",
-                id: self.tool_id,
-            },
-            Reference {
-                field: "material_id",
-                table: "materials",
-                id: self.material_id,
-            },
+            Reference { field: "tool_id", table: "tools", id: self.tool_id },
+            Reference { field: "material_id", table: "materials", id: self.material_id },
         ]
     }
 }

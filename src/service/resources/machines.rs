@@ -66,11 +66,7 @@ impl Resource for MachineData {
     fn values(&self) -> Vec<SqlValue> {
         let mut values = vec![self.name.clone().into()];
         values.extend(self.limits().iter().map(|(_, v)| SqlValue::Real(*v)));
-        values.extend([
-            self.tool_change_s.into(),
-            self.source.as_str().into(),
-            self.reference.clone().into(),
-        ]);
+        values.extend([self.tool_change_s.into(), self.source.as_str().into(), self.reference.clone().into()]);
         values
     }
 

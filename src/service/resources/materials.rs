@@ -32,14 +32,8 @@ pub struct MaterialData {
 impl Resource for MaterialData {
     const TABLE: &'static str = "materials";
     const SINGULAR: &'static str = "material";
-    const COLUMNS: &'static [&'static str] = &[
-        "name",
-        "designation",
-        "hardness_hrc",
-        "description",
-        "source",
-        "reference",
-    ];
+    const COLUMNS: &'static [&'static str] =
+        &["name", "designation", "hardness_hrc", "description", "source", "reference"];
     const REFERENCED_BY: &'static [(&'static str, &'static str, &'static str)] = &[
         ("standard_conditions", "material_id", "standard conditions"),
         ("force_models", "material_id", "force models"),

@@ -96,14 +96,7 @@ pub struct Reference {
 
 /// The writable part of a table's row.
 pub trait Resource:
-    Serialize
-    + serde::de::DeserializeOwned
-    + Clone
-    + Send
-    + Sync
-    + Unpin
-    + 'static
-    + for<'r> FromRow<'r, SqliteRow>
+    Serialize + serde::de::DeserializeOwned + Clone + Send + Sync + Unpin + 'static + for<'r> FromRow<'r, SqliteRow>
 {
     /// SQL table name.
     const TABLE: &'static str;
@@ -221,10 +214,7 @@ impl ListFilter for ToolMaterialFilter {
     }
 
     fn page(&self) -> PageRequest {
-        PageRequest {
-            limit: self.limit,
-            offset: self.offset,
-        }
+        PageRequest { limit: self.limit, offset: self.offset }
     }
 }
 
@@ -243,19 +233,13 @@ pub struct NameFilter {
 
 impl ListFilter for NameFilter {
     fn conditions(&self) -> Vec<(String, Vec<SqlValue>)> {
-        [
-            routes::eq("name", self.name.clone()),
-            routes::eq("source", self.source.map(Source::as_str)),
-        ]
-        .into_iter()
-        .flatten()
-        .collect()
+        [routes::eq("name", self.name.clone()), routes::eq("source", self.source.map(Source::as_str))]
+            .into_iter()
+            .flatten()
+            .collect()
     }
 
     fn page(&self) -> PageRequest {
-        PageRequest {
-            limit: self.limit,
-            offset: self.offset,
-        }
+        PageRequest { limit: self.limit, offset: self.offset }
     }
 }

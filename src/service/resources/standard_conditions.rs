@@ -43,12 +43,7 @@ pub struct StandardConditionsData {
 
 impl StandardConditionsData {
     pub fn conditions(&self) -> CuttingConditions {
-        CuttingConditions {
-            spindle_rpm: self.spindle_rpm,
-            fz_mm: self.fz_mm,
-            rd_mm: self.rd_mm,
-            ad_mm: self.ad_mm,
-        }
+        CuttingConditions { spindle_rpm: self.spindle_rpm, fz_mm: self.fz_mm, rd_mm: self.rd_mm, ad_mm: self.ad_mm }
     }
 }
 
@@ -97,17 +92,9 @@ impl Resource for StandardConditionsData {
         v.positive("ad_mm", self.ad_mm);
         if let Some(max) = self.fz_max_mm {
             v.positive("fz_max_mm", max);
-            v.check(
-                max >= self.fz_mm,
-                "fz_max_mm",
-                format!("must be at least fz_mm = {}", self.fz_mm),
-            );
+            v.check(max >= self.fz_mm, "fz_max_mm", format!("must be at least fz_mm = {}", self.fz_mm));
         }
-        v.check(
-            self.fz_min_mm <= self.fz_mm,
-            "fz_min_mm",
-            format!("must not exceed fz_mm = {}", self.fz_mm),
-        );
+        v.check(self.fz_min_mm <= self.fz_mm, "fz_min_mm", format!("must not exceed fz_mm = {}", self.fz_mm));
         if let Some(last) = self.ad_last_layer_mm {
             v.positive("ad_last_layer_mm", last);
         }
@@ -115,16 +102,8 @@ impl Resource for StandardConditionsData {
 
     fn references(&self) -> Vec<Reference> {
         vec![
-            Reference {
-                field: "tool_id",
-                table: "tools",
-                id: self.tool_id,
-            },
-            Reference {
-                field: "material_id",
-                table: "materials",
-                id: self.material_id,
-            },
+            Reference { field: "tool_id", table: "tools", id: self.tool_id },
+            Reference { field: "material_id", table: "materials", id: self.material_id },
         ]
     }
 }
@@ -162,10 +141,7 @@ impl ListFilter for StandardConditionsFilter {
     }
 
     fn page(&self) -> PageRequest {
-        PageRequest {
-            limit: self.limit,
-            offset: self.offset,
-        }
+        PageRequest { limit: self.limit, offset: self.offset }
     }
 }
 

@@ -60,24 +60,15 @@ pub struct ToolLifeData {
 impl Resource for ToolLifeData {
     const TABLE: &'static str = "tool_life";
     const SINGULAR: &'static str = "tool-life row";
-    const COLUMNS: &'static [&'static str] = &[
-        "tool_id",
-        "material_id",
-        "life_m",
-        "gamma_table",
-        "force_exponent",
-        "source",
-        "reference",
-    ];
+    const COLUMNS: &'static [&'static str] =
+        &["tool_id", "material_id", "life_m", "gamma_table", "force_exponent", "source", "reference"];
 
     fn values(&self) -> Vec<SqlValue> {
         vec![
             self.tool_id.into(),
             self.material_id.into(),
             self.life_m.into(),
-            serde_json::to_string(&self.gamma_table)
-                .unwrap_or_default()
-                .into(),
+            serde_json::to_string(&self.gamma_table).unwrap_or_default().into(),
             self.force_exponent.into(),
             self.source.as_str().into(),
             self.reference.clone().into(),
@@ -87,41 +78,20 @@ impl Resource for ToolLifeData {
     fn validate(&self, v: &mut Validator) {
         v.positive("life_m", self.life_m);
         v.non_negative("force_exponent", self.force_exponent);
-        v.check(
-            !self.gamma_table.is_empty(),
-            "gamma_table",
-            "needs at least one point",
-        );
+        v.check(!self.gamma_table.is_empty(), "gamma_table", "needs at least one point");
         let mut previous = f64::NEG_INFINITY;
         for (i, GammaPoint(angle, factor)) in self.gamma_table.iter().enumerate() {
-            v.within(
-                &format!("gamma_table[{i}][0]"),
-                *angle,
-                0.0,
-                MAX_ENGAGEMENT_DEG,
-            );
+            v.within(&format!("gamma_table[{i}][0]"), *angle, 0.0, MAX_ENGAGEMENT_DEG);
             v.positive(&format!("gamma_table[{i}][1]"), *factor);
-            v.check(
-                *angle > previous,
-                &format!("gamma_table[{i}][0]"),
-                "angles must increase",
-            );
+            v.check(*angle > previous, &format!("gamma_table[{i}][0]"), "angles must increase");
             previous = *angle;
         }
     }
 
     fn references(&self) -> Vec<Reference> {
         vec![
-            Reference {
-                field: "tool_id",
-                table: "tools",
-                id: self.tool_id,
-            },
-            Reference {
-                field: "material_id",
-                table: "materials",
-                id: self.material_id,
-            },
+            Reference { field: "tool_id", table: "tools", id: self.tool_id },
+            Reference { field: "material_id", table: "materials", id: self.material_id },
         ]
     }
 }

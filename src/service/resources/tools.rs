@@ -1,9 +1,7 @@
 //! End mills: `/v1/tools`.
 
 use super::routes::eq;
-use super::{
-    ListFilter, PageRequest, Reference, Resource, Source, SqlValue, DIAMETER_FILTER_TOLERANCE_MM,
-};
+use super::{ListFilter, PageRequest, Reference, Resource, Source, SqlValue, DIAMETER_FILTER_TOLERANCE_MM};
 use crate::core::tool::{EndMill, ToolType};
 use crate::service::error::Validator;
 use serde::{Deserialize, Serialize};
@@ -162,17 +160,10 @@ impl ListFilter for ToolFilter {
         [
             eq("tool_type", self.tool_type.clone()),
             self.diameter_mm.map(|d| {
-                (
-                    "abs(diameter_mm - ?) <= ?".to_string(),
-                    vec![d.into(), DIAMETER_FILTER_TOLERANCE_MM.into()],
-                )
+                ("abs(diameter_mm - ?) <= ?".to_string(), vec![d.into(), DIAMETER_FILTER_TOLERANCE_MM.into()])
             }),
             self.material_id.map(|m| {
-                (
-                    "id IN (SELECT tool_id FROM standard_conditions WHERE material_id = ?)"
-                        .to_string(),
-                    vec![m.into()],
-                )
+                ("id IN (SELECT tool_id FROM standard_conditions WHERE material_id = ?)".to_string(), vec![m.into()])
             }),
             eq("source", self.source.map(Source::as_str)),
         ]
@@ -182,10 +173,7 @@ impl ListFilter for ToolFilter {
     }
 
     fn page(&self) -> PageRequest {
-        PageRequest {
-            limit: self.limit,
-            offset: self.offset,
-        }
+        PageRequest { limit: self.limit, offset: self.offset }
     }
 
     fn validate(&self, v: &mut Validator) {
@@ -193,11 +181,7 @@ impl ListFilter for ToolFilter {
             v.positive("diameter_mm", d);
         }
         if let Some(t) = &self.tool_type {
-            v.check(
-                ToolType::parse(t).is_some(),
-                "tool_type",
-                "must be square, radius or ball",
-            );
+            v.check(ToolType::parse(t).is_some(), "tool_type", "must be square, radius or ball");
         }
     }
 }
