@@ -63,6 +63,8 @@ struct Chunk {
     heading: (f64, f64),
     cut: usize,
     recent: Vec<(f64, f64)>,
+    /// Largest distance from `start` to a recent centre, mm.
+    reach: f64,
 }
 
 impl Chunk {
@@ -74,6 +76,7 @@ impl Chunk {
             self.start = Some(b);
             self.recent.clear();
             self.recent.push(b);
+            self.reach = 0.0;
         }
     }
 }
@@ -108,7 +111,8 @@ pub fn simulate(
     let table = AngleTable::default();
     let r = cutter.radius_mm;
     let cos_turn = CHUNK_TURN_DEG.to_radians().cos();
-    let mut chunk = Chunk { start: None, heading: (0.0, 0.0), cut: 0, recent: Vec::with_capacity(CHUNK_SAMPLES + 1) };
+    let mut chunk =
+        Chunk { start: None, heading: (0.0, 0.0), cut: 0, recent: Vec::with_capacity(CHUNK_SAMPLES + 1), reach: 0.0 };
     let mut contacts = vec![Contact::default(); slices.len()];
     let mut s_mm = 0.0;
     let mut n = 0usize;
@@ -128,7 +132,13 @@ pub fn simulate(
         let cut = slices::slices_cut(slices, sample.p.z);
         if cut != chunk.cut {
             chunk.flush(slices, r);
-            chunk = Chunk { start: None, heading: sample.heading, cut, recent: std::mem::take(&mut chunk.recent) };
+            chunk = Chunk {
+                start: None,
+                heading: sample.heading,
+                cut,
+                recent: std::mem::take(&mut chunk.recent),
+                reach: 0.0,
+            };
             chunk.recent.clear();
         }
         let plunge = sample.heading.0 == 0.0 && sample.heading.1 == 0.0;
@@ -143,7 +153,11 @@ pub fn simulate(
             plunge: plunge && cut > 0,
         };
         if cut > 0 && !plunge {
-            let site = ProbeSite { center: p, radius: r, heading: sample.heading, recent: &chunk.recent };
+            let recent_bound = match chunk.start {
+                Some(s) => (s.0, s.1, chunk.reach),
+                None => (p.0, p.1, -r),
+            };
+            let site = ProbeSite { center: p, radius: r, heading: sample.heading, recent: &chunk.recent, recent_bound };
             for (k, s) in slices.iter().take(cut).enumerate() {
                 contacts[k] = if s.raster.any_material_near(p.0, p.1, r) {
                     table.contact(&s.raster, &site)
@@ -159,6 +173,9 @@ pub fn simulate(
             chunk.heading = sample.heading;
         }
         chunk.recent.push(p);
+        if let Some(st) = chunk.start {
+            chunk.reach = chunk.reach.max((p.0 - st.0).hypot(p.1 - st.1));
+        }
         let turned = chunk.heading.0 * sample.heading.0 + chunk.heading.1 * sample.heading.1 < cos_turn;
         if chunk.recent.len() > CHUNK_SAMPLES || turned {
             chunk.flush(slices, r);

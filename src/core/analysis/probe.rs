@@ -18,7 +18,8 @@ pub struct AngleTable {
 
 impl Default for AngleTable {
     fn default() -> Self {
-        let (cos, sin) = (0..PROBE_STEPS_PER_TURN)
+        // Two turns, so a half-turn scan starting anywhere needs no wrap-around.
+        let (cos, sin) = (0..2 * PROBE_STEPS_PER_TURN)
             .map(|k| {
                 let a = k as f64 * 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
                 (a.cos(), a.sin())
@@ -46,16 +47,23 @@ pub struct ProbeSite<'a> {
     /// Tool centres swept since the raster was last updated: a probe within the radius
     /// of one of them is not material.
     pub recent: &'a [(f64, f64)],
+    /// A circle (x, y, radius) holding every recent centre: probes farther than the tool
+    /// radius from it need no check against them.
+    pub recent_bound: (f64, f64, f64),
 }
 
 impl AngleTable {
     #[inline]
     fn material(&self, raster: &Raster, site: &ProbeSite, k: usize) -> bool {
-        let k = k % PROBE_STEPS_PER_TURN;
         let x = site.center.0 + site.radius * self.cos[k];
         let y = site.center.1 + site.radius * self.sin[k];
         if !raster.is_material(x, y) {
             return false;
+        }
+        let (bx, by, reach) = site.recent_bound;
+        let far = site.radius + reach;
+        if (x - bx) * (x - bx) + (y - by) * (y - by) >= far * far {
+            return true;
         }
         let r2 = site.radius * site.radius;
         site.recent.iter().all(|c| (x - c.0) * (x - c.0) + (y - c.1) * (y - c.1) >= r2)
@@ -156,7 +164,13 @@ mod tests {
     #[test]
     fn a_tool_buried_in_material_engages_its_whole_leading_half() {
         let table = AngleTable::default();
-        let site = ProbeSite { center: (0.0, 0.0), radius: 5.0, heading: (1.0, 0.0), recent: &[] };
+        let site = ProbeSite {
+            center: (0.0, 0.0),
+            radius: 5.0,
+            heading: (1.0, 0.0),
+            recent: &[],
+            recent_bound: (0.0, 0.0, 0.0),
+        };
         let c = table.contact(&block(), &site);
         assert!((c.alpha_rad - PI).abs() < 1e-9);
         assert!((c.entry_rad + PI / 2.0).abs() < 1e-9 && (c.exit_rad - PI / 2.0).abs() < 1e-9);
@@ -168,7 +182,13 @@ mod tests {
         // A disc about (1, 0) covers the circle where cos θ > 0.1: what stays engaged is
         // 2 × (90° − acos 0.1).
         let recent = [(1.0, 0.0)];
-        let site = ProbeSite { center: (0.0, 0.0), radius: 5.0, heading: (1.0, 0.0), recent: &recent };
+        let site = ProbeSite {
+            center: (0.0, 0.0),
+            radius: 5.0,
+            heading: (1.0, 0.0),
+            recent: &recent,
+            recent_bound: (0.0, 0.0, 2.0),
+        };
         let c = table.contact(&block(), &site);
         let expected = 2.0 * (PI / 2.0 - 0.1f64.acos());
         assert!((c.alpha_rad - expected).abs() < 0.2f64.to_radians(), "{} vs {expected}", c.alpha_rad);
@@ -177,7 +197,13 @@ mod tests {
     #[test]
     fn a_tool_in_the_air_engages_nothing() {
         let table = AngleTable::default();
-        let site = ProbeSite { center: (100.0, 0.0), radius: 5.0, heading: (0.0, 1.0), recent: &[] };
+        let site = ProbeSite {
+            center: (100.0, 0.0),
+            radius: 5.0,
+            heading: (0.0, 1.0),
+            recent: &[],
+            recent_bound: (0.0, 0.0, 0.0),
+        };
         assert_eq!(table.contact(&block(), &site).alpha_rad, 0.0);
     }
 }
