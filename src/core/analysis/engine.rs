@@ -54,8 +54,10 @@ pub struct SampleResult {
     pub t_m_um: f64,
     /// Predicted XY force, N, when a force model is given.
     pub force_n: Option<f64>,
-    /// A move straight down (no XY motion): no leading half to measure.
+    /// A move straight down (no XY motion) into material: no leading half to measure.
     pub plunge: bool,
+    /// The force model was evaluated outside its experiments' design region.
+    pub force_extrapolated: bool,
 }
 
 struct Chunk {
@@ -150,7 +152,8 @@ pub fn simulate(
             ad_mm: 0.0,
             t_m_um: 0.0,
             force_n: force_model.map(|_| 0.0),
-            plunge: plunge && cut > 0,
+            plunge: plunge && slices.iter().take(cut).any(|s| s.raster.any_material_near(p.0, p.1, r)),
+            force_extrapolated: false,
         };
         if cut > 0 && !plunge {
             let recent_bound = match chunk.start {
@@ -222,7 +225,9 @@ fn evaluate(
         let thickness = s.z_top - tip.max(s.z_bottom);
         result.ad_mm += thickness;
         if let Some(m) = model {
-            force += m.force_n(t_m(c), r * c.alpha_rad, thickness);
+            let (t, l) = (t_m(c), r * c.alpha_rad);
+            force += m.force_n(t, l, thickness);
+            result.force_extrapolated |= !m.coded(t, l).within_design_region();
         }
     }
     if model.is_some() {

@@ -187,6 +187,12 @@ fn assemble(
     if report.plunge_samples > 0 {
         warnings.push(format!("{} samples plunge straight down (no leading half to measure)", report.plunge_samples));
     }
+    if report.force_extrapolated_mm > 0.0 {
+        warnings.push(format!(
+            "on {:.1} mm of the path the force model is extrapolated beyond its experiments (|X| > √2): treat those forces as indications",
+            report.force_extrapolated_mm
+        ));
+    }
     if spec.force_model.is_none() {
         warnings.push("no force model: forces are not predicted".to_string());
     }

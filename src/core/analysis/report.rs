@@ -121,6 +121,7 @@ pub struct ReportBuilder {
     pub rapid_in_material: Vec<u32>,
     pub plunge_samples: usize,
     pub samples: usize,
+    extrapolated_mm: f64,
     regions: Vec<CriticalRegion>,
     open: Option<CriticalRegion>,
     bins: Vec<Option<SampleResult>>,
@@ -147,6 +148,7 @@ impl ReportBuilder {
             rapid_in_material: Vec::new(),
             plunge_samples: 0,
             samples: 0,
+            extrapolated_mm: 0.0,
             regions: Vec::new(),
             open: None,
             bins: vec![None; series_points],
@@ -183,6 +185,9 @@ impl ReportBuilder {
             return;
         }
         let w = r.sample.step_mm;
+        if r.force_extrapolated {
+            self.extrapolated_mm += w;
+        }
         if alpha_deg > 0.0 {
             self.cutting_length_mm += w;
             self.alpha.add(alpha_deg, w);
@@ -276,6 +281,7 @@ impl ReportBuilder {
             rapid_in_material: self.rapid_in_material,
             plunge_samples: self.plunge_samples,
             samples: self.samples,
+            force_extrapolated_mm: self.extrapolated_mm,
         }
     }
 }
@@ -294,4 +300,6 @@ pub struct FinishedReport {
     pub rapid_in_material: Vec<u32>,
     pub plunge_samples: usize,
     pub samples: usize,
+    /// Cut length where the force model was extrapolated beyond its design region, mm.
+    pub force_extrapolated_mm: f64,
 }
