@@ -109,6 +109,12 @@ async fn bad_nc_and_bad_contours_are_refused_naming_the_line_or_vertex() {
     assert_eq!(a.status, 422, "{}", a.text);
     assert!(a.body["errors"][0]["field"].as_str().unwrap().starts_with("stock.contour.outer"), "{}", a.text);
 
+    let endless = json!({"program": {"gcode": "G1 X99999 F100\nG1 X-99999\nG1 X99999\nG1 X-99999\n"}, "tool_type": "square", "diameter_mm": 10,
+        "stock": stock.clone(), "sample_spacing_mm": 0.0001});
+    assert_problem(&app.post("/v1/analysis", endless).await, 422, Some("sample_spacing_mm"));
+    let far = json!({"program": {"gcode": "G1 X1e9 F100\n"}, "tool_type": "square", "diameter_mm": 10, "stock": stock.clone()});
+    assert_eq!(app.post("/v1/analysis", far).await.status, 422);
+
     let no_stock = json!({"program": {"gcode": "G1 X1 F100\n"}, "tool_type": "square", "diameter_mm": 10, "stock": {}});
     assert_problem(&app.post("/v1/analysis", no_stock).await, 422, Some("stock"));
     assert_eq!(app.get("/v1/jobs").await.body["total"], 0);

@@ -37,6 +37,10 @@ pub const MAX_CELL_MM: f64 = 0.5;
 pub const MAX_RASTER_CELLS: f64 = 128.0 * 1024.0 * 1024.0;
 /// Most series points a request may ask for.
 pub const MAX_SERIES_POINTS: usize = 100_000;
+/// Most samples one analysis takes (5 km of path at 0.05 mm).
+pub const MAX_SAMPLES: f64 = 100_000_000.0;
+/// Coordinates beyond ±100 m are refused, mm.
+pub const MAX_COORDINATE_MM: f64 = 100_000.0;
 
 /// What to analyse and how finely.
 #[derive(Debug, Clone)]
@@ -114,7 +118,9 @@ pub fn resolution(spec: &AnalysisSpec, bounds: Rect, slices: usize) -> (f64, f64
     (spacing, wanted.max(floor))
 }
 
-fn validate(path: &Toolpath, spec: &AnalysisSpec) -> Result<(), CoreError> {
+/// Checks that `path` and `spec` can be analysed: every value in range, every feed move
+/// with a feed, and a sample count within [`MAX_SAMPLES`].
+pub fn check(path: &Toolpath, spec: &AnalysisSpec) -> Result<(), CoreError> {
     require_positive("tool.diameter_mm", spec.tool.diameter_mm)?;
     if let Some(s) = spec.sample_spacing_mm {
         require_positive("sample_spacing_mm", s)?;
@@ -135,17 +141,39 @@ fn validate(path: &Toolpath, spec: &AnalysisSpec) -> Result<(), CoreError> {
     if spec.stock.is_empty() {
         return Err(CoreError::invalid("stock", "no stock region given"));
     }
+    let b = region::union_bounds(&spec.stock);
+    if [b.x_min, b.y_min, b.x_max, b.y_max, spec.z_top, spec.z_bottom].iter().any(|v| v.abs() > MAX_COORDINATE_MM) {
+        return Err(CoreError::invalid("stock", format!("coordinates beyond ±{MAX_COORDINATE_MM} mm")));
+    }
     for m in &path.moves {
         if !matches!(m.motion, Motion::Rapid) && m.feed_mm_min.is_none_or(|f| f <= 0.0) {
             return Err(CoreError::invalid("program", format!("line {}: a feed move with no feed (F)", m.line)));
         }
+        let far =
+            [m.start.x, m.start.y, m.start.z, m.end.x, m.end.y, m.end.z].iter().any(|v| v.abs() > MAX_COORDINATE_MM);
+        if far {
+            return Err(CoreError::invalid(
+                "program",
+                format!("line {}: coordinates beyond ±{MAX_COORDINATE_MM} mm", m.line),
+            ));
+        }
+    }
+    let (spacing, _) = resolution(spec, b, 1);
+    let samples: f64 = path.moves.iter().map(|m| (sampling::move_length(m) / spacing).ceil().max(1.0)).sum();
+    if samples > MAX_SAMPLES {
+        return Err(CoreError::invalid(
+            "sample_spacing_mm",
+            format!(
+                "the path needs {samples:.0} samples at {spacing} mm; at most {MAX_SAMPLES:.0}: sample more coarsely"
+            ),
+        ));
     }
     Ok(())
 }
 
 /// Analyses `path` in the layer of `spec`.
 pub fn analyze(path: &Toolpath, spec: &AnalysisSpec, progress: &dyn Progress) -> Result<Analysis, CoreError> {
-    validate(path, spec)?;
+    check(path, spec)?;
     let bounds = region::union_bounds(&spec.stock);
     let levels = slices::slice_levels(path, spec.z_bottom, spec.z_top);
     let (spacing, cell) = resolution(spec, bounds, levels.len() - 1);
@@ -192,6 +220,14 @@ fn assemble(
             "on {:.1} mm of the path the force model is extrapolated beyond its experiments (|X| > √2): treat those forces as indications",
             report.force_extrapolated_mm
         ));
+    }
+    if spec.default_spindle_rpm.is_none() {
+        if let Some(m) = path.moves.iter().find(|m| !matches!(m.motion, Motion::Rapid) && m.spindle_rpm.is_none()) {
+            warnings.push(format!(
+                "no spindle speed from line {} on (no S word and none in the request): chip thickness and force are not computed there",
+                m.line
+            ));
+        }
     }
     if spec.force_model.is_none() {
         warnings.push("no force model: forces are not predicted".to_string());

@@ -4,10 +4,11 @@
 use super::analysis_result::AnalysisResult;
 use super::conditions::{ForceModelRef, NamedRef, ToolGeometry, ToolRef};
 use super::inputs::{read_program, read_stock, ProgramInput, StockInput};
-use crate::core::analysis::{analyze, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_SERIES_POINTS};
+use crate::core::analysis::{analyze, check, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_SERIES_POINTS};
 use crate::core::operation::Operation;
 use crate::core::progress::Progress;
 use crate::core::tool::ToolType;
+use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
 use crate::service::lookup;
@@ -84,14 +85,6 @@ pub async fn prepare(pool: &SqlitePool, request: AnalysisRequest) -> Result<Anal
     }
     v.check(request.series_points <= MAX_SERIES_POINTS, "series_points", format!("at most {MAX_SERIES_POINTS}"));
     v.finish()?;
-    let (program, stock) = (request.program.clone(), request.stock.clone());
-    tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
-        read_program(&program)?;
-        read_stock(&stock)?;
-        Ok(())
-    })
-    .await
-    .map_err(|e| ApiError::Internal(e.to_string()))??;
 
     let material = lookup::material(pool, request.material_id, request.material.as_deref()).await?;
     let tool = lookup::tool(pool, request.tool_id, request.tool_type, request.diameter_mm).await?;
@@ -114,7 +107,7 @@ pub async fn prepare(pool: &SqlitePool, request: AnalysisRequest) -> Result<Anal
             .await?
             .map(|c| c.data.spindle_rpm),
     };
-    Ok(AnalysisPrepared {
+    let prepared = AnalysisPrepared {
         material: NamedRef { id: material.id, name: material.data.name },
         tool: ToolRef {
             id: tool.id,
@@ -130,7 +123,18 @@ pub async fn prepare(pool: &SqlitePool, request: AnalysisRequest) -> Result<Anal
         machine: NamedRef { id: machine.id, name: machine.data.name.clone() },
         rapid_mm_min: machine.data.rapid_mm_min,
         default_spindle_rpm,
+    };
+    // Parse and check everything now, off the async runtime, so that bad input is a 4xx
+    // at submission and never a job that fails later.
+    let checked = prepared.clone();
+    tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
+        let (path, spec) = build(&request, &checked)?;
+        check(&path, &spec)?;
+        Ok(())
     })
+    .await
+    .map_err(|e| ApiError::Internal(e.to_string()))??;
+    Ok(prepared)
 }
 
 /// Runs the analysis.
@@ -140,8 +144,15 @@ pub fn run(
     progress: &dyn Progress,
 ) -> Result<AnalysisResult, CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
-    let path = read_program(&request.program).map_err(reread)?;
-    let stock = read_stock(&request.stock).map_err(reread)?;
+    let (path, spec) = build(&request, &prepared).map_err(reread)?;
+    let analysis = analyze(&path, &spec, progress)?;
+    Ok(AnalysisResult::new(prepared, path.moves.len(), analysis))
+}
+
+/// Reads the program and the stock and puts the analysis together.
+fn build(request: &AnalysisRequest, prepared: &AnalysisPrepared) -> Result<(Toolpath, AnalysisSpec), ApiError> {
+    let path = read_program(&request.program)?;
+    let stock = read_stock(&request.stock)?;
     let spec = AnalysisSpec {
         tool: prepared.tool.geometry.into(),
         stock: stock.regions,
@@ -156,6 +167,5 @@ pub fn run(
         alpha_limit_deg: request.alpha_limit_deg.unwrap_or(DEFAULT_ALPHA_LIMIT_DEG),
         series_points: request.series_points,
     };
-    let analysis = analyze(&path, &spec, progress)?;
-    Ok(AnalysisResult::new(prepared, path.moves.len(), analysis))
+    Ok((path, spec))
 }
