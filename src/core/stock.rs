@@ -8,6 +8,9 @@
 pub const SDF_CLAMP_CELLS: f64 = 2.0;
 /// Stored units per cell of distance (so ±2 cells fit an i8).
 const UNITS_PER_CELL: f64 = 63.0;
+/// A nearest cell at least this far from the boundary (stored units: √2/2 of a cell,
+/// rounded up) decides a probe without interpolation.
+const DECISIVE: u8 = 45;
 /// The stored value of "far inside material" / "far outside".
 const FULL: i8 = 126;
 /// Segments shorter than this are treated as a single disc, mm.
@@ -205,6 +208,12 @@ impl Raster {
         }
         let (tx, ty) = (fx - i as f64, fy - j as f64);
         let k = j * self.nx + i;
+        // The distance is 1-Lipschitz: a nearest cell more than half a diagonal inside or
+        // outside decides alone.
+        let nearest = self.f[k + usize::from(tx > 0.5) + if ty > 0.5 { self.nx } else { 0 }];
+        if nearest.unsigned_abs() >= DECISIVE {
+            return nearest > 0;
+        }
         let (a, b) = (f64::from(self.f[k]), f64::from(self.f[k + 1]));
         let (c, d) = (f64::from(self.f[k + self.nx]), f64::from(self.f[k + self.nx + 1]));
         let bottom = a + (b - a) * tx;
