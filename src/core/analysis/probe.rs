@@ -114,15 +114,11 @@ impl AngleTable {
                 // wall the tool circle touches tangentially (a pass along cut ground), not
                 // engagement.
                 let tangent_wall = (prev && a == 0) || (now && b == span);
-                if tangent_wall {
-                } else if prev {
-                    engaged += at - a;
-                    entry.get_or_insert(a);
-                    exit = at;
-                } else {
-                    engaged += b - at;
-                    entry.get_or_insert(at);
-                    exit = b;
+                let run = if prev { (a, at) } else { (at, b) };
+                if !tangent_wall {
+                    engaged += run.1 - run.0;
+                    entry.get_or_insert(run.0);
+                    exit = run.1;
                 }
             }
             prev = now;
