@@ -221,6 +221,12 @@ fn assemble(
             report.force_extrapolated_mm
         ));
     }
+    if !spec.tool.tool_type.cuts_with_flank() {
+        warnings.push(
+            "ball end mill: the stock simulation treats the tool as a cylinder of its diameter (2.5-D side milling)"
+                .to_string(),
+        );
+    }
     if spec.default_spindle_rpm.is_none() {
         if let Some(m) = path.moves.iter().find(|m| !matches!(m.motion, Motion::Rapid) && m.spindle_rpm.is_none()) {
             warnings.push(format!(
