@@ -39,6 +39,17 @@ impl PointCurvature {
         }
     }
 
+    /// Turn direction: +1 left (counter-clockwise), −1 right, 0 straight or a sharp corner.
+    pub fn turn(&self) -> i8 {
+        if self.corner || self.kappa.abs() < STRAIGHT_CURVATURE {
+            0
+        } else if self.kappa > 0.0 {
+            1
+        } else {
+            -1
+        }
+    }
+
     /// Centre of curvature of the point `p` moving along unit tangent `t`.
     pub fn center(&self, p: (f64, f64), t: (f64, f64)) -> Option<(f64, f64)> {
         if self.corner || self.kappa.abs() < STRAIGHT_CURVATURE {

@@ -80,6 +80,39 @@ async fn both_real_programs_analyse_through_the_api() {
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn curvature_radius_centre_and_turn_come_with_every_series_point() {
+    let app = TestApp::start().await;
+    // A counter-clockwise circle of radius 20 about (50, 50), as CAM writes it: minute G1 segments.
+    let mut gcode = String::from("G21 G90\nS9600 M3\nG0 X70 Y50 Z5\nG1 Z-5 F500\n");
+    for i in 1..=720 {
+        let a = i as f64 / 720.0 * std::f64::consts::TAU;
+        gcode.push_str(&format!("G1 X{:.4} Y{:.4} F2000\n", 50.0 + 20.0 * a.cos(), 50.0 + 20.0 * a.sin()));
+    }
+    let body = json!({
+        "program": {"gcode": gcode}, "tool_type": "square", "diameter_mm": 10,
+        "stock": {"box": {"x_min": 0, "y_min": 0, "z_min": -10, "x_max": 100, "y_max": 100, "z_max": 0}},
+        "series_points": 40
+    });
+    let a = app.post_wait("/v1/analysis", body).await;
+    let series = &a.body["result"]["series"];
+    let n = series["s_mm"].as_array().unwrap().len();
+    let mut checked = 0;
+    for i in 0..n {
+        if series["line"][i].as_u64().unwrap() < 100 || series["line"][i].as_u64().unwrap() > 700 {
+            continue;
+        }
+        assert!(close(&series["curvature_radius_mm"][i], 20.0, 0.2), "{}", series["curvature_radius_mm"][i]);
+        assert!(
+            close(&series["curvature_center"][i][0], 50.0, 0.2) && close(&series["curvature_center"][i][1], 50.0, 0.2)
+        );
+        assert_eq!(series["turn"][i], 1);
+        checked += 1;
+    }
+    assert!(checked > 10, "{checked}");
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_dxf_pocket_is_a_stock() {
     let app = TestApp::start().await;
     let body = json!({

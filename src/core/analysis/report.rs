@@ -106,6 +106,11 @@ pub struct Series {
     pub ad_mm: Vec<f64>,
     pub feed_mm_min: Vec<f64>,
     pub curvature_radius_mm: Vec<Option<f64>>,
+    /// Centre of curvature of the tool-centre path (null on straight stretches and at
+    /// sharp corners).
+    pub curvature_center: Vec<Option<(f64, f64)>>,
+    /// Turn direction: +1 left (counter-clockwise), −1 right, 0 straight.
+    pub turn: Vec<i8>,
 }
 
 /// Collects the sample results into the report.
@@ -268,6 +273,9 @@ impl ReportBuilder {
             series.feed_mm_min.push(r.sample.feed_mm_min);
             let radius = r.sample.curvature.radius_mm();
             series.curvature_radius_mm.push(radius.is_finite().then_some(radius));
+            let k = r.sample.curvature;
+            series.curvature_center.push(k.center((r.sample.p.x, r.sample.p.y), r.sample.heading));
+            series.turn.push(k.turn());
         }
         FinishedReport {
             alpha_deg: self.alpha.stats(),

@@ -135,6 +135,12 @@ pub struct SeriesDto {
     pub ad_mm: Vec<f64>,
     pub feed_mm_min: Vec<f64>,
     pub curvature_radius_mm: Vec<Option<f64>>,
+    /// Centre of curvature `[x, y]` of the tool-centre path (null when straight or at a
+    /// sharp corner).
+    #[schema(value_type = Vec<Option<Vec<f64>>>)]
+    pub curvature_center: Vec<Option<(f64, f64)>>,
+    /// Turn direction: +1 left (counter-clockwise), −1 right, 0 straight.
+    pub turn: Vec<i8>,
 }
 
 impl From<Series> for SeriesDto {
@@ -154,6 +160,8 @@ impl From<Series> for SeriesDto {
             ad_mm: s.ad_mm,
             feed_mm_min: s.feed_mm_min,
             curvature_radius_mm: s.curvature_radius_mm,
+            curvature_center: s.curvature_center,
+            turn: s.turn,
         }
     }
 }
