@@ -8,6 +8,7 @@ pub mod conditions;
 pub mod curvature;
 pub mod engagement;
 pub mod error;
+pub mod feed;
 #[cfg(test)]
 pub(crate) mod fixtures;
 pub mod force_fit;
