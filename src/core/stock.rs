@@ -228,6 +228,13 @@ impl Raster {
 
     /// Removes the area swept by a disc of radius `r` moving from `a` to `b` (a capsule).
     pub fn clear_capsule(&mut self, a: (f64, f64), b: (f64, f64), r: f64) {
+        self.clear_capsule_after(a, b, r, false);
+    }
+
+    /// As [`Raster::clear_capsule`]; with `disc_at_a_cleared`, the disc about `a` was
+    /// cleared by the previous capsule of the path, so cells behind `a` (whose nearest
+    /// point of the segment is `a`) already hold their distance and are skipped.
+    pub fn clear_capsule_after(&mut self, a: (f64, f64), b: (f64, f64), r: f64, disc_at_a_cleared: bool) {
         let reach = SDF_CLAMP_CELLS * self.cell_mm;
         let y_lo = a.1.min(b.1) - r - reach;
         let y_hi = a.1.max(b.1) + r + reach;
@@ -253,7 +260,7 @@ impl Raster {
             let (in_from, in_to) = inner.row_interval(y).map_or((from, from), |(l, h)| self.cell_range(l, h));
             let row = j * self.nx;
             for i in (from..in_from.max(from)).chain(in_to.max(in_from)..to) {
-                if self.f[row + i] == -FULL {
+                if self.f[row + i] == -FULL || (disc_at_a_cleared && outer.behind_start((self.col_x(i), y))) {
                     continue;
                 }
                 // Material stays where it is farther than r from the segment.
@@ -286,6 +293,11 @@ impl Capsule {
         let len = dx.hypot(dy);
         let dir = (len > DEGENERATE_SEGMENT_MM).then(|| ((dx / len, dy / len), len));
         Capsule { a, b, r, dir }
+    }
+
+    /// `true` when `q` projects before the segment's start (its nearest point is `a`).
+    fn behind_start(&self, q: (f64, f64)) -> bool {
+        self.dir.is_some_and(|((ux, uy), _)| (q.0 - self.a.0) * ux + (q.1 - self.a.1) * uy <= 0.0)
     }
 
     /// Distance from `q` to the segment.

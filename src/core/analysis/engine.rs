@@ -22,6 +22,8 @@ const UM_PER_MM: f64 = 1000.0;
 const MIN_CUTTING_POINT_RATIO: f64 = 0.05;
 /// Engagement this close to a full slot has no side: the feed ratio is 1.
 const SLOT_ALPHA_RAD: f64 = 0.99 * std::f64::consts::PI;
+/// A sample whose XY heading is shorter than this has none: it plunges straight down.
+const PLUNGE_HEADING: f64 = 0.5;
 /// Samples between progress reports and cancellation checks.
 const PROGRESS_EVERY: usize = 4096;
 
@@ -67,15 +69,18 @@ struct Chunk {
     recent: Vec<(f64, f64)>,
     /// Largest distance from `start` to a recent centre, mm.
     reach: f64,
+    /// The disc about `start` is already in the rasters (a previous flush ended there).
+    start_cleared: bool,
 }
 
 impl Chunk {
     fn flush(&mut self, slices: &mut [Slice], radius: f64) {
         if let (Some(a), Some(&b)) = (self.start, self.recent.last()) {
             for s in slices.iter_mut().take(self.cut) {
-                s.raster.clear_capsule(a, b, radius);
+                s.raster.clear_capsule_after(a, b, radius, self.start_cleared);
             }
             self.start = Some(b);
+            self.start_cleared = true;
             self.recent.clear();
             self.recent.push(b);
             self.reach = 0.0;
@@ -113,8 +118,14 @@ pub fn simulate(
     let table = AngleTable::default();
     let r = cutter.radius_mm;
     let cos_turn = CHUNK_TURN_DEG.to_radians().cos();
-    let mut chunk =
-        Chunk { start: None, heading: (0.0, 0.0), cut: 0, recent: Vec::with_capacity(CHUNK_SAMPLES + 1), reach: 0.0 };
+    let mut chunk = Chunk {
+        start: None,
+        heading: (0.0, 0.0),
+        cut: 0,
+        recent: Vec::with_capacity(CHUNK_SAMPLES + 1),
+        reach: 0.0,
+        start_cleared: false,
+    };
     let mut contacts = vec![Contact::default(); slices.len()];
     let mut s_mm = 0.0;
     let mut n = 0usize;
@@ -140,10 +151,11 @@ pub fn simulate(
                 cut,
                 recent: std::mem::take(&mut chunk.recent),
                 reach: 0.0,
+                start_cleared: false,
             };
             chunk.recent.clear();
         }
-        let plunge = sample.heading.0 == 0.0 && sample.heading.1 == 0.0;
+        let plunge = sample.heading.0.abs() + sample.heading.1.abs() < PLUNGE_HEADING;
         let mut result = SampleResult {
             sample: *sample,
             s_mm,
