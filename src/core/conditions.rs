@@ -59,6 +59,14 @@ pub fn ball_effective_diameter_mm(diameter_mm: f64, ad_mm: f64) -> f64 {
     }
 }
 
+/// The centre `(t0 µm, L0 mm)` of a force model's coded variables for a tool of radius
+/// `r` at standard straight conditions: the chip thickness and engagement arc of that
+/// cut (seed 001 Table 2; MODEL.md §3).
+pub fn standard_centres(tool_radius_mm: f64, conditions: CuttingConditions) -> Result<(f64, f64), CoreError> {
+    let e = engagement(Contour::Straight, tool_radius_mm, conditions.rd_mm)?;
+    Ok((max_chip_thickness_mm(conditions.fz_mm, e.angle_rad) * UM_PER_MM, e.arc_length_mm))
+}
+
 /// What the engagement model predicts for a straight cut at the conditions.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct PredictedEngagement {
@@ -206,6 +214,17 @@ mod tests {
         let r = evaluate_conditions(&square(10.0), c, Some(&seed_001_ten_mm())).unwrap();
         assert!(!r.force.unwrap().within_design_region);
         assert!(r.warnings[0].contains("design region"));
+    }
+
+    #[test]
+    fn the_coded_centres_are_the_standard_cut_of_seed_001_table_2() {
+        for (d, rd, fz, t0, l0) in
+            [(6.0, 0.3, 0.04, 17.4, 1.35), (8.0, 0.4, 0.07, 30.5, 1.80), (10.0, 0.5, 0.10, 43.6, 2.26)]
+        {
+            let c = CuttingConditions { spindle_rpm: 9600.0, fz_mm: fz, rd_mm: rd, ad_mm: d };
+            let (t, l) = standard_centres(d / 2.0, c).unwrap();
+            assert!(approx_eq(t, t0, 0.05) && approx_eq(l, l0, 0.005), "D{d}: {t} {l}");
+        }
     }
 
     #[test]

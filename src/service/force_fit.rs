@@ -1,6 +1,7 @@
 //! `POST /v1/tools/{id}/force-model/fit`: fit the response-surface force model to a
 //! shop's measured (t_m, L, F_xy) triples and, when asked, store it.
 
+use crate::core::conditions::standard_centres;
 use crate::core::force_fit::{fit_force_model, FitSpec, ForceSample};
 use crate::core::force_model::{Coefficients, ForceModel};
 use crate::core::operation::Operation;
@@ -20,8 +21,6 @@ use utoipa::ToSchema;
 const DT_UM_PER_MM_DIAMETER: f64 = 1.5;
 /// δL of the coded arc length when no model gives one: 0.0436·D mm (MODEL.md §3, assumed).
 const DL_PER_MM_DIAMETER: f64 = 0.0436;
-/// Micrometres per millimetre.
-const UM_PER_MM: f64 = 1000.0;
 /// Most measurements one fit takes (the papers fitted 13-run designs).
 pub const MAX_FIT_POINTS: usize = 10_000;
 
@@ -132,10 +131,8 @@ pub async fn fit(
     let (t0, l0) = match (&current, &standard) {
         (Some(m), _) => (Some(m.data.t0_um), Some(m.data.l0_mm)),
         (None, Some(s)) => {
-            let c = s.data.conditions();
-            let e = crate::core::engagement::engagement(crate::core::engagement::Contour::Straight, d / 2.0, c.rd_mm)?;
-            let t = crate::core::engagement::max_chip_thickness_mm(c.fz_mm, e.angle_rad) * UM_PER_MM;
-            (Some(t), Some(e.arc_length_mm))
+            let (t, l) = standard_centres(d / 2.0, s.data.conditions())?;
+            (Some(t), Some(l))
         }
         (None, None) => (None, None),
     };

@@ -2,7 +2,7 @@
 //! overloads the tool.
 
 use super::analysis_result::AnalysisResult;
-use super::conditions::{ForceModelRef, NamedRef, ToolGeometry, ToolRef};
+use super::conditions::{ForceModelRef, NamedRef, ToolRef};
 use super::inputs::{read_program, read_stock, ProgramInput, StockInput};
 use crate::core::analysis::{analyze, check, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_SERIES_POINTS};
 use crate::core::operation::Operation;
@@ -88,12 +88,7 @@ pub async fn prepare(pool: &SqlitePool, request: AnalysisRequest) -> Result<Anal
 
     let material = lookup::material(pool, request.material_id, request.material.as_deref()).await?;
     let tool = lookup::tool(pool, request.tool_id, request.tool_type, request.diameter_mm).await?;
-    let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(|m| ForceModelRef {
-        id: m.id,
-        source: m.data.source,
-        reference: m.data.reference.clone(),
-        model: m.data.model(),
-    });
+    let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(ForceModelRef::from);
     let machine = match request.machine_id {
         Some(id) => {
             sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = ?").bind(id).fetch_optional(pool).await?
@@ -109,16 +104,7 @@ pub async fn prepare(pool: &SqlitePool, request: AnalysisRequest) -> Result<Anal
     };
     let prepared = AnalysisPrepared {
         material: NamedRef { id: material.id, name: material.data.name },
-        tool: ToolRef {
-            id: tool.id,
-            name: tool.data.name.clone(),
-            geometry: ToolGeometry {
-                tool_type: tool.data.tool_type,
-                diameter_mm: tool.data.diameter_mm,
-                flutes: tool.data.flutes,
-                corner_radius_mm: tool.data.corner_radius_mm,
-            },
-        },
+        tool: ToolRef::from(&tool),
         force_model,
         machine: NamedRef { id: machine.id, name: machine.data.name.clone() },
         rapid_mm_min: machine.data.rapid_mm_min,

@@ -9,6 +9,8 @@ use crate::core::tool::{EndMill, ToolType};
 use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
 use crate::service::lookup;
+use crate::service::resources::force_models::ForceModelRecord;
+use crate::service::resources::tools::Tool;
 use crate::service::resources::Source;
 use serde::{Deserialize, Serialize};
 use sqlx::SqlitePool;
@@ -113,6 +115,27 @@ pub struct ForceModelRef {
     pub model: ForceModel,
 }
 
+impl From<&Tool> for ToolRef {
+    fn from(tool: &Tool) -> Self {
+        ToolRef {
+            id: tool.id,
+            name: tool.data.name.clone(),
+            geometry: ToolGeometry {
+                tool_type: tool.data.tool_type,
+                diameter_mm: tool.data.diameter_mm,
+                flutes: tool.data.flutes,
+                corner_radius_mm: tool.data.corner_radius_mm,
+            },
+        }
+    }
+}
+
+impl From<ForceModelRecord> for ForceModelRef {
+    fn from(m: ForceModelRecord) -> Self {
+        ForceModelRef { id: m.id, source: m.data.source, model: m.data.model(), reference: m.data.reference }
+    }
+}
+
 /// Checks the request and resolves it against the database.
 pub async fn prepare(pool: &SqlitePool, request: ConditionsRequest) -> Result<ConditionsPrepared, ApiError> {
     let mut v = Validator::new();
@@ -165,23 +188,14 @@ pub async fn prepare(pool: &SqlitePool, request: ConditionsRequest) -> Result<Co
         rd_mm: pick("rd_mm", request.rd_mm, base.rd_mm),
         ad_mm: pick("ad_mm", request.ad_mm, base.ad_mm),
     };
-    let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(|m| ForceModelRef {
-        id: m.id,
-        source: m.data.source,
-        reference: m.data.reference.clone(),
-        model: m.data.model(),
-    });
-    let geometry = ToolGeometry {
-        tool_type: tool.data.tool_type,
-        diameter_mm: tool.data.diameter_mm,
-        flutes: tool.data.flutes,
-        corner_radius_mm: tool.data.corner_radius_mm,
-    };
+    let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(ForceModelRef::from);
+    let tool_ref = ToolRef::from(&tool);
+    let geometry = tool_ref.geometry;
     // Refuse now what the computation would refuse later.
     evaluate_conditions(&geometry.into(), conditions, force_model.as_ref().map(|f| &f.model))?;
     Ok(ConditionsPrepared {
         material: NamedRef { id: material.id, name: material.data.name },
-        tool: ToolRef { id: tool.id, name: tool.data.name, geometry },
+        tool: tool_ref,
         operation,
         standard: StandardRef {
             id: standard.id,
