@@ -60,6 +60,9 @@ pub struct SampleResult {
     pub plunge: bool,
     /// The force model was evaluated outside its experiments' design region.
     pub force_extrapolated: bool,
+    /// Feed at the cutting point over the feed at the tool centre (MODEL.md §2, seed 000
+    /// Eq. 1); 1 where the tool does not cut.
+    pub cutting_point_ratio: f64,
 }
 
 struct Chunk {
@@ -166,6 +169,7 @@ pub fn simulate(
             force_n: force_model.map(|_| 0.0),
             plunge: plunge && slices.iter().take(cut).any(|s| s.raster.any_material_near(p.0, p.1, r)),
             force_extrapolated: false,
+            cutting_point_ratio: 1.0,
         };
         if cut > 0 && !plunge {
             let recent_bound = match chunk.start {
@@ -227,6 +231,7 @@ fn evaluate(
     let ratio = cutting_point_ratio(&result.sample, &best, r);
     let t_m = |c: &Contact| max_chip_thickness_mm(fz_c_mm * ratio, c.alpha_rad) * UM_PER_MM;
     result.contact = best;
+    result.cutting_point_ratio = ratio;
     result.arc_length_mm = r * best.alpha_rad;
     result.t_m_um = t_m(&best);
     let mut force = 0.0;

@@ -173,6 +173,17 @@ pub fn check(path: &Toolpath, spec: &AnalysisSpec) -> Result<(), CoreError> {
 
 /// Analyses `path` in the layer of `spec`.
 pub fn analyze(path: &Toolpath, spec: &AnalysisSpec, progress: &dyn Progress) -> Result<Analysis, CoreError> {
+    analyze_with(path, spec, progress, |_| {})
+}
+
+/// Analyses `path` as [`analyze`] does, also handing every sample's result to `sink`
+/// (the feed optimiser keeps what it needs of them).
+pub fn analyze_with(
+    path: &Toolpath,
+    spec: &AnalysisSpec,
+    progress: &dyn Progress,
+    mut sink: impl FnMut(&engine::SampleResult),
+) -> Result<Analysis, CoreError> {
     check(path, spec)?;
     let bounds = region::union_bounds(&spec.stock);
     let levels = slices::slice_levels(path, spec.z_bottom, spec.z_top);
@@ -192,7 +203,10 @@ pub fn analyze(path: &Toolpath, spec: &AnalysisSpec, progress: &dyn Progress) ->
         total_samples,
     };
     let mut builder = ReportBuilder::new(spec.alpha_limit_deg, spec.tool.diameter_mm, spec.series_points, total_length);
-    simulate(path, cutter, &mut slices, progress, |r| builder.add(r))?;
+    simulate(path, cutter, &mut slices, progress, |r| {
+        builder.add(r);
+        sink(r);
+    })?;
     progress.report(1.0);
     let report = builder.finish();
     Ok(assemble(path, spec, report, &slices, &initial, spacing, cell))

@@ -64,8 +64,9 @@ pub struct Stats {
     pub std_dev: f64,
 }
 
-#[derive(Default, Clone, Copy)]
-struct Accumulator {
+/// Accumulates length-weighted [`Stats`].
+#[derive(Debug, Default, Clone, Copy)]
+pub struct Accumulator {
     weight: f64,
     sum: f64,
     sum_sq: f64,
@@ -73,14 +74,14 @@ struct Accumulator {
 }
 
 impl Accumulator {
-    fn add(&mut self, value: f64, weight: f64) {
+    pub fn add(&mut self, value: f64, weight: f64) {
         self.weight += weight;
         self.sum += value * weight;
         self.sum_sq += value * value * weight;
         self.max = self.max.max(value);
     }
 
-    fn stats(&self) -> Stats {
+    pub fn stats(&self) -> Stats {
         if self.weight <= 0.0 {
             return Stats::default();
         }

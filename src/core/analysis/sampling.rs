@@ -26,8 +26,9 @@ pub struct Sample {
     pub curvature: PointCurvature,
 }
 
-/// Position on `m` at parameter `t` ∈ [0, 1], and its XY tangent (not normalised).
-fn point_on(m: &Move, t: f64) -> (P3, (f64, f64)) {
+/// Position on `m` at parameter `t` ∈ [0, 1] (a fraction of its length), and its XY
+/// tangent (not normalised).
+pub fn point_on(m: &Move, t: f64) -> (P3, (f64, f64)) {
     match m.motion {
         Motion::Rapid | Motion::Linear => {
             let p = P3::new(

@@ -1,7 +1,7 @@
 //! The feed that holds the cutting force at a target (MODEL.md §3, "constant cutting
 //! force (feed-forward)"; seed 002 §2.3; seed 001).
 
-use crate::core::force_model::ForceModel;
+use crate::core::force_model::{ForceModel, DESIGN_REGION_CODED_RADIUS};
 use std::f64::consts::FRAC_PI_2;
 
 /// Micrometres per millimetre.
@@ -49,7 +49,12 @@ pub fn constant_force_feed(model: &ForceModel, target_force_n: f64, cut: Cut, li
     if cut.alpha_rad <= 0.0 {
         return ForceFeed { feed_mm_min: limits.max_feed_mm_min, unclamped_mm_min: None, feasible: true };
     }
-    let Some(t_m_um) = model.chip_thickness_for_force_um(target_force_n, cut.arc_length_mm, cut.ad_mm) else {
+    // Below the experiments' range of arc lengths the quadratic model turns upwards again
+    // (it would predict a large force on a light cut): solve at the range's lower edge,
+    // which overestimates the force there and so errs on the safe side.
+    let lowest_modelled_mm = model.l0_mm - DESIGN_REGION_CODED_RADIUS * model.dl_mm;
+    let arc_length_mm = cut.arc_length_mm.max(lowest_modelled_mm);
+    let Some(t_m_um) = model.chip_thickness_for_force_um(target_force_n, arc_length_mm, cut.ad_mm) else {
         return infeasible;
     };
     // t_m = fz_p · sin α for α ≤ 90°, else fz_p (MODEL.md §2).
@@ -107,6 +112,16 @@ mod tests {
             constant_force_feed(&seed_001_ten_mm(), 269.1, cut(Contour::Concave { surface_radius_mm: 6.0 }), limits());
         assert!(!f.feasible);
         assert!((f.feed_mm_min - limits().min_feed_mm_min).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_cut_lighter_than_the_experiments_is_solved_at_their_edge_and_not_called_infeasible() {
+        for alpha_deg in [2.0f64, 8.0, 15.0] {
+            let a = alpha_deg.to_radians();
+            let light = Cut { alpha_rad: a, arc_length_mm: 5.0 * a, ad_mm: 10.0, cutting_point_ratio: 1.0 };
+            let f = constant_force_feed(&seed_001_ten_mm(), 269.1, light, limits());
+            assert!(f.feasible && f.feed_mm_min > 5760.0, "α {alpha_deg}°: {f:?}");
+        }
     }
 
     #[test]

@@ -1,0 +1,151 @@
+//! Per-sample bookkeeping of the feed optimiser: the feed every sample needs (kept
+//! compactly, since the rate limit and the blocks need them all), the path length per
+//! reason, and the regions where the target force cannot be held.
+
+use super::rule::{FeedReason, FeedRule, SampleCut};
+use crate::core::analysis::report::PathPoint;
+use serde::Serialize;
+
+/// What the optimiser keeps of one sample (f32: two million samples fit in 64 MB).
+#[derive(Debug, Clone, Copy)]
+pub struct Kept {
+    pub move_index: u32,
+    pub step_mm: f32,
+    /// The feed the sample needs, mm/min (NaN on rapids).
+    pub feed_mm_min: f32,
+    pub reason: Option<FeedReason>,
+    pub alpha_rad: f32,
+    pub arc_length_mm: f32,
+    pub ad_mm: f32,
+    pub ratio: f32,
+    pub spindle_rpm: f32,
+    /// Predicted force at the programmed feed, N (NaN when none).
+    pub force_before_n: f32,
+    pub programmed_mm_min: f32,
+}
+
+/// Why a region could not be cut at the target force.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ShortfallKind {
+    /// No feed reaches the target: a trochoid or a z-cut division is needed.
+    Infeasible,
+    /// The target needs a feed below the minimum: the force stays above the target.
+    BelowMinimumFeed,
+}
+
+/// A run of samples where the target force could not be held.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Shortfall {
+    pub kind: ShortfallKind,
+    pub start: PathPoint,
+    pub end: PathPoint,
+    pub length_mm: f64,
+    pub max_alpha_deg: f64,
+}
+
+/// Path length per reason, mm.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct ReasonLengths {
+    pub target_mm: f64,
+    pub clamped_max_mm: f64,
+    pub clamped_min_mm: f64,
+    pub infeasible_mm: f64,
+    pub air_mm: f64,
+    pub kept_mm: f64,
+}
+
+impl ReasonLengths {
+    fn add(&mut self, reason: FeedReason, length_mm: f64) {
+        let slot = match reason {
+            FeedReason::Target => &mut self.target_mm,
+            FeedReason::ClampedMax => &mut self.clamped_max_mm,
+            FeedReason::ClampedMin => &mut self.clamped_min_mm,
+            FeedReason::Infeasible => &mut self.infeasible_mm,
+            FeedReason::Air => &mut self.air_mm,
+            FeedReason::Kept => &mut self.kept_mm,
+        };
+        *slot += length_mm;
+    }
+}
+
+/// One sample as the optimiser sees it.
+pub struct SampleIn {
+    pub at: PathPoint,
+    pub step_mm: f64,
+    pub move_index: usize,
+    pub rapid: bool,
+    pub cut: SampleCut,
+    pub force_before_n: Option<f64>,
+}
+
+/// Collects samples in path order.
+pub struct Collector {
+    rule: FeedRule,
+    pub kept: Vec<Kept>,
+    pub lengths: ReasonLengths,
+    pub shortfalls: Vec<Shortfall>,
+    open: Option<Shortfall>,
+}
+
+impl Collector {
+    pub fn new(rule: FeedRule) -> Self {
+        Collector { rule, kept: Vec::new(), lengths: ReasonLengths::default(), shortfalls: Vec::new(), open: None }
+    }
+
+    pub fn add(&mut self, s: &SampleIn) {
+        let (feed, reason) = if s.rapid {
+            (f64::NAN, None)
+        } else {
+            let (feed, reason) = self.rule.feed(&s.cut);
+            (feed, Some(reason))
+        };
+        if let Some(reason) = reason {
+            self.lengths.add(reason, s.step_mm);
+        }
+        let kind = match reason {
+            Some(FeedReason::Infeasible) => Some(ShortfallKind::Infeasible),
+            Some(FeedReason::ClampedMin) => Some(ShortfallKind::BelowMinimumFeed),
+            _ => None,
+        };
+        match (&mut self.open, kind) {
+            (Some(open), Some(k)) if open.kind == k => {
+                open.end = s.at;
+                open.length_mm += s.step_mm;
+                open.max_alpha_deg = open.max_alpha_deg.max(s.cut.alpha_rad.to_degrees());
+            }
+            (_, k) => {
+                if let Some(done) = self.open.take() {
+                    self.shortfalls.push(done);
+                }
+                self.open = k.map(|kind| Shortfall {
+                    kind,
+                    start: s.at,
+                    end: s.at,
+                    length_mm: s.step_mm,
+                    max_alpha_deg: s.cut.alpha_rad.to_degrees(),
+                });
+            }
+        }
+        self.kept.push(Kept {
+            move_index: s.move_index as u32,
+            step_mm: s.step_mm as f32,
+            feed_mm_min: feed as f32,
+            reason,
+            alpha_rad: s.cut.alpha_rad as f32,
+            arc_length_mm: s.cut.arc_length_mm as f32,
+            ad_mm: s.cut.ad_mm as f32,
+            ratio: s.cut.cutting_point_ratio as f32,
+            spindle_rpm: s.cut.spindle_rpm.unwrap_or(0.0) as f32,
+            force_before_n: s.force_before_n.map_or(f32::NAN, |f| f as f32),
+            programmed_mm_min: s.cut.programmed_feed_mm_min as f32,
+        });
+    }
+
+    /// Closes the last open region.
+    pub fn finish(&mut self) {
+        if let Some(done) = self.open.take() {
+            self.shortfalls.push(done);
+        }
+    }
+}

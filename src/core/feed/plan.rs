@@ -1,0 +1,318 @@
+//! Feed optimisation of a whole tool path (seed 002 subsystem (d); MODEL.md §3 and §4):
+//! the feed every sample needs, the change-rate limit, one feed per NC block, and the
+//! figures before and after.
+
+use super::blocks::{split_feeds, BlockOptions};
+use super::collect::{Collector, Kept, ReasonLengths, Shortfall};
+use super::rate_limit::limit_feed_change;
+use super::rule::{FeedReason, FeedRule, SampleCut};
+use super::split::sub_move;
+use crate::core::analysis::report::{Accumulator, PathPoint, Stats};
+use crate::core::analysis::sampling::move_length;
+use crate::core::analysis::{analyze_with, Analysis, AnalysisSpec};
+use crate::core::engagement::max_chip_thickness_mm;
+use crate::core::force_model::ForceModel;
+use crate::core::progress::Progress;
+use crate::core::toolpath::{Event, Motion, Move, Toolpath};
+use crate::core::CoreError;
+use serde::Serialize;
+
+/// Default limit on the change of feed along the path, mm/min per mm (assumed: a
+/// corner feed of 500 mm/min is reached from 5760 in about 5 mm).
+pub const DEFAULT_MAX_FEED_CHANGE_PER_MM: f64 = 1000.0;
+/// Micrometres per millimetre.
+const UM_PER_MM: f64 = 1000.0;
+/// A limited feed this far below the required one counts as lowered by the rate limit.
+const RATE_LIMITED_SLACK_MM_MIN: f64 = 1e-6;
+
+/// How to optimise.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FeedSpec {
+    pub rule: FeedRule,
+    /// mm/min per mm of path; `None`: no limit.
+    pub max_change_per_mm: Option<f64>,
+    pub blocks: BlockOptions,
+    /// For the time figures, mm/min.
+    pub rapid_mm_min: f64,
+}
+
+/// Figures of one program.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Figures {
+    /// Predicted force over the cutting samples, N (length-weighted).
+    pub force_n: Option<Stats>,
+    /// Feed over the feed moves, mm/min (length-weighted).
+    pub feed_mm_min: Stats,
+    /// Feed moves at their feeds plus rapids at the rapid rate, min.
+    pub time_min: f64,
+}
+
+/// The feed of one block of the optimised program.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BlockFeed {
+    /// Source line of the move the block comes from.
+    pub line: u32,
+    pub length_mm: f64,
+    /// `None` for rapids.
+    pub programmed_mm_min: Option<f64>,
+    pub feed_mm_min: Option<f64>,
+}
+
+/// The optimised program and what changed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FeedPlan {
+    pub path: Toolpath,
+    pub blocks: Vec<BlockFeed>,
+    pub before: Figures,
+    pub after: Figures,
+    pub lengths: ReasonLengths,
+    /// Length where the change-rate limit lowered the feed, mm.
+    pub rate_limited_mm: f64,
+    pub shortfalls: Vec<Shortfall>,
+    /// The analysis of the input path (side milling).
+    pub analysis: Option<Analysis>,
+    pub warnings: Vec<String>,
+}
+
+/// Checks the spec.
+pub fn check_spec(spec: &FeedSpec) -> Result<(), CoreError> {
+    let r = &spec.rule;
+    let positive = |field: &str, v: f64| crate::core::error::require_positive(field, v).map(|_| ());
+    positive("min_feed_mm_min", r.min_feed_mm_min)?;
+    positive("max_feed_mm_min", r.max_feed_mm_min)?;
+    positive("air_feed_mm_min", r.air_feed_mm_min)?;
+    positive("rapid_mm_min", spec.rapid_mm_min)?;
+    if r.min_feed_mm_min > r.max_feed_mm_min {
+        return Err(CoreError::invalid("min_feed_mm_min", "must not be above max_feed_mm_min"));
+    }
+    if r.strategy.needs_force_model() {
+        if r.force_model.is_none() {
+            return Err(CoreError::invalid("strategy", "constant force needs a force model for the tool"));
+        }
+        positive("target_force_n", r.target_force_n)?;
+    }
+    if let Some(rate) = spec.max_change_per_mm {
+        positive("max_feed_change_per_mm", rate)?;
+    }
+    let b = &spec.blocks;
+    if !(b.min_block_mm.is_finite() && b.min_block_mm >= 0.0) {
+        return Err(CoreError::invalid("min_block_mm", "must be a finite number ≥ 0"));
+    }
+    if !(b.tolerance.is_finite() && b.tolerance >= 0.0) {
+        return Err(CoreError::invalid("feed_tolerance", "must be a finite number ≥ 0"));
+    }
+    if !(b.feed_step_mm_min.is_finite() && b.feed_step_mm_min >= 0.0) {
+        return Err(CoreError::invalid("feed_step_mm_min", "must be a finite number ≥ 0"));
+    }
+    Ok(())
+}
+
+/// Optimises the feeds of a 2.5-D side-milling path, simulating the stock of `analysis`.
+pub fn optimize_side_milling(
+    path: &Toolpath,
+    analysis: &AnalysisSpec,
+    spec: &FeedSpec,
+    progress: &dyn Progress,
+) -> Result<FeedPlan, CoreError> {
+    check_spec(spec)?;
+    let mut collector = Collector::new(spec.rule);
+    let default_rpm = analysis.default_spindle_rpm;
+    let report = analyze_with(path, analysis, progress, |r| {
+        let s = &r.sample;
+        let in_material = r.contact.alpha_rad > 0.0;
+        let cut = SampleCut {
+            alpha_rad: r.contact.alpha_rad,
+            arc_length_mm: r.arc_length_mm,
+            ad_mm: r.ad_mm,
+            cutting_point_ratio: r.cutting_point_ratio,
+            programmed_feed_mm_min: s.feed_mm_min,
+            spindle_rpm: s.spindle_rpm.or(default_rpm),
+            plunge: r.plunge,
+            in_material,
+        };
+        collector.add(&super::collect::SampleIn {
+            at: PathPoint { s_mm: r.s_mm, line: s.line, x: s.p.x, y: s.p.y, z: s.p.z },
+            step_mm: s.step_mm,
+            move_index: s.move_index,
+            rapid: s.rapid,
+            cut,
+            force_before_n: r.force_n.filter(|_| in_material),
+        });
+    })?;
+    collector.finish();
+    let mut warnings = report.summary.warnings.clone();
+    if spec.rule.force_model.is_some() && collector.kept.len() > 1 && report.summary.slices.len() > 1 {
+        warnings.push(
+            "the layer is simulated in several z slices: the constant-force feed uses the deepest engagement over the whole depth of cut"
+                .to_string(),
+        );
+    }
+    Ok(assemble(path, collector, spec, Some(report), warnings))
+}
+
+/// Puts the optimised program together from the collected samples.
+pub fn assemble(
+    path: &Toolpath,
+    collector: Collector,
+    spec: &FeedSpec,
+    analysis: Option<Analysis>,
+    mut warnings: Vec<String>,
+) -> FeedPlan {
+    let Collector { kept, lengths, shortfalls, .. } = collector;
+    let (limited, rate_limited_mm) = rate_limited(&kept, spec.max_change_per_mm);
+    let model = spec.rule.force_model;
+    let flutes = spec.rule.flutes;
+    let (mut force_before, mut force_after) = (Accumulator::default(), Accumulator::default());
+    let mut moves: Vec<Move> = Vec::with_capacity(path.moves.len());
+    let mut blocks: Vec<BlockFeed> = Vec::with_capacity(path.moves.len());
+    let mut first_piece = Vec::with_capacity(path.moves.len() + 1);
+    let mut i = 0;
+    for (index, m) in path.moves.iter().enumerate() {
+        first_piece.push(moves.len());
+        let start = i;
+        while i < kept.len() && kept[i].move_index as usize == index {
+            i += 1;
+        }
+        let samples = &kept[start..i];
+        if matches!(m.motion, Motion::Rapid) || samples.is_empty() {
+            blocks.push(BlockFeed {
+                line: m.line,
+                length_mm: move_length(m),
+                programmed_mm_min: None,
+                feed_mm_min: None,
+            });
+            moves.push(*m);
+            continue;
+        }
+        // The feed at the move's start is the previous sample's, when that one cut too.
+        let before_start =
+            if start > 0 && kept[start - 1].reason.is_some() { limited[start - 1] } else { limited[start] };
+        let mut feeds = Vec::with_capacity(samples.len() + 1);
+        feeds.push(before_start);
+        feeds.extend_from_slice(&limited[start..i]);
+        let lowest = feeds.iter().copied().fold(f64::INFINITY, f64::min);
+        let length = move_length(m);
+        let pieces = split_feeds(length, &feeds, spec.rule.min_feed_mm_min.min(lowest), &spec.blocks);
+        let n = samples.len() as f64;
+        let mut p = 0;
+        for (k, s) in samples.iter().enumerate() {
+            let t = (k + 1) as f64 / n;
+            while p + 1 < pieces.len() && t > pieces[p].t1 + f64::EPSILON {
+                p += 1;
+            }
+            if let (Some(model), Some(before)) = (model.as_ref(), finite(s.force_before_n)) {
+                let after = force_at_feed(model, s, pieces[p].feed_mm_min, flutes, before);
+                force_before.add(before, f64::from(s.step_mm));
+                force_after.add(after, f64::from(s.step_mm));
+            }
+        }
+        for piece in &pieces {
+            let mut sub = sub_move(m, piece.t0, piece.t1);
+            sub.feed_mm_min = Some(piece.feed_mm_min);
+            blocks.push(BlockFeed {
+                line: m.line,
+                length_mm: length * (piece.t1 - piece.t0),
+                programmed_mm_min: m.feed_mm_min,
+                feed_mm_min: Some(piece.feed_mm_min),
+            });
+            moves.push(sub);
+        }
+    }
+    first_piece.push(moves.len());
+    let events: Vec<Event> = path
+        .events
+        .iter()
+        .map(|e| Event { before_move: first_piece[e.before_move.min(path.moves.len())], ..*e })
+        .collect();
+    if lengths.kept_mm > 0.0 {
+        warnings.push(format!(
+            "{:.1} mm of cutting kept its programmed feed (plunges, or no spindle speed to compute with)",
+            lengths.kept_mm
+        ));
+    }
+    let new_path = Toolpath { moves, events, source_units: path.source_units, warnings: path.warnings.clone() };
+    let has_force = model.is_some() && force_before.stats().max > 0.0;
+    FeedPlan {
+        before: figures(&path.moves, has_force.then(|| force_before.stats()), spec.rapid_mm_min),
+        after: figures(&new_path.moves, has_force.then(|| force_after.stats()), spec.rapid_mm_min),
+        path: new_path,
+        blocks,
+        lengths,
+        rate_limited_mm,
+        shortfalls,
+        analysis,
+        warnings,
+    }
+}
+
+fn finite(v: f32) -> Option<f64> {
+    v.is_finite().then_some(f64::from(v))
+}
+
+/// The required feeds after the change-rate limit, over each run of feed samples, and
+/// the length the limit lowered.
+fn rate_limited(kept: &[Kept], max_change_per_mm: Option<f64>) -> (Vec<f64>, f64) {
+    let required: Vec<f64> = kept.iter().map(|k| f64::from(k.feed_mm_min)).collect();
+    let Some(rate) = max_change_per_mm else {
+        return (required, 0.0);
+    };
+    let mut out = required.clone();
+    let mut i = 0;
+    while i < kept.len() {
+        if kept[i].reason.is_none() {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        while i < kept.len() && kept[i].reason.is_some() {
+            i += 1;
+        }
+        let steps: Vec<f64> = kept[start..i].iter().map(|k| f64::from(k.step_mm)).collect();
+        let limited = limit_feed_change(&required[start..i], &steps, rate);
+        out[start..i].copy_from_slice(&limited);
+    }
+    let lowered = kept
+        .iter()
+        .zip(required.iter().zip(&out))
+        .filter(|(_, (r, o))| **o < **r - RATE_LIMITED_SLACK_MM_MIN)
+        .map(|(k, _)| f64::from(k.step_mm))
+        .sum();
+    (out, lowered)
+}
+
+/// The force at a sample when run at `feed` instead of the programmed feed: the force
+/// before, scaled by the model's ratio of the two (exact for a single slice).
+fn force_at_feed(model: &ForceModel, s: &Kept, feed_mm_min: f64, flutes: u32, before_n: f64) -> f64 {
+    let single = |feed: f64| {
+        let rpm = f64::from(s.spindle_rpm);
+        if rpm <= 0.0 {
+            return 0.0;
+        }
+        let fz_p = feed / (f64::from(flutes) * rpm) * f64::from(s.ratio);
+        let t_m_um = max_chip_thickness_mm(fz_p, f64::from(s.alpha_rad)) * UM_PER_MM;
+        model.force_n(t_m_um, f64::from(s.arc_length_mm), f64::from(s.ad_mm))
+    };
+    let old = single(f64::from(s.programmed_mm_min));
+    if old > 0.0 && s.reason != Some(FeedReason::Air) {
+        before_n * single(feed_mm_min) / old
+    } else {
+        single(feed_mm_min)
+    }
+}
+
+fn figures(moves: &[Move], force_n: Option<Stats>, rapid_mm_min: f64) -> Figures {
+    let mut feed = Accumulator::default();
+    let mut minutes = 0.0;
+    for m in moves {
+        let len = move_length(m);
+        match (m.motion, m.feed_mm_min) {
+            (Motion::Rapid, _) => minutes += len / rapid_mm_min,
+            (_, Some(f)) if f > 0.0 => {
+                minutes += len / f;
+                feed.add(f, len);
+            }
+            _ => {}
+        }
+    }
+    Figures { force_n, feed_mm_min: feed.stats(), time_min: minutes }
+}
