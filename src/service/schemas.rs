@@ -1,6 +1,8 @@
 //! OpenAPI schemas of the core's plain enums, written here so the core stays free of
 //! utoipa.
 
+use crate::core::feed::collect::ShortfallKind;
+use crate::core::feed::rule::FeedStrategy;
 use crate::core::operation::Operation;
 use crate::core::tool::ToolType;
 use std::borrow::Cow;
@@ -38,5 +40,35 @@ impl utoipa::PartialSchema for Operation {
 impl utoipa::ToSchema for Operation {
     fn name() -> Cow<'static, str> {
         Cow::Borrowed("Operation")
+    }
+}
+
+impl utoipa::PartialSchema for FeedStrategy {
+    fn schema() -> RefOr<Schema> {
+        string_enum(
+            vec!["cutting_point", "constant_force", "both"],
+            "How feeds are chosen: cutting_point holds the programmed feed at the cutting point (seed 000, Eq. 1); constant_force holds the cutting force at the target (MODEL.md §3); both takes the lower of the two.",
+        )
+    }
+}
+
+impl utoipa::ToSchema for FeedStrategy {
+    fn name() -> Cow<'static, str> {
+        Cow::Borrowed("FeedStrategy")
+    }
+}
+
+impl utoipa::PartialSchema for ShortfallKind {
+    fn schema() -> RefOr<Schema> {
+        string_enum(
+            vec!["infeasible", "below_minimum_feed"],
+            "Why the target force is not held: infeasible (no feed reaches it: a trochoid or a z-cut division is needed) or below_minimum_feed (the feed is held at the minimum and the force stays above the target).",
+        )
+    }
+}
+
+impl utoipa::ToSchema for ShortfallKind {
+    fn name() -> Cow<'static, str> {
+        Cow::Borrowed("ShortfallKind")
     }
 }

@@ -8,6 +8,7 @@ mod conditions;
 mod curl_examples;
 mod database;
 mod errors;
+mod feeds;
 mod fit;
 mod jobs;
 mod openapi;

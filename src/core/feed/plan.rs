@@ -185,8 +185,7 @@ pub fn assemble(
             continue;
         }
         // The feed at the move's start is the previous sample's, when that one cut too.
-        let before_start =
-            if start > 0 && kept[start - 1].reason.is_some() { limited[start - 1] } else { limited[start] };
+        let before_start = if start > 0 && is_limited(&kept[start - 1]) { limited[start - 1] } else { limited[start] };
         let mut feeds = Vec::with_capacity(samples.len() + 1);
         feeds.push(before_start);
         feeds.extend_from_slice(&limited[start..i]);
@@ -249,6 +248,12 @@ fn finite(v: f32) -> Option<f64> {
     v.is_finite().then_some(f64::from(v))
 }
 
+/// Samples whose feed takes part in the change-rate limit: feed moves whose feed the
+/// optimiser sets (a kept plunge feed neither drags its neighbours down nor is raised).
+fn is_limited(k: &Kept) -> bool {
+    k.reason.is_some_and(|r| r != FeedReason::Kept)
+}
+
 /// The required feeds after the change-rate limit, over each run of feed samples, and
 /// the length the limit lowered.
 fn rate_limited(kept: &[Kept], max_change_per_mm: Option<f64>) -> (Vec<f64>, f64) {
@@ -259,12 +264,12 @@ fn rate_limited(kept: &[Kept], max_change_per_mm: Option<f64>) -> (Vec<f64>, f64
     let mut out = required.clone();
     let mut i = 0;
     while i < kept.len() {
-        if kept[i].reason.is_none() {
+        if !is_limited(&kept[i]) {
             i += 1;
             continue;
         }
         let start = i;
-        while i < kept.len() && kept[i].reason.is_some() {
+        while i < kept.len() && is_limited(&kept[i]) {
             i += 1;
         }
         let steps: Vec<f64> = kept[start..i].iter().map(|k| f64::from(k.step_mm)).collect();

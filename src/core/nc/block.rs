@@ -281,6 +281,18 @@ impl Block {
                 _ => line.unknown_at(i, "unknown letter"),
             }
         }
+        self.fanuc_dwell();
+    }
+
+    /// Fanuc's dwell `G4 X<seconds>` (no P on the line) is read as `G4 P<seconds>`.
+    fn fanuc_dwell(&mut self) {
+        let dwell = self.g.iter().any(|g| g.0 == GCode::Dwell);
+        if dwell && self.has(b'X') && !self.has(b'P') {
+            let (x, p) = (usize::from(b'X' - b'A'), usize::from(b'P' - b'A'));
+            self.present = (self.present & !bit(b'X')) | bit(b'P');
+            self.values[p] = self.values[x];
+            self.index[p] = self.index[x];
+        }
     }
 
     /// The earlier M word of `group` that `code` cannot share a line with (M7 and M8 can).

@@ -46,6 +46,10 @@ pub(crate) struct LineShape {
     pub block_delete: bool,
     /// The line starts with `%` (tape start/end marker) and is not read.
     pub percent: bool,
+    /// The line is a Fanuc program number: an `O` word with digits, then nothing but
+    /// comments (`O1234 (TITLE)`). It is still reported as an [`IssueKind::Subprogram`]
+    /// issue: the interpreter decides whether it is where a program number may be.
+    pub program_number: bool,
 }
 
 /// Largest mantissa the fast decimal path accepts: 2⁵³, below which every integer is an
@@ -122,6 +126,7 @@ pub(crate) fn read_number(bytes: &[u8], mut i: usize) -> Option<(f64, usize)> {
 /// anywhere between words and between a letter and its number, letters may be lower case.
 pub(crate) fn scan_line(line: &[u8], words: &mut Vec<Word>, issues: &mut Vec<Issue>) -> LineShape {
     let n = line.len();
+    let (words_before, issues_before) = (words.len(), issues.len());
     let mut shape = LineShape::default();
     let mut i = 0;
     while i < n && is_blank(line[i]) {
@@ -155,8 +160,12 @@ pub(crate) fn scan_line(line: &[u8], words: &mut Vec<Word>, issues: &mut Vec<Iss
                     b'#' => (IssueKind::Parameter, i + 1),
                     b'[' => (IssueKind::Expression, i + 1),
                     _ => {
-                        let digits = line[i + 1..].iter().take_while(|b| b.is_ascii_digit());
-                        (IssueKind::Subprogram, i + 1 + digits.count())
+                        let digits = line[i + 1..].iter().take_while(|b| b.is_ascii_digit()).count();
+                        let alone = words.len() == words_before && issues.len() == issues_before;
+                        let end = i + 1 + digits;
+                        shape.program_number =
+                            alone && digits > 0 && !shape.block_delete && only_comments(&line[end..]);
+                        (IssueKind::Subprogram, end)
                     }
                 };
                 issues.push(issue(kind, i, end));
@@ -186,6 +195,23 @@ pub(crate) fn scan_line(line: &[u8], words: &mut Vec<Word>, issues: &mut Vec<Iss
         }
     }
     shape
+}
+
+/// Whether `rest` holds nothing but blanks, closed `( )` comments and a `;` comment.
+fn only_comments(rest: &[u8]) -> bool {
+    let mut i = 0;
+    while i < rest.len() {
+        match rest[i] {
+            c if is_blank(c) => i += 1,
+            b'(' => match rest[i + 1..].iter().position(|&b| b == b')') {
+                Some(k) => i += k + 2,
+                None => return false,
+            },
+            b';' => return true,
+            _ => return false,
+        }
+    }
+    true
 }
 
 fn issue(kind: IssueKind, start: usize, end: usize) -> Issue {
@@ -274,6 +300,19 @@ mod tests {
         assert_eq!(scan("#1=5 G1").1, vec![IssueKind::Parameter]);
         assert_eq!(scan("G1 X[1+2] Y3").1, vec![IssueKind::NoNumber, IssueKind::Expression]);
         assert_eq!(scan("o100 sub").1, vec![IssueKind::Subprogram]);
+    }
+
+    #[test]
+    fn an_o_word_alone_or_with_comments_is_marked_as_a_program_number() {
+        for text in ["O1234", "  o0001 (DIE 12) ; rough", "O12(A)(B)\r"] {
+            let (words, issues, shape) = scan(text);
+            assert!(shape.program_number, "{text}");
+            assert!(words.is_empty(), "{text}");
+            assert_eq!(issues, vec![IssueKind::Subprogram], "{text}");
+        }
+        for text in ["o100 sub", "O", "G0 O1", "O1 (open", "/O1", "O1 G0 X1", "N10 O1"] {
+            assert!(!scan(text).2.program_number, "{text}");
+        }
     }
 
     #[test]

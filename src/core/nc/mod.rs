@@ -1,6 +1,8 @@
 //! NC programs in: a fast, strict G-code parser (the RS274/NGC that CAM post-processors
 //! write for LinuxCNC and Fanuc/ISO controls) and the equivalent JSON move list, both read
-//! into a [`Toolpath`](crate::core::toolpath::Toolpath) in mm.
+//! into a [`Toolpath`](crate::core::toolpath::Toolpath) in mm. NC programs out: the writer
+//! ([`write_program`]) turns a tool path back into a Fanuc or LinuxCNC program that this
+//! parser reads to the same moves; see `writer.rs`.
 //!
 //! Strict means: a word the parser does not understand, or a feature the planner cannot
 //! follow (cutter compensation, offsets, subprograms, parameters, rotary axes…), is an
@@ -13,6 +15,9 @@
 //! - Canned cycles G81/G82/G83 are expanded into moves ([`CannedCycles::Expand`]) in the
 //!   XY plane with G90, as LinuxCNC runs them; see `canned.rs`.
 //! - Lengths are stored in mm whatever the units (G20 × [`MM_PER_INCH`]).
+//! - A Fanuc program number line (`O1234 (TITLE)`) before the first line with words is
+//!   ignored; other O words (subprograms) are refused. Fanuc's `G4 X<seconds>` dwell is
+//!   read as `G4 P<seconds>`.
 //! - The scanner is a single pass over the bytes with reused buffers and a correctly
 //!   rounded fast decimal reader; see `lexer.rs`.
 
@@ -25,12 +30,17 @@ mod lexer;
 mod motion;
 mod parse;
 mod report;
+mod writer;
 
 pub use arcs::{arc_radius_tolerance_mm, ARC_RADIUS_TOLERANCE_MM, ARC_RADIUS_TOLERANCE_RATIO};
 pub use canned::{G83_PECK_CLEARANCE_MM, MAX_PECKS_PER_HOLE};
 pub use error::{NcError, NcErrors, MAX_NC_ERRORS, MAX_NC_WARNINGS};
 pub use json::{toolpath_from_json, JsonCenter, JsonMove, JsonProgram};
 pub use parse::parse_gcode;
+pub use writer::{
+    write_program, Dialect, LineNumbers, WriterOptions, DEFAULT_DECIMALS, DEFAULT_FEED_DECIMALS, MAX_DECIMALS,
+    MAX_SEQUENCE_NUMBER,
+};
 
 use crate::core::toolpath::P3;
 

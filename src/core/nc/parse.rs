@@ -60,6 +60,10 @@ pub(crate) struct Machine {
 
 /// Reads a G-code program into a [`Toolpath`], or all the errors in it (at most
 /// [`super::MAX_NC_ERRORS`]).
+///
+/// A Fanuc program number (`O1234`, alone on its line but for comments) before the first
+/// line with words is read and ignored; every other O word, a second program number
+/// included, is refused (subprograms).
 pub fn parse_gcode(text: &str, options: &ParseOptions) -> Result<Toolpath, NcErrors> {
     let bytes = text.as_bytes();
     let lines = bytes.iter().filter(|&&b| b == b'\n').count() + 1;
@@ -68,6 +72,9 @@ pub fn parse_gcode(text: &str, options: &ParseOptions) -> Result<Toolpath, NcErr
     let mut words: Vec<Word> = Vec::with_capacity(WORDS_PER_LINE);
     let mut issues: Vec<Issue> = Vec::new();
     let mut block = Block::default();
+    // A line with words (or the program number) was read: an `O1234` line is no longer
+    // a program number.
+    let mut started = false;
     for (index, text) in bytes.split(|&b| b == b'\n').enumerate() {
         if machine.ended || diagnostics.full() {
             break;
@@ -76,6 +83,11 @@ pub fn parse_gcode(text: &str, options: &ParseOptions) -> Result<Toolpath, NcErr
         issues.clear();
         let shape = lexer::scan_line(text, &mut words, &mut issues);
         if shape.percent || (words.is_empty() && issues.is_empty() && !shape.block_delete) {
+            continue;
+        }
+        let program_number = shape.program_number && !started;
+        started = true;
+        if program_number {
             continue;
         }
         let number = u32::try_from(index + 1).unwrap_or(u32::MAX);

@@ -281,6 +281,40 @@ mod gcode {
     }
 
     #[test]
+    fn a_fanuc_program_number_before_the_first_words_is_ignored() {
+        for text in ["%\nO0001 (DIE 12)\nG0 X1\n%\n", "(post v2)\n\no1234\nG0 X1", "O12 ; number\r\nG0 X1"] {
+            let path = parse(text);
+            assert_eq!(path.moves.len(), 1, "{text}");
+            assert!(path.warnings.is_empty(), "{text}");
+        }
+    }
+
+    #[test]
+    fn o_words_after_the_first_words_or_with_other_words_are_still_refused() {
+        for (text, line, word) in [
+            ("G0 X1\nO0002\nG0 X2", 2, "O0002"),
+            ("O0001\nO0002", 2, "O0002"),
+            ("O100 G0 X1", 1, "O100"),
+            ("o100 sub\nG0 X1\no100 endsub", 1, "o100"),
+        ] {
+            let e = errors(text);
+            assert_eq!((e[0].line, e[0].word.as_str()), (line, word), "{text}");
+            assert!(e[0].reason.contains("subprograms"), "{text}: {}", e[0].reason);
+        }
+    }
+
+    #[test]
+    fn a_fanuc_g4_x_dwell_is_read_in_seconds_and_does_not_move() {
+        let path = parse("G0 X5\nG4 X1.5\nG4 P2 X7");
+        assert_eq!(path.events[0].kind, EventKind::Dwell { seconds: 1.5 });
+        assert_eq!(path.events[1].kind, EventKind::Dwell { seconds: 2.0 });
+        // With P, X is an axis word, as LinuxCNC reads it.
+        assert_eq!(path.moves.len(), 2);
+        assert!(at(&path.moves[1], 7.0, 0.0, 0.0));
+        assert!(errors("G4 X-1")[0].reason.contains("negative"));
+    }
+
+    #[test]
     fn malformed_words_are_errors_naming_them() {
         let cases = [
             ("G1 X F100", "X", "followed by a number"),

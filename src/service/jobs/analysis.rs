@@ -13,6 +13,7 @@ use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
 use crate::service::lookup;
 use crate::service::resources::machines::Machine;
+use crate::service::resources::standard_conditions::StandardConditions;
 use serde::{Deserialize, Serialize};
 use sqlx::SqlitePool;
 use utoipa::ToSchema;
@@ -86,30 +87,7 @@ pub async fn prepare(pool: &SqlitePool, request: AnalysisRequest) -> Result<Anal
     v.check(request.series_points <= MAX_SERIES_POINTS, "series_points", format!("at most {MAX_SERIES_POINTS}"));
     v.finish()?;
 
-    let material = lookup::material(pool, request.material_id, request.material.as_deref()).await?;
-    let tool = lookup::tool(pool, request.tool_id, request.tool_type, request.diameter_mm).await?;
-    let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(ForceModelRef::from);
-    let machine = match request.machine_id {
-        Some(id) => {
-            sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = ?").bind(id).fetch_optional(pool).await?
-        }
-        None => sqlx::query_as::<_, Machine>("SELECT * FROM machines ORDER BY id LIMIT 1").fetch_optional(pool).await?,
-    }
-    .ok_or_else(|| ApiError::field("machine_id", "no such machine (add one at /v1/machines)"))?;
-    let default_spindle_rpm = match request.spindle_rpm {
-        Some(s) => Some(s),
-        None => lookup::standard_conditions(pool, tool.id, material.id, Operation::StandardSideCutting)
-            .await?
-            .map(|c| c.data.spindle_rpm),
-    };
-    let prepared = AnalysisPrepared {
-        material: NamedRef { id: material.id, name: material.data.name },
-        tool: ToolRef::from(&tool),
-        force_model,
-        machine: NamedRef { id: machine.id, name: machine.data.name.clone() },
-        rapid_mm_min: machine.data.rapid_mm_min,
-        default_spindle_rpm,
-    };
+    let Resolved { prepared, .. } = resolve(pool, &request.path_job()).await?;
     // Parse and check everything now, off the async runtime, so that bad input is a 4xx
     // at submission and never a job that fails later.
     let checked = prepared.clone();
@@ -121,6 +99,66 @@ pub async fn prepare(pool: &SqlitePool, request: AnalysisRequest) -> Result<Anal
     .await
     .map_err(|e| ApiError::Internal(e.to_string()))??;
     Ok(prepared)
+}
+
+/// What names the database rows of a path job.
+pub struct PathJobRefs<'a> {
+    pub tool_id: Option<i64>,
+    pub tool_type: Option<ToolType>,
+    pub diameter_mm: Option<f64>,
+    pub material_id: Option<i64>,
+    pub material: Option<&'a str>,
+    pub machine_id: Option<i64>,
+    pub spindle_rpm: Option<f64>,
+}
+
+impl AnalysisRequest {
+    fn path_job(&self) -> PathJobRefs<'_> {
+        PathJobRefs {
+            tool_id: self.tool_id,
+            tool_type: self.tool_type,
+            diameter_mm: self.diameter_mm,
+            material_id: self.material_id,
+            material: self.material.as_deref(),
+            machine_id: self.machine_id,
+            spindle_rpm: self.spindle_rpm,
+        }
+    }
+}
+
+/// The rows a path job resolved to.
+pub struct Resolved {
+    pub prepared: AnalysisPrepared,
+    /// The tool's standard side-cutting conditions in the material, if any.
+    pub standard: Option<StandardConditions>,
+    /// The machine's largest feed, mm/min.
+    pub machine_max_feed_mm_min: f64,
+}
+
+/// Resolves the material, tool, force model, machine and standard conditions of a path
+/// job (analysis, feeds).
+pub async fn resolve(pool: &SqlitePool, refs: &PathJobRefs<'_>) -> Result<Resolved, ApiError> {
+    let material = lookup::material(pool, refs.material_id, refs.material).await?;
+    let tool = lookup::tool(pool, refs.tool_id, refs.tool_type, refs.diameter_mm).await?;
+    let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(ForceModelRef::from);
+    let machine = match refs.machine_id {
+        Some(id) => {
+            sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = ?").bind(id).fetch_optional(pool).await?
+        }
+        None => sqlx::query_as::<_, Machine>("SELECT * FROM machines ORDER BY id LIMIT 1").fetch_optional(pool).await?,
+    }
+    .ok_or_else(|| ApiError::field("machine_id", "no such machine (add one at /v1/machines)"))?;
+    let standard = lookup::standard_conditions(pool, tool.id, material.id, Operation::StandardSideCutting).await?;
+    let default_spindle_rpm = refs.spindle_rpm.or(standard.as_ref().map(|c| c.data.spindle_rpm));
+    let prepared = AnalysisPrepared {
+        material: NamedRef { id: material.id, name: material.data.name },
+        tool: ToolRef::from(&tool),
+        force_model,
+        machine: NamedRef { id: machine.id, name: machine.data.name.clone() },
+        rapid_mm_min: machine.data.rapid_mm_min,
+        default_spindle_rpm,
+    };
+    Ok(Resolved { prepared, standard, machine_max_feed_mm_min: machine.data.max_feed_mm_min })
 }
 
 /// Runs the analysis.
@@ -136,7 +174,7 @@ pub fn run(
 }
 
 /// Reads the program and the stock and puts the analysis together.
-fn build(request: &AnalysisRequest, prepared: &AnalysisPrepared) -> Result<(Toolpath, AnalysisSpec), ApiError> {
+pub fn build(request: &AnalysisRequest, prepared: &AnalysisPrepared) -> Result<(Toolpath, AnalysisSpec), ApiError> {
     let path = read_program(&request.program)?;
     let stock = read_stock(&request.stock)?;
     let spec = AnalysisSpec {

@@ -179,7 +179,7 @@ pub struct AnalysisResult {
     pub series: Option<SeriesDto>,
 }
 
-fn summary(moves: usize, s: Summary, regions: usize) -> SummaryDto {
+pub fn summary(moves: usize, s: Summary, regions: usize) -> SummaryDto {
     SummaryDto {
         moves,
         samples: s.samples,

@@ -3,6 +3,7 @@
 
 use super::analysis::{self, AnalysisRequest};
 use super::conditions::{self, ConditionsRequest};
+use super::feeds::{self, FeedsRequest};
 use super::model::JobKind;
 use crate::core::progress::Progress;
 use crate::core::CoreError;
@@ -18,6 +19,7 @@ use utoipa::ToSchema;
 pub enum JobInput {
     Conditions(ConditionsRequest),
     Analysis(Box<AnalysisRequest>),
+    Feeds(Box<FeedsRequest>),
 }
 
 /// What a finished job hands back.
@@ -64,6 +66,10 @@ pub async fn prepare(
                 let request: AnalysisRequest = from_value(input)?;
                 to_json(&analysis::prepare(pool, request).await?)
             }
+            JobKind::Feeds => {
+                let request: FeedsRequest = from_value(input)?;
+                to_json(&feeds::prepare(pool, request).await?)
+            }
         }
     }
     .await;
@@ -79,6 +85,7 @@ fn to_json<T: Serialize>(value: &T) -> Result<serde_json::Value, ApiError> {
 pub fn run(kind: JobKind, input: &str, prepared: &str, progress: &dyn Progress) -> Result<JobOutput, CoreError> {
     let unreadable = |e: serde_json::Error| CoreError::invalid("prepared", format!("stored job input unreadable: {e}"));
     progress.checkpoint()?;
+    let mut program = None;
     let result = match kind {
         JobKind::Conditions => {
             let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
@@ -89,7 +96,14 @@ pub fn run(kind: JobKind, input: &str, prepared: &str, progress: &dyn Progress) 
             let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
             serde_json::to_value(analysis::run(request, prepared, progress)?).map_err(unreadable)?
         }
+        JobKind::Feeds => {
+            let request = serde_json::from_str(input).map_err(unreadable)?;
+            let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
+            let (result, text) = feeds::run(request, prepared, progress)?;
+            program = Some(text);
+            serde_json::to_value(result).map_err(unreadable)?
+        }
     };
     progress.report(1.0);
-    Ok(JobOutput { result, program: None })
+    Ok(JobOutput { result, program })
 }

@@ -4,9 +4,12 @@
 pub mod analysis;
 pub mod analysis_result;
 pub mod conditions;
+pub mod feeds;
+pub mod feeds_result;
 pub mod inputs;
 pub mod kinds;
 pub mod model;
+pub mod output;
 pub mod queue;
 pub mod routes;
 pub mod store;

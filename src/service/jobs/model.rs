@@ -48,6 +48,9 @@ pub enum JobKind {
     /// Engagement, chip thickness, force and critical regions along a tool path
     /// (`POST /v1/analysis`).
     Analysis,
+    /// Feeds optimised for a constant cutting-point feed or a constant force, written as
+    /// an NC program (`POST /v1/feeds`).
+    Feeds,
 }
 
 impl JobKind {
@@ -55,11 +58,12 @@ impl JobKind {
         match self {
             JobKind::Conditions => "conditions",
             JobKind::Analysis => "analysis",
+            JobKind::Feeds => "feeds",
         }
     }
 
     pub fn parse(text: &str) -> Option<JobKind> {
-        [JobKind::Conditions, JobKind::Analysis].into_iter().find(|k| k.as_str() == text)
+        [JobKind::Conditions, JobKind::Analysis, JobKind::Feeds].into_iter().find(|k| k.as_str() == text)
     }
 }
 

@@ -2,6 +2,7 @@
 
 use super::analysis::AnalysisRequest;
 use super::conditions::ConditionsRequest;
+use super::feeds::FeedsRequest;
 use super::kinds::{self, JobInput};
 use super::model::{Job, JobKind, JobStatus, JobSummary};
 use super::store;
@@ -156,6 +157,31 @@ pub async fn create_analysis(
     submit(&state, JobKind::Analysis, input, "", &headers).await
 }
 
+/// Optimises the feeds of a tool path (job kind `feeds`).
+///
+/// `side_milling` (default) simulates the stock to find the engagement at every sample
+/// and sets each block's feed for a constant cutting force (`constant_force`, default),
+/// a constant feed at the cutting point (`cutting_point`, seed 000) or both; long blocks
+/// are split where the feed must change, the change per mm of path is limited, feeds are
+/// clamped to the limits and rounded. `surface_finishing` holds the feed at the cutting
+/// point of a ball end mill on a 3-D path. The finished job's `result` is a
+/// `FeedsResult` (before/after figures, the feed of every block, where the target could
+/// not be held); the NC program is at `GET /v1/jobs/{id}/program`.
+#[utoipa::path(post, path = "/v1/feeds", tag = "jobs", operation_id = "optimizeFeeds", request_body = FeedsRequest,
+    params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
+    responses(
+        (status = 201, description = "Finished within the preferred wait; result is a FeedsResult", body = Job),
+        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
+        (status = 422, description = "A refused field, NC line or contour vertex", body = Problem, content_type = "application/problem+json")))]
+pub async fn create_feeds(
+    State(state): State<AppState>,
+    headers: HeaderMap,
+    ApiJson(input): ApiJson<serde_json::Value>,
+) -> Result<Response, ApiError> {
+    submit(&state, JobKind::Feeds, input, "", &headers).await
+}
+
 /// Reads a job: status, progress, timestamps, result or error.
 #[utoipa::path(get, path = "/v1/jobs/{id}", tag = "jobs", operation_id = "getJob",
     params(("id" = String, Path, description = "Job id")),
@@ -249,6 +275,7 @@ pub fn router() -> OpenApiRouter<AppState> {
         .routes(routes!(get_program))
         .routes(routes!(create_conditions))
         .routes(routes!(create_analysis))
+        .routes(routes!(create_feeds))
 }
 
 #[cfg(test)]

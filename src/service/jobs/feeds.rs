@@ -1,0 +1,369 @@
+//! The `feeds` job (seed 002 subsystem (d); seeds 000–003): the feeds of a tool path
+//! optimised for a constant feed at the cutting point, a constant cutting force, or
+//! both, written back as an NC program.
+
+use super::analysis::{resolve, AnalysisPrepared, PathJobRefs, Resolved};
+use super::feeds_result::FeedsResult;
+use super::inputs::{read_program, read_stock, ProgramInput, StockInput};
+use super::output::OutputOptions;
+use crate::core::analysis::{check, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG};
+use crate::core::conditions::{feed_mm_min, standard_centres};
+use crate::core::feed::blocks::{BlockOptions, DEFAULT_FEED_STEP_MM_MIN, DEFAULT_FEED_TOLERANCE, DEFAULT_MIN_BLOCK_MM};
+use crate::core::feed::plan::{check_spec, optimize_side_milling, FeedPlan, FeedSpec, DEFAULT_MAX_FEED_CHANGE_PER_MM};
+use crate::core::feed::rule::{FeedRule, FeedStrategy};
+use crate::core::feed::surface::{
+    optimize_surface_finishing, ContactNormal, SurfaceSpec, DEFAULT_SURFACE_FIT_HALF_WIDTH_MM,
+};
+use crate::core::nc::write_program;
+use crate::core::progress::Progress;
+use crate::core::tool::ToolType;
+use crate::core::toolpath::Toolpath;
+use crate::core::CoreError;
+use crate::service::error::{ApiError, Validator};
+use serde::{Deserialize, Serialize};
+use sqlx::SqlitePool;
+use utoipa::ToSchema;
+
+/// The default maximum feed as a multiple of the standard feed (MODEL.md §3: seed 003
+/// caps at about 2.1 × standard).
+pub const MAX_FEED_PER_STANDARD: f64 = 2.0;
+/// Surface finishing samples at most this far apart by default, mm.
+pub const DEFAULT_SURFACE_SPACING_MM: f64 = 0.05;
+
+/// What is being cut.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum CutMode {
+    /// 2.5-D side milling: the stock is simulated to find the engagement.
+    #[default]
+    SideMilling,
+    /// 3-D finishing with a ball end mill: the feed is held at the cutting point.
+    SurfaceFinishing,
+}
+
+/// Where the ball touches the surface (surface finishing).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactInput {
+    /// Straight down, perpendicular to the path (raster finishing from above).
+    #[default]
+    Down,
+    /// The path's principal normal, turned downwards.
+    PrincipalNormal,
+}
+
+/// A tool path whose feeds to optimise. Name the tool by `tool_id` or by `tool_type` and
+/// `diameter_mm`; every limit has a default from the database (see each field).
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({
+    "program": {"gcode": "G21 G90 G17\nG0 X-10 Y5 Z5\nS9600 M3\nG1 Z-10 F1000\nG1 X50 F5760\nG3 X60 Y15 I0 J10\nG1 Y60\nM30"},
+    "tool_type": "square", "diameter_mm": 10,
+    "stock": {"box": {"x_min": 0, "y_min": -40, "z_min": -10, "x_max": 55, "y_max": 80, "z_max": 0}},
+    "strategy": "constant_force"
+}))]
+pub struct FeedsRequest {
+    pub program: ProgramInput,
+    pub tool_id: Option<i64>,
+    pub tool_type: Option<ToolType>,
+    pub diameter_mm: Option<f64>,
+    pub material_id: Option<i64>,
+    /// Material name (default SKD61).
+    pub material: Option<String>,
+    /// The stock of the layer (required for side milling).
+    pub stock: Option<StockInput>,
+    /// `side_milling` (default) or `surface_finishing`.
+    #[serde(default)]
+    pub mode: CutMode,
+    /// `cutting_point`, `constant_force` or `both` (constant force capped by the
+    /// cutting-point rule). Default: `constant_force` for side milling, `cutting_point`
+    /// for surface finishing.
+    pub strategy: Option<FeedStrategy>,
+    /// Force to hold, N (default: the model's force at the tool's standard straight
+    /// conditions, β0).
+    pub target_force_n: Option<f64>,
+    /// Default: the minimum feed per tooth of the standard conditions × z × S.
+    pub min_feed_mm_min: Option<f64>,
+    /// Default: 2 × the standard feed, at most the machine's maximum feed.
+    pub max_feed_mm_min: Option<f64>,
+    /// Feed of feed moves in the air (default: the maximum feed).
+    pub air_feed_mm_min: Option<f64>,
+    /// Most the feed may change per mm of path, mm/min (default 1000; 0: no limit).
+    pub max_feed_change_per_mm: Option<f64>,
+    /// Shortest block a move is split into, mm (default 1).
+    pub min_block_mm: Option<f64>,
+    /// Relative change of the required feed inside a block before it is split (default 0.01).
+    pub feed_tolerance: Option<f64>,
+    /// Feeds are rounded down to a multiple of this, mm/min (default 1; 0: no rounding).
+    pub feed_step_mm_min: Option<f64>,
+    /// Spindle speed where the program has no S word (default: the standard one).
+    pub spindle_rpm: Option<f64>,
+    /// Machine for the rapid rate and the maximum feed (default: the first machine).
+    pub machine_id: Option<i64>,
+    /// Engagement above this is critical in the analysis of the input (default 40°).
+    pub alpha_limit_deg: Option<f64>,
+    /// Distance between samples, mm (default min(0.05, D/100)).
+    pub sample_spacing_mm: Option<f64>,
+    /// Raster cell of the stock simulation, mm.
+    pub cell_mm: Option<f64>,
+    /// Surface finishing: where the ball touches (default `down`).
+    pub contact: Option<ContactInput>,
+    /// Surface finishing: one contact normal `[x, y, z]` per move (from the ball centre to
+    /// the contact point), instead of `contact`.
+    pub contact_normals: Option<Vec<[f64; 3]>>,
+    /// How to write the program (dialect, numbering, title…).
+    #[serde(default)]
+    pub output: OutputOptions,
+}
+
+/// What the request resolved to.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct FeedsPrepared {
+    #[serde(flatten)]
+    pub base: AnalysisPrepared,
+    pub strategy: FeedStrategy,
+    pub target_force_n: Option<f64>,
+    pub min_feed_mm_min: f64,
+    pub max_feed_mm_min: f64,
+    pub air_feed_mm_min: f64,
+    pub max_feed_change_per_mm: Option<f64>,
+    pub standard_conditions_id: Option<i64>,
+}
+
+fn validate(request: &FeedsRequest) -> Result<(), ApiError> {
+    let mut v = Validator::new();
+    for (field, value) in [
+        ("target_force_n", request.target_force_n),
+        ("min_feed_mm_min", request.min_feed_mm_min),
+        ("max_feed_mm_min", request.max_feed_mm_min),
+        ("air_feed_mm_min", request.air_feed_mm_min),
+        ("spindle_rpm", request.spindle_rpm),
+    ] {
+        if let Some(x) = value {
+            v.positive(field, x);
+        }
+    }
+    for (field, value) in [
+        ("max_feed_change_per_mm", request.max_feed_change_per_mm),
+        ("min_block_mm", request.min_block_mm),
+        ("feed_tolerance", request.feed_tolerance),
+        ("feed_step_mm_min", request.feed_step_mm_min),
+    ] {
+        if let Some(x) = value {
+            v.non_negative(field, x);
+        }
+    }
+    if let Some(a) = request.alpha_limit_deg {
+        v.within("alpha_limit_deg", a, f64::MIN_POSITIVE, 179.9);
+    }
+    if let Some(s) = request.sample_spacing_mm {
+        v.within("sample_spacing_mm", s, 1e-4, 5.0);
+    }
+    if let Some(c) = request.cell_mm {
+        v.within("cell_mm", c, 1e-3, 5.0);
+    }
+    if let Some(t) = request.feed_tolerance {
+        v.within("feed_tolerance", t, 0.0, 1.0);
+    }
+    if let Some(b) = request.min_block_mm {
+        v.within("min_block_mm", b, 0.0, 1000.0);
+    }
+    match request.mode {
+        CutMode::SideMilling => {
+            v.check(request.stock.is_some(), "stock", "required for side milling");
+            v.check(request.contact.is_none(), "contact", "only for surface_finishing");
+            v.check(request.contact_normals.is_none(), "contact_normals", "only for surface_finishing");
+        }
+        CutMode::SurfaceFinishing => {
+            v.check(
+                !(request.contact.is_some() && request.contact_normals.is_some()),
+                "contact",
+                "give contact or contact_normals, not both",
+            );
+        }
+    }
+    request.output.validate(&mut v);
+    v.finish()
+}
+
+/// Checks the request (parsing the program and the stock) and resolves it.
+pub async fn prepare(pool: &SqlitePool, request: FeedsRequest) -> Result<FeedsPrepared, ApiError> {
+    validate(&request)?;
+    let refs = PathJobRefs {
+        tool_id: request.tool_id,
+        tool_type: request.tool_type,
+        diameter_mm: request.diameter_mm,
+        material_id: request.material_id,
+        material: request.material.as_deref(),
+        machine_id: request.machine_id,
+        spindle_rpm: request.spindle_rpm,
+    };
+    let Resolved { prepared: base, standard, machine_max_feed_mm_min } = resolve(pool, &refs).await?;
+    let strategy = request.strategy.unwrap_or(match request.mode {
+        CutMode::SideMilling => FeedStrategy::ConstantForce,
+        CutMode::SurfaceFinishing => FeedStrategy::CuttingPoint,
+    });
+    let tool = base.tool.geometry;
+    if strategy.needs_force_model() && base.force_model.is_none() {
+        return Err(ApiError::field(
+            "strategy",
+            format!(
+                "constant force needs a force model and tool {} ({}) has none in {}: use cutting_point, or fit one at /v1/tools/{}/force-model/fit",
+                base.tool.id, base.tool.name, base.material.name, base.tool.id
+            ),
+        ));
+    }
+    let standard_feed = standard.as_ref().map(|c| feed_mm_min(c.data.fz_mm, tool.flutes, c.data.spindle_rpm));
+    let no_standard = |field: &str| {
+        ApiError::field(
+            field,
+            format!(
+                "no standard side-cutting conditions for tool {} in {}: give {field}",
+                base.tool.id, base.material.name
+            ),
+        )
+    };
+    let min_feed = match (request.min_feed_mm_min, &standard) {
+        (Some(f), _) => f,
+        (None, Some(c)) => feed_mm_min(c.data.fz_min_mm, tool.flutes, c.data.spindle_rpm),
+        (None, None) => return Err(no_standard("min_feed_mm_min")),
+    };
+    let max_feed = match (request.max_feed_mm_min, standard_feed) {
+        (Some(f), _) => f,
+        (None, Some(f)) => (MAX_FEED_PER_STANDARD * f).min(machine_max_feed_mm_min),
+        (None, None) => return Err(no_standard("max_feed_mm_min")),
+    };
+    if max_feed > machine_max_feed_mm_min {
+        return Err(ApiError::field(
+            "max_feed_mm_min",
+            format!("above the machine's maximum feed of {machine_max_feed_mm_min} mm/min"),
+        ));
+    }
+    if min_feed > max_feed {
+        return Err(ApiError::field("min_feed_mm_min", format!("{min_feed} is above the maximum feed {max_feed}")));
+    }
+    let target_force_n = match (strategy.needs_force_model(), request.target_force_n) {
+        (false, _) => None,
+        (true, Some(f)) => Some(f),
+        (true, None) => {
+            let (Some(c), Some(model)) = (&standard, &base.force_model) else {
+                return Err(no_standard("target_force_n"));
+            };
+            let (t_um, l_mm) = standard_centres(tool.diameter_mm / 2.0, c.data.conditions())?;
+            Some(model.model.force_n(t_um, l_mm, model.model.ad_ref_mm))
+        }
+    };
+    let prepared = FeedsPrepared {
+        standard_conditions_id: standard.as_ref().map(|c| c.id),
+        strategy,
+        target_force_n,
+        min_feed_mm_min: min_feed,
+        max_feed_mm_min: max_feed,
+        air_feed_mm_min: request.air_feed_mm_min.unwrap_or(max_feed).min(max_feed),
+        max_feed_change_per_mm: match request.max_feed_change_per_mm {
+            Some(rate) if rate <= 0.0 => None,
+            Some(rate) => Some(rate),
+            None => Some(DEFAULT_MAX_FEED_CHANGE_PER_MM),
+        },
+        base,
+    };
+    // Parse and check everything now, off the async runtime: bad input is a 4xx here.
+    let checked = prepared.clone();
+    tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
+        let job = build(&request, &checked)?;
+        check_spec(&job.spec)?;
+        if let Some(analysis) = &job.analysis {
+            check(&job.path, analysis)?;
+        }
+        Ok(())
+    })
+    .await
+    .map_err(|e| ApiError::Internal(e.to_string()))??;
+    Ok(prepared)
+}
+
+/// A feeds job ready to run.
+struct Built {
+    path: Toolpath,
+    spec: FeedSpec,
+    analysis: Option<AnalysisSpec>,
+    surface: Option<SurfaceSpec>,
+}
+
+fn build(request: &FeedsRequest, prepared: &FeedsPrepared) -> Result<Built, ApiError> {
+    let path = read_program(&request.program)?;
+    let base = &prepared.base;
+    let tool: crate::core::tool::EndMill = base.tool.geometry.into();
+    let spec = FeedSpec {
+        rule: FeedRule {
+            strategy: prepared.strategy,
+            force_model: base.force_model.as_ref().map(|f| f.model),
+            target_force_n: prepared.target_force_n.unwrap_or(0.0),
+            flutes: tool.flutes,
+            min_feed_mm_min: prepared.min_feed_mm_min,
+            max_feed_mm_min: prepared.max_feed_mm_min,
+            air_feed_mm_min: prepared.air_feed_mm_min,
+        },
+        max_change_per_mm: prepared.max_feed_change_per_mm,
+        blocks: BlockOptions {
+            min_block_mm: request.min_block_mm.unwrap_or(DEFAULT_MIN_BLOCK_MM),
+            tolerance: request.feed_tolerance.unwrap_or(DEFAULT_FEED_TOLERANCE),
+            feed_step_mm_min: request.feed_step_mm_min.unwrap_or(DEFAULT_FEED_STEP_MM_MIN),
+        },
+        rapid_mm_min: base.rapid_mm_min,
+    };
+    let (analysis, surface) = match (request.mode, &request.stock) {
+        (CutMode::SideMilling, Some(stock)) => {
+            let stock = read_stock(stock)?;
+            let analysis = AnalysisSpec {
+                tool,
+                stock: stock.regions,
+                open: stock.open,
+                z_top: stock.z_top,
+                z_bottom: stock.z_bottom,
+                force_model: spec.rule.force_model,
+                default_spindle_rpm: base.default_spindle_rpm,
+                rapid_mm_min: base.rapid_mm_min,
+                sample_spacing_mm: request.sample_spacing_mm,
+                cell_mm: request.cell_mm,
+                alpha_limit_deg: request.alpha_limit_deg.unwrap_or(DEFAULT_ALPHA_LIMIT_DEG),
+                series_points: 0,
+            };
+            (Some(analysis), None)
+        }
+        (CutMode::SideMilling, None) => return Err(ApiError::field("stock", "required for side milling")),
+        (CutMode::SurfaceFinishing, _) => {
+            let contact = match (&request.contact_normals, request.contact.unwrap_or_default()) {
+                (Some(normals), _) => ContactNormal::PerMove(normals.clone()),
+                (None, ContactInput::Down) => ContactNormal::Down,
+                (None, ContactInput::PrincipalNormal) => ContactNormal::PrincipalNormal,
+            };
+            let surface = SurfaceSpec {
+                ball_radius_mm: tool.radius_mm(),
+                sample_spacing_mm: request.sample_spacing_mm.unwrap_or(DEFAULT_SURFACE_SPACING_MM),
+                fit_half_width_mm: DEFAULT_SURFACE_FIT_HALF_WIDTH_MM,
+                contact,
+            };
+            (None, Some(surface))
+        }
+    };
+    Ok(Built { path, spec, analysis, surface })
+}
+
+/// Runs the optimisation and writes the program.
+pub fn run(
+    request: FeedsRequest,
+    prepared: FeedsPrepared,
+    progress: &dyn Progress,
+) -> Result<(FeedsResult, String), CoreError> {
+    let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
+    let job = build(&request, &prepared).map_err(reread)?;
+    let plan: FeedPlan = match (&job.analysis, &job.surface) {
+        (Some(analysis), _) => optimize_side_milling(&job.path, analysis, &job.spec, progress)?,
+        (None, Some(surface)) => optimize_surface_finishing(&job.path, surface, &job.spec, progress)?,
+        (None, None) => return Err(CoreError::invalid("mode", "nothing to optimise")),
+    };
+    let options = request.output.to_writer(&prepared.base);
+    let program = write_program(&plan.path, &options);
+    Ok((FeedsResult::new(prepared, request.mode, job.path.moves.len(), &program, plan), program))
+}

@@ -1,0 +1,119 @@
+//! How a job writes its NC program: the request's `output` object, turned into the
+//! core writer's options.
+
+use super::analysis::AnalysisPrepared;
+use crate::core::nc::{Dialect, LineNumbers, WriterOptions, DEFAULT_DECIMALS, DEFAULT_FEED_DECIMALS, MAX_DECIMALS};
+use crate::service::error::Validator;
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+/// Largest Fanuc program number (`O9999`).
+pub const MAX_PROGRAM_NUMBER: u32 = 9999;
+/// Longest title, characters.
+pub const MAX_TITLE_CHARS: usize = 120;
+
+/// The control a program is written for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum DialectInput {
+    /// Fanuc and ISO controls: `%`, `O0001`, a decimal point on every length, `M30`.
+    #[default]
+    Fanuc,
+    /// LinuxCNC: no `%` or O number, `P` turns on arcs, `M2`.
+    #[serde(alias = "linuxcnc")]
+    LinuxCnc,
+}
+
+/// N numbers on every line.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LineNumbersInput {
+    /// First N number (default 10).
+    pub start: Option<u32>,
+    /// Step (default 10).
+    pub step: Option<u32>,
+}
+
+/// How to write the program. Every field is optional.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct OutputOptions {
+    /// `fanuc` (default) or `linux_cnc`.
+    #[serde(default)]
+    pub dialect: DialectInput,
+    /// Fanuc program number, 1–9999 (default 1).
+    pub program_number: Option<u32>,
+    /// N numbers (default: none).
+    pub line_numbers: Option<LineNumbersInput>,
+    /// A comment in the header (default: the tool's name).
+    pub title: Option<String>,
+    /// Write the time the job ran in the header (default false: the same input gives the
+    /// same bytes).
+    #[serde(default)]
+    pub timestamp: bool,
+    /// M8 after the spindle starts and M9 at the end (default true).
+    pub coolant: Option<bool>,
+    /// Decimals of lengths (default 3, at most 6).
+    pub decimals: Option<u32>,
+    /// Decimals of feeds (default 1, at most 6).
+    pub feed_decimals: Option<u32>,
+    /// Tool number of the header's tool change when the program has none.
+    pub tool_number: Option<u32>,
+}
+
+impl OutputOptions {
+    pub fn validate(&self, v: &mut Validator) {
+        if let Some(n) = self.program_number {
+            v.check(
+                (1..=MAX_PROGRAM_NUMBER).contains(&n),
+                "output.program_number",
+                format!("1 to {MAX_PROGRAM_NUMBER}"),
+            );
+        }
+        if let Some(step) = self.line_numbers.and_then(|l| l.step) {
+            v.check(step >= 1, "output.line_numbers.step", "at least 1");
+        }
+        if let Some(t) = &self.title {
+            v.check(
+                t.chars().count() <= MAX_TITLE_CHARS,
+                "output.title",
+                format!("at most {MAX_TITLE_CHARS} characters"),
+            );
+        }
+        for (field, value) in [("output.decimals", self.decimals), ("output.feed_decimals", self.feed_decimals)] {
+            if let Some(d) = value {
+                v.check(d <= MAX_DECIMALS, field, format!("at most {MAX_DECIMALS}"));
+            }
+        }
+        v.check(self.decimals.is_none_or(|d| d >= 1), "output.decimals", "at least 1");
+    }
+
+    /// The writer's options, with the job's defaults.
+    pub fn to_writer(&self, prepared: &AnalysisPrepared) -> WriterOptions {
+        let defaults = LineNumbers::default();
+        WriterOptions {
+            dialect: match self.dialect {
+                DialectInput::Fanuc => Dialect::Fanuc,
+                DialectInput::LinuxCnc => Dialect::LinuxCnc,
+            },
+            program_number: self.program_number.unwrap_or(1),
+            line_numbers: self.line_numbers.map(|l| LineNumbers {
+                start: l.start.unwrap_or(defaults.start),
+                step: l.step.unwrap_or(defaults.step),
+            }),
+            title: Some(self.title.clone().unwrap_or_else(|| prepared.tool.name.clone())),
+            timestamp: self.timestamp.then(now),
+            coolant: self.coolant.unwrap_or(true),
+            decimals: self.decimals.unwrap_or(DEFAULT_DECIMALS),
+            feed_decimals: self.feed_decimals.unwrap_or(DEFAULT_FEED_DECIMALS),
+            tool_number: self.tool_number,
+            spindle_rpm: prepared.default_spindle_rpm,
+        }
+    }
+}
+
+fn now() -> String {
+    time::OffsetDateTime::now_utc()
+        .format(&time::format_description::well_known::Rfc3339)
+        .unwrap_or_else(|_| "unknown time".to_string())
+}

@@ -1,0 +1,169 @@
+//! `POST /v1/feeds`: feeds optimised for a constant force or a constant cutting-point
+//! feed, written back as an NC program that our own parser reads.
+
+use crate::common::{assert_problem, close, TestApp};
+use dieplan::core::nc::{parse_gcode, ParseOptions};
+use dieplan::core::toolpath::{Motion, Toolpath};
+use serde_json::{json, Value};
+
+fn shared(name: &str) -> String {
+    let path = format!("{}/../shared/data/{name}", env!("CARGO_MANIFEST_DIR"));
+    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+/// From the centre of a pre-opened hole of radius 9.5, out to the wall and once round a
+/// concave arc of R/r = 2 (Rd 0.5, Ad 10) with the 10 mm tool.
+const CONCAVE_CIRCLE: &str =
+    "%\nO0100 (R/r 2)\nG21 G90 G17\nT1 M6\nS9600 M3\nG0 X0 Y0 Z5\nG1 Z-10 F1000\nG1 X5 F5760\nG3 X5 Y0 I-5 J0\nG0 Z5\nM30\n%\n";
+
+fn concave_request() -> Value {
+    json!({
+        "program": {"gcode": CONCAVE_CIRCLE},
+        "tool_type": "square", "diameter_mm": 10,
+        "stock": {"box": {"x_min": -30, "y_min": -30, "z_min": -10, "x_max": 30, "y_max": 30, "z_max": 0},
+                  "open": [{"circle": {"cx": 0, "cy": 0, "r": 9.5}}]}
+    })
+}
+
+async fn program(app: &TestApp, job: &Value) -> (String, Toolpath) {
+    let a = app.get(&format!("/v1/jobs/{}/program", job["id"].as_str().unwrap())).await;
+    assert_eq!(a.status, 200, "{}", a.text);
+    assert!(a.content_type().starts_with("text/plain"), "{}", a.content_type());
+    let path = parse_gcode(&a.text, &ParseOptions::default()).unwrap_or_else(|e| panic!("{e:?}\n{}", a.text));
+    (a.text, path)
+}
+
+/// Every feed move's feed lies within the job's limits (or is the programmed feed of a
+/// plunge, which the optimiser keeps).
+fn assert_feeds_within_limits(path: &Toolpath, result: &Value, programmed: &Toolpath) {
+    let (lo, hi) =
+        (result["limits"]["min_feed_mm_min"].as_f64().unwrap(), result["limits"]["max_feed_mm_min"].as_f64().unwrap());
+    let kept: Vec<f64> = programmed.moves.iter().filter_map(|m| m.feed_mm_min).collect();
+    for m in path.moves.iter().filter(|m| !matches!(m.motion, Motion::Rapid)) {
+        let f = m.feed_mm_min.unwrap();
+        let within = f >= lo - 0.05 && f <= hi + 0.05;
+        assert!(within || kept.iter().any(|k| (k - f).abs() < 0.05), "line {}: F{f} outside [{lo}, {hi}]", m.line);
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_concave_arc_of_r_over_r_2_is_cut_at_the_constant_force_feed_of_model_section_3() {
+    let app = TestApp::start().await;
+    let a = app.post_wait("/v1/feeds", concave_request()).await;
+    assert_eq!(a.status, 201, "{}", a.text);
+    assert_eq!(a.body["status"], "succeeded", "{}", a.text);
+    let r = &a.body["result"];
+    assert_eq!(r["strategy"], "constant_force");
+    assert!(close(&r["target_force_n"], 269.1, 0.5), "{r}");
+    assert!(close(&r["limits"]["max_feed_mm_min"], 11520.0, 0.5), "{}", r["limits"]);
+    // The longest block of the circle (line 9) runs at ≈ 1160 mm/min.
+    let blocks = &r["blocks"];
+    let n = blocks["line"].as_array().unwrap().len();
+    let longest = (0..n)
+        .filter(|&i| blocks["line"][i] == 9)
+        .max_by(|&i, &j| blocks["length_mm"][i].as_f64().unwrap().total_cmp(&blocks["length_mm"][j].as_f64().unwrap()))
+        .unwrap();
+    assert!(close(&blocks["feed_mm_min"][longest], 1160.0, 1160.0 * 0.02), "{blocks}");
+    assert!(r["before"]["force_n"]["max"].as_f64().unwrap() > r["after"]["force_n"]["max"].as_f64().unwrap());
+    assert!(r["after"]["time_min"].as_f64().unwrap() > r["before"]["time_min"].as_f64().unwrap());
+    assert!(!r["shortfalls"].as_array().unwrap().is_empty(), "the head-on entry cannot hold the target: {r}");
+
+    let (text, path) = program(&app, &a.body).await;
+    assert!(text.starts_with("%\nO0001 ("), "{text}");
+    assert_eq!(path.moves.len(), r["program"]["moves_out"].as_u64().unwrap() as usize);
+    let arcs = path.moves.iter().filter(|m| matches!(m.motion, Motion::Arc { .. })).count();
+    assert!(arcs >= 2, "the circle is split into arcs, not lines:\n{text}");
+    let input = parse_gcode(CONCAVE_CIRCLE, &ParseOptions::default()).unwrap();
+    assert_feeds_within_limits(&path, r, &input);
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_linuxcnc_dialect_with_line_numbers_reads_back_and_the_same_input_gives_the_same_bytes() {
+    let app = TestApp::start().await;
+    let mut body = concave_request();
+    body["strategy"] = json!("both");
+    body["output"] = json!({"dialect": "linux_cnc", "line_numbers": {"start": 100, "step": 5}, "title": "corner test"});
+    let first = app.post_wait("/v1/feeds", body.clone()).await;
+    let second = app.post_wait("/v1/feeds", body).await;
+    let (a, path) = program(&app, &first.body).await;
+    let (b, _) = program(&app, &second.body).await;
+    assert_eq!(a, b);
+    assert!(!a.contains('%') && a.contains("N100 ") && a.trim_end().ends_with("M2"), "{a}");
+    assert!(path.moves.len() > 3);
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn both_real_programs_come_back_as_valid_programs_with_every_feed_within_its_limits() {
+    let app = TestApp::start().await;
+    let trochoidal = json!({
+        "program": {"gcode": shared("trochoidal.ngc")},
+        "tool_type": "square", "diameter_mm": 10,
+        "stock": {"box": {"x_min": -60, "y_min": -10, "z_min": -10, "x_max": 40, "y_max": 90, "z_max": 0}}
+    });
+    let tiger = json!({
+        "program": {"gcode": shared("tiger.nc")},
+        "tool_id": app.tool_id("square", 6.0).await,
+        "stock": {"box": {"x_min": -2, "y_min": -1, "z_min": -32, "x_max": 92, "y_max": 89, "z_max": 0}},
+        "sample_spacing_mm": 0.1
+    });
+    for (name, body) in [("trochoidal.ngc", trochoidal), ("tiger.nc", tiger)] {
+        let input = parse_gcode(body["program"]["gcode"].as_str().unwrap(), &ParseOptions::default()).unwrap();
+        let a = app.send(reqwest::Method::POST, "/v1/feeds", Some(body), &[("prefer", "wait=120")]).await;
+        assert_eq!(a.body["status"], "succeeded", "{name}: {}", &a.text[..a.text.len().min(2000)]);
+        let r = &a.body["result"];
+        let (_, path) = program(&app, &a.body).await;
+        assert!(path.moves.len() >= input.moves.len(), "{name}");
+        assert_feeds_within_limits(&path, r, &input);
+    }
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_ball_end_mill_finishing_a_valley_slows_down_to_hold_the_cutting_point_feed() {
+    let app = TestApp::start().await;
+    // A valley in the XZ plane: a G18 arc of radius 4.692 about a centre above the path;
+    // with the 6 mm ball (r = 3) R/(R + r) = 0.61 (seed 000).
+    let gcode =
+        "G21 G90 G18\nS8000 M3\nG0 X-2.25 Y0 Z0.578\nG1 X-2.249 F1200\nG3 X2.249 Z0.578 I2.249 K4.114\nG1 X2.25\nM30\n";
+    let body = json!({
+        "program": {"gcode": gcode}, "tool_type": "ball", "diameter_mm": 6,
+        "mode": "surface_finishing", "min_feed_mm_min": 100, "max_feed_mm_min": 4000,
+        "max_feed_change_per_mm": 0
+    });
+    let a = app.post_wait("/v1/feeds", body).await;
+    assert_eq!(a.body["status"], "succeeded", "{}", a.text);
+    assert_eq!(a.body["result"]["strategy"], "cutting_point");
+    let (_, path) = program(&app, &a.body).await;
+    let arc = path.moves.iter().find(|m| matches!(m.motion, Motion::Arc { .. })).expect("the arc stays an arc");
+    assert!((arc.feed_mm_min.unwrap() - 0.61 * 1200.0).abs() < 2.0, "{arc:?}");
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn bad_feed_requests_are_refused_naming_the_field() {
+    let app = TestApp::start().await;
+    let mut ball = concave_request();
+    ball["tool_type"] = json!("ball");
+    assert_problem(&app.post("/v1/feeds", ball).await, 422, Some("strategy"));
+    let mut no_stock = concave_request();
+    no_stock.as_object_mut().unwrap().remove("stock");
+    assert_problem(&app.post("/v1/feeds", no_stock).await, 422, Some("stock"));
+    let mut number = concave_request();
+    number["output"] = json!({"program_number": 10000});
+    assert_problem(&app.post("/v1/feeds", number).await, 422, Some("output.program_number"));
+    let mut too_fast = concave_request();
+    too_fast["max_feed_mm_min"] = json!(1.0e6);
+    assert_problem(&app.post("/v1/feeds", too_fast).await, 422, Some("max_feed_mm_min"));
+    let mut inverted = concave_request();
+    inverted["min_feed_mm_min"] = json!(5000);
+    inverted["max_feed_mm_min"] = json!(1000);
+    assert_problem(&app.post("/v1/feeds", inverted).await, 422, Some("min_feed_mm_min"));
+    let mut bad_line = concave_request();
+    bad_line["program"] = json!({"gcode": "G21\nG1 X10 Q7 F100\n"});
+    assert_problem(&app.post("/v1/feeds", bad_line).await, 422, Some("program.gcode"));
+    let jobs = app.get("/v1/jobs?kind=feeds").await;
+    assert_eq!(jobs.body["total"], 0, "refused requests make no job: {}", jobs.text);
+    app.stop().await;
+}
