@@ -14,6 +14,8 @@ pub(crate) mod fixtures;
 pub mod force_fit;
 pub mod force_model;
 pub mod geometry;
+/// The medial axis of a pocket and its radius-ratio classes (seed 004 §2.1, §2.3).
+pub mod medial;
 pub mod nc;
 pub mod operation;
 pub mod progress;
