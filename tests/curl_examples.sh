@@ -71,6 +71,9 @@ check "10 mm standard conditions give F 5760 and beta0 = 269.1 N" \
 check "18 seeded tools" '.total == 18' "/v1/tools?limit=1" GET ""
 check "a bad request is a problem document naming the field" \
   '.status == 422 and .errors[0].field == "diameter_mm"' /v1/conditions POST '{"tool_type": "square", "diameter_mm": 11}'
+check "a concave arc of R/r 2 is cut at about 1160 mm/min for a constant force" \
+  '[.result.blocks.feed_mm_min[] | select(. != null)] | any(. > 1136 and . < 1184)' /v1/feeds POST \
+  '{"program": {"gcode": "G21 G90\nS9600 M3\nG0 X0 Y0 Z5\nG1 Z-10 F1000\nG1 X5 F5760\nG3 X5 Y0 I-5 J0\nM30\n"}, "tool_type": "square", "diameter_mm": 10, "stock": {"box": {"x_min": -30, "y_min": -30, "z_min": -10, "x_max": 30, "y_max": 30, "z_max": 0}, "open": [{"circle": {"cx": 0, "cy": 0, "r": 9.5}}]}}'
 
 # SIGTERM: graceful stop with exit code 0.
 kill -TERM "$PID"

@@ -127,7 +127,8 @@ pub fn optimize_side_milling(
             cutting_point_ratio: r.cutting_point_ratio,
             programmed_feed_mm_min: s.feed_mm_min,
             spindle_rpm: s.spindle_rpm.or(default_rpm),
-            plunge: r.plunge,
+            // A move straight down keeps its feed, in material or not.
+            plunge: r.plunge || (!s.rapid && s.heading.0.abs() + s.heading.1.abs() < f64::EPSILON),
             in_material,
         };
         collector.add(&super::collect::SampleIn {

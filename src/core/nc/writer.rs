@@ -22,7 +22,7 @@
 //! - Always mm: a [`Toolpath`] is in mm whatever its source, so the writer writes `G21`.
 //! - Modal: G0/G1/G2/G3 only when the motion changes, an axis only when its written value
 //!   changes (values equal after rounding to `decimals`, i.e. within half a unit of the last
-//!   digit, are not repeated), F when the written feed changes, S when the written speed
+//!   digit, are not repeated), F when the written feed changes (never on a G0), S when the written speed
 //!   changes, G17/G18/G19 before an arc in another plane. The first move, and the first
 //!   after a tool change, writes all three axes.
 //! - Tool changes: `T.. M6`, then `G43 H..` (the tool's length offset) on the next move,
@@ -396,9 +396,10 @@ impl<'a> Writer<'a> {
         self.position = end.map(Some);
     }
 
-    /// F and S if they change.
+    /// F (on feed moves: a rapid's modal feed waits for the next feed move) and S if they
+    /// change.
     fn feed_and_speed(&mut self, m: &Move) {
-        if let Some(feed) = m.feed_mm_min {
+        if let (Some(feed), false) = (m.feed_mm_min, matches!(m.motion, Motion::Rapid)) {
             let feed = Fixed::round(feed, self.options.feed_decimals);
             if self.feed != Some(feed.units) {
                 self.number('F', feed);
