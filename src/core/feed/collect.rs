@@ -6,7 +6,8 @@ use super::rule::{FeedReason, FeedRule, SampleCut};
 use crate::core::analysis::report::PathPoint;
 use serde::Serialize;
 
-/// What the optimiser keeps of one sample (f32: two million samples fit in 64 MB).
+/// What the optimiser keeps of one sample (44 bytes: f32 values, so the 2.9 M samples of
+/// tiger.nc take about 130 MB).
 #[derive(Debug, Clone, Copy)]
 pub struct Kept {
     pub move_index: u32,
