@@ -163,6 +163,10 @@ async fn bad_feed_requests_are_refused_naming_the_field() {
     let mut bad_line = concave_request();
     bad_line["program"] = json!({"gcode": "G21\nG1 X10 Q7 F100\n"});
     assert_problem(&app.post("/v1/feeds", bad_line).await, 422, Some("program.gcode"));
+    let mut too_many = concave_request();
+    too_many["program"] = json!({"gcode": "G21 G90\nS9600 M3\nG1 X5000 Y0 Z-5 F5760\nM30\n"});
+    too_many["sample_spacing_mm"] = json!(0.0004);
+    assert_problem(&app.post("/v1/feeds", too_many).await, 422, Some("sample_spacing_mm"));
     let jobs = app.get("/v1/jobs?kind=feeds").await;
     assert_eq!(jobs.body["total"], 0, "refused requests make no job: {}", jobs.text);
     app.stop().await;

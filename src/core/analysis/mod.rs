@@ -118,6 +118,13 @@ pub fn resolution(spec: &AnalysisSpec, bounds: Rect, slices: usize) -> (f64, f64
     (spacing, wanted.max(floor))
 }
 
+/// The sample spacing of an analysis of `path` and the number of samples it takes.
+pub fn sample_count(path: &Toolpath, spec: &AnalysisSpec) -> (f64, f64) {
+    let (spacing, _) = resolution(spec, region::union_bounds(&spec.stock), 1);
+    let samples = path.moves.iter().map(|m| (sampling::move_length(m) / spacing).ceil().max(1.0)).sum();
+    (spacing, samples)
+}
+
 /// Checks that `path` and `spec` can be analysed: every value in range, every feed move
 /// with a feed, and a sample count within [`MAX_SAMPLES`].
 pub fn check(path: &Toolpath, spec: &AnalysisSpec) -> Result<(), CoreError> {
@@ -158,8 +165,7 @@ pub fn check(path: &Toolpath, spec: &AnalysisSpec) -> Result<(), CoreError> {
             ));
         }
     }
-    let (spacing, _) = resolution(spec, b, 1);
-    let samples: f64 = path.moves.iter().map(|m| (sampling::move_length(m) / spacing).ceil().max(1.0)).sum();
+    let (spacing, samples) = sample_count(path, spec);
     if samples > MAX_SAMPLES {
         return Err(CoreError::invalid(
             "sample_spacing_mm",

@@ -20,6 +20,9 @@ use serde::Serialize;
 /// Default limit on the change of feed along the path, mm/min per mm (assumed: a
 /// corner feed of 500 mm/min is reached from 5760 in about 5 mm).
 pub const DEFAULT_MAX_FEED_CHANGE_PER_MM: f64 = 1000.0;
+/// Most samples one feed optimisation keeps (it keeps a 44-byte record of every sample
+/// for the change-rate limit and the blocks: about 440 MB).
+pub const MAX_FEED_SAMPLES: f64 = 10_000_000.0;
 /// Micrometres per millimetre.
 const UM_PER_MM: f64 = 1000.0;
 /// A limited feed this far below the required one counts as lowered by the rate limit.
@@ -107,6 +110,19 @@ pub fn check_spec(spec: &FeedSpec) -> Result<(), CoreError> {
     Ok(())
 }
 
+/// Refuses an optimisation of more than [`MAX_FEED_SAMPLES`] samples.
+pub fn check_sample_count((spacing_mm, samples): (f64, f64)) -> Result<(), CoreError> {
+    if samples > MAX_FEED_SAMPLES {
+        return Err(CoreError::invalid(
+            "sample_spacing_mm",
+            format!(
+                "the path needs {samples:.0} samples at {spacing_mm} mm; feed optimisation takes at most {MAX_FEED_SAMPLES:.0}: sample more coarsely"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Optimises the feeds of a 2.5-D side-milling path, simulating the stock of `analysis`.
 pub fn optimize_side_milling(
     path: &Toolpath,
@@ -115,6 +131,7 @@ pub fn optimize_side_milling(
     progress: &dyn Progress,
 ) -> Result<FeedPlan, CoreError> {
     check_spec(spec)?;
+    check_sample_count(crate::core::analysis::sample_count(path, analysis))?;
     let mut collector = Collector::new(spec.rule);
     let default_rpm = analysis.default_spindle_rpm;
     let report = analyze_with(path, analysis, progress, |r| {

@@ -233,6 +233,12 @@ fn contact_normal(contact: &ContactNormal, k: &Curvature3, move_index: usize) ->
     }
 }
 
+/// The sample spacing of a surface-finishing optimisation and the samples it takes.
+pub fn sample_count(path: &Toolpath, surface: &SurfaceSpec) -> (f64, f64) {
+    let spacing = surface.sample_spacing_mm;
+    (spacing, path.moves.iter().map(|m| (move_length(m) / spacing).ceil().max(1.0)).sum())
+}
+
 /// Optimises the feeds of a 3-D ball-end finishing path for a constant feed at the
 /// cutting point (no stock simulation: every feed move is taken to cut).
 pub fn optimize_surface_finishing(
@@ -268,6 +274,7 @@ pub fn optimize_surface_finishing(
     {
         return Err(CoreError::invalid("program", format!("line {}: a feed move with no feed (F)", m.line)));
     }
+    super::plan::check_sample_count(sample_count(path, surface))?;
     let curvatures = move_curvatures_3d(path, surface.fit_half_width_mm);
     let mut collector = Collector::new(spec.rule);
     let (mut s_mm, mut n) = (0.0, 0usize);

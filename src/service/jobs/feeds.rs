@@ -6,13 +6,15 @@ use super::analysis::{resolve, AnalysisPrepared, PathJobRefs, Resolved};
 use super::feeds_result::FeedsResult;
 use super::inputs::{read_program, read_stock, ProgramInput, StockInput};
 use super::output::OutputOptions;
-use crate::core::analysis::{check, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG};
+use crate::core::analysis::{check, sample_count, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG};
 use crate::core::conditions::{feed_mm_min, standard_centres};
 use crate::core::feed::blocks::{BlockOptions, DEFAULT_FEED_STEP_MM_MIN, DEFAULT_FEED_TOLERANCE, DEFAULT_MIN_BLOCK_MM};
-use crate::core::feed::plan::{check_spec, optimize_side_milling, FeedPlan, FeedSpec, DEFAULT_MAX_FEED_CHANGE_PER_MM};
+use crate::core::feed::plan::{
+    check_sample_count, check_spec, optimize_side_milling, FeedPlan, FeedSpec, DEFAULT_MAX_FEED_CHANGE_PER_MM,
+};
 use crate::core::feed::rule::{FeedRule, FeedStrategy};
 use crate::core::feed::surface::{
-    optimize_surface_finishing, ContactNormal, SurfaceSpec, DEFAULT_SURFACE_FIT_HALF_WIDTH_MM,
+    self, optimize_surface_finishing, ContactNormal, SurfaceSpec, DEFAULT_SURFACE_FIT_HALF_WIDTH_MM,
 };
 use crate::core::nc::write_program;
 use crate::core::progress::Progress;
@@ -274,6 +276,10 @@ pub async fn prepare(pool: &SqlitePool, request: FeedsRequest) -> Result<FeedsPr
         check_spec(&job.spec)?;
         if let Some(analysis) = &job.analysis {
             check(&job.path, analysis)?;
+            check_sample_count(sample_count(&job.path, analysis))?;
+        }
+        if let Some(surface) = &job.surface {
+            check_sample_count(surface::sample_count(&job.path, surface))?;
         }
         Ok(())
     })
