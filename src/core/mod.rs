@@ -5,6 +5,7 @@
 
 pub mod analysis;
 pub mod conditions;
+pub mod costing;
 pub mod curvature;
 pub mod engagement;
 pub mod error;
@@ -22,6 +23,7 @@ pub mod progress;
 pub mod stock;
 pub mod tolerance;
 pub mod tool;
+pub mod tool_life;
 pub mod toolpath;
 
 pub use error::CoreError;

@@ -4,9 +4,11 @@
 use crate::core::operation::Operation;
 use crate::core::tool::ToolType;
 use crate::service::error::ApiError;
+use crate::service::resources::cost_rates::CostRates;
 use crate::service::resources::force_models::ForceModelRecord;
 use crate::service::resources::materials::Material;
 use crate::service::resources::standard_conditions::StandardConditions;
+use crate::service::resources::tool_life::ToolLife;
 use crate::service::resources::tools::Tool;
 use crate::service::resources::DIAMETER_FILTER_TOLERANCE_MM;
 use sqlx::SqlitePool;
@@ -109,4 +111,29 @@ pub async fn force_model(
     .bind(material_id)
     .fetch_optional(pool)
     .await?)
+}
+
+/// The tool-life data of a tool in a material, if any.
+pub async fn tool_life(pool: &SqlitePool, tool_id: i64, material_id: i64) -> Result<Option<ToolLife>, ApiError> {
+    Ok(sqlx::query_as::<_, ToolLife>("SELECT * FROM tool_life WHERE tool_id = ? AND material_id = ?")
+        .bind(tool_id)
+        .bind(material_id)
+        .fetch_optional(pool)
+        .await?)
+}
+
+/// The cost rates with `id`, or the first ones.
+pub async fn cost_rates(pool: &SqlitePool, id: Option<i64>) -> Result<CostRates, ApiError> {
+    let found = match id {
+        Some(id) => {
+            sqlx::query_as::<_, CostRates>("SELECT * FROM cost_rates WHERE id = ?")
+                .bind(id)
+                .fetch_optional(pool)
+                .await?
+        }
+        None => {
+            sqlx::query_as::<_, CostRates>("SELECT * FROM cost_rates ORDER BY id LIMIT 1").fetch_optional(pool).await?
+        }
+    };
+    found.ok_or_else(|| ApiError::field("cost_rates_id", "no such cost rates (add some at /v1/cost-rates)"))
 }

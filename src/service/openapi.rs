@@ -3,6 +3,7 @@
 use crate::service::error::{FieldError, Problem};
 use crate::service::jobs::analysis_result::AnalysisResult;
 use crate::service::jobs::conditions::ConditionsResult;
+use crate::service::jobs::costing_result::CostingResult;
 use crate::service::jobs::feeds_result::FeedsResult;
 use crate::service::state::AppState;
 use utoipa::OpenApi;
@@ -20,7 +21,7 @@ use utoipa_axum::router::OpenApiRouter;
         (name = "database", description = "The cutting-condition database"),
         (name = "health", description = "Liveness and readiness")
     ),
-    components(schemas(Problem, FieldError, ConditionsResult, AnalysisResult, FeedsResult))
+    components(schemas(Problem, FieldError, ConditionsResult, AnalysisResult, FeedsResult, CostingResult))
 )]
 pub struct ApiDoc;
 

@@ -5,6 +5,7 @@ mod analysis;
 mod architecture;
 mod common;
 mod conditions;
+mod costing;
 mod curl_examples;
 mod database;
 mod errors;

@@ -3,6 +3,7 @@
 
 use super::analysis::{self, AnalysisRequest};
 use super::conditions::{self, ConditionsRequest};
+use super::costing::{self, CostingRequest};
 use super::feeds::{self, FeedsRequest};
 use super::model::JobKind;
 use crate::core::progress::Progress;
@@ -20,6 +21,7 @@ pub enum JobInput {
     Conditions(ConditionsRequest),
     Analysis(Box<AnalysisRequest>),
     Feeds(Box<FeedsRequest>),
+    Costing(Box<CostingRequest>),
 }
 
 /// What a finished job hands back.
@@ -70,6 +72,10 @@ pub async fn prepare(
                 let request: FeedsRequest = from_value(input)?;
                 to_json(&feeds::prepare(pool, request).await?)
             }
+            JobKind::Costing => {
+                let request: CostingRequest = from_value(input)?;
+                to_json(&costing::prepare(pool, request).await?)
+            }
         }
     }
     .await;
@@ -102,6 +108,11 @@ pub fn run(kind: JobKind, input: &str, prepared: &str, progress: &dyn Progress) 
             let (result, text) = feeds::run(request, prepared, progress)?;
             program = Some(text);
             serde_json::to_value(result).map_err(unreadable)?
+        }
+        JobKind::Costing => {
+            let request = serde_json::from_str(input).map_err(unreadable)?;
+            let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
+            serde_json::to_value(costing::run(request, prepared, progress)?).map_err(unreadable)?
         }
     };
     progress.report(1.0);

@@ -4,6 +4,8 @@
 pub mod analysis;
 pub mod analysis_result;
 pub mod conditions;
+pub mod costing;
+pub mod costing_result;
 pub mod feeds;
 pub mod feeds_result;
 pub mod inputs;

@@ -51,6 +51,8 @@ pub enum JobKind {
     /// Feeds optimised for a constant cutting-point feed or a constant force, written as
     /// an NC program (`POST /v1/feeds`).
     Feeds,
+    /// Time, tool-life consumption and cost of an NC program (`POST /v1/costing`).
+    Costing,
 }
 
 impl JobKind {
@@ -59,11 +61,14 @@ impl JobKind {
             JobKind::Conditions => "conditions",
             JobKind::Analysis => "analysis",
             JobKind::Feeds => "feeds",
+            JobKind::Costing => "costing",
         }
     }
 
     pub fn parse(text: &str) -> Option<JobKind> {
-        [JobKind::Conditions, JobKind::Analysis, JobKind::Feeds].into_iter().find(|k| k.as_str() == text)
+        [JobKind::Conditions, JobKind::Analysis, JobKind::Feeds, JobKind::Costing]
+            .into_iter()
+            .find(|k| k.as_str() == text)
     }
 }
 

@@ -2,6 +2,7 @@
 
 use super::analysis::AnalysisRequest;
 use super::conditions::ConditionsRequest;
+use super::costing::CostingRequest;
 use super::feeds::FeedsRequest;
 use super::kinds::{self, JobInput};
 use super::model::{Job, JobKind, JobStatus, JobSummary};
@@ -182,6 +183,28 @@ pub async fn create_feeds(
     submit(&state, JobKind::Feeds, input, "", &headers).await
 }
 
+/// Costs an NC program (job kind `costing`).
+///
+/// Simulates the program in its stock and reports the machining time, the tool-life
+/// consumption `L_t / L_f` with the lines and engagement angles where the tool wears
+/// (MODEL.md §9), the cost `C = c_m · T_m + c_t · L_t / L_f` (seed 002, Eq. 4), the
+/// material removed and the removal rate. The program is given, or taken from a finished
+/// job (`job_id`, e.g. a `feeds` job). The finished job's `result` is a `CostingResult`.
+#[utoipa::path(post, path = "/v1/costing", tag = "jobs", operation_id = "costProgram", request_body = CostingRequest,
+    params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
+    responses(
+        (status = 201, description = "Finished within the preferred wait; result is a CostingResult", body = Job),
+        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
+        (status = 422, description = "A refused field, NC line or contour vertex", body = Problem, content_type = "application/problem+json")))]
+pub async fn create_costing(
+    State(state): State<AppState>,
+    headers: HeaderMap,
+    ApiJson(input): ApiJson<serde_json::Value>,
+) -> Result<Response, ApiError> {
+    submit(&state, JobKind::Costing, input, "", &headers).await
+}
+
 /// Reads a job: status, progress, timestamps, result or error.
 #[utoipa::path(get, path = "/v1/jobs/{id}", tag = "jobs", operation_id = "getJob",
     params(("id" = String, Path, description = "Job id")),
@@ -276,6 +299,7 @@ pub fn router() -> OpenApiRouter<AppState> {
         .routes(routes!(create_conditions))
         .routes(routes!(create_analysis))
         .routes(routes!(create_feeds))
+        .routes(routes!(create_costing))
 }
 
 #[cfg(test)]

@@ -1,0 +1,234 @@
+//! The `costing` job (seed 002 subsystems (e) and (f); MODEL.md §9 and §10): the time,
+//! tool-life consumption and cost of machining an NC program.
+
+use super::analysis::{build, resolve, AnalysisPrepared, AnalysisRequest, PathJobRefs, Resolved};
+use super::conditions::NamedRef;
+use super::costing_result::CostingResult;
+use super::inputs::{ProgramInput, StockInput};
+use super::store;
+use crate::core::analysis::check;
+use crate::core::conditions::standard_centres;
+use crate::core::costing::cost::Rates;
+use crate::core::costing::wear::path_wear;
+use crate::core::progress::Progress;
+use crate::core::tool::ToolType;
+use crate::core::tool_life::ToolLifeModel;
+use crate::core::CoreError;
+use crate::service::error::{ApiError, Validator};
+use crate::service::lookup;
+use serde::{Deserialize, Serialize};
+use sqlx::SqlitePool;
+use utoipa::ToSchema;
+
+/// What to cost: a program (or a finished job's program) cut with a tool in a stock.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({
+    "program": {"gcode": "G21 G90 G17\nS9600 M3\nG0 X-10 Y4.5 Z5\nG1 Z-10 F1000\nG1 X110 F5760\nG0 Z5\nM30"},
+    "tool_type": "square", "diameter_mm": 10,
+    "stock": {"box": {"x_min": 0, "y_min": -40, "z_min": -10, "x_max": 100, "y_max": 0, "z_max": 0}}
+}))]
+pub struct CostingRequest {
+    /// The program (give this or `job_id`).
+    pub program: Option<ProgramInput>,
+    /// A finished job whose NC program to cost (e.g. a `feeds` job).
+    pub job_id: Option<String>,
+    pub tool_id: Option<i64>,
+    pub tool_type: Option<ToolType>,
+    pub diameter_mm: Option<f64>,
+    pub material_id: Option<i64>,
+    /// Material name (default SKD61).
+    pub material: Option<String>,
+    /// The stock of the layer the program cuts.
+    pub stock: StockInput,
+    /// Machine for the rapid rate and the kinematic limits (default: the first machine).
+    pub machine_id: Option<i64>,
+    /// Cost rates (default: the first ones).
+    pub cost_rates_id: Option<i64>,
+    /// Price of one tool (default: the tool's price, else the rates' default).
+    pub tool_price: Option<f64>,
+    /// Spindle speed where the program has no S word (default: the standard one).
+    pub spindle_rpm: Option<f64>,
+    /// Distance between samples, mm (default min(0.05, D/100)).
+    pub sample_spacing_mm: Option<f64>,
+    /// Raster cell of the stock simulation, mm.
+    pub cell_mm: Option<f64>,
+}
+
+/// What the request resolved to.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct CostingPrepared {
+    #[serde(flatten)]
+    pub base: AnalysisPrepared,
+    /// The program text when it came from a job.
+    pub job_program: Option<String>,
+    pub tool_life_id: i64,
+    pub life_m: f64,
+    pub gamma_table: Vec<(f64, f64)>,
+    pub force_exponent: f64,
+    pub standard_arc_length_mm: f64,
+    pub standard_fz_mm: f64,
+    pub standard_force_n: Option<f64>,
+    pub cost_rates: NamedRef,
+    pub machine_rate_per_hour: f64,
+    pub tool_price: f64,
+    pub currency: String,
+    pub tool_change_s: f64,
+}
+
+impl CostingRequest {
+    /// The analysis of the program this request costs.
+    fn analysis(&self, program: ProgramInput) -> AnalysisRequest {
+        AnalysisRequest {
+            program,
+            tool_id: self.tool_id,
+            tool_type: self.tool_type,
+            diameter_mm: self.diameter_mm,
+            material_id: self.material_id,
+            material: self.material.clone(),
+            stock: self.stock.clone(),
+            spindle_rpm: self.spindle_rpm,
+            machine_id: self.machine_id,
+            alpha_limit_deg: None,
+            sample_spacing_mm: self.sample_spacing_mm,
+            cell_mm: self.cell_mm,
+            series_points: 0,
+        }
+    }
+
+    fn program(&self, prepared: &CostingPrepared) -> Result<ProgramInput, ApiError> {
+        match (&self.program, &prepared.job_program) {
+            (Some(p), None) => Ok(p.clone()),
+            (None, Some(text)) => Ok(ProgramInput {
+                gcode: Some(text.clone()),
+                moves: None,
+                unknown_words: Default::default(),
+                canned_cycles: Default::default(),
+            }),
+            _ => Err(ApiError::field("program", "give exactly one of program and job_id")),
+        }
+    }
+}
+
+/// Checks the request and resolves it against the database.
+pub async fn prepare(pool: &SqlitePool, request: CostingRequest) -> Result<CostingPrepared, ApiError> {
+    let mut v = Validator::new();
+    v.check(request.program.is_some() != request.job_id.is_some(), "program", "give exactly one of program and job_id");
+    if let Some(p) = request.tool_price {
+        v.non_negative("tool_price", p);
+    }
+    for (field, value) in [
+        ("spindle_rpm", request.spindle_rpm),
+        ("sample_spacing_mm", request.sample_spacing_mm),
+        ("cell_mm", request.cell_mm),
+    ] {
+        if let Some(x) = value {
+            v.positive(field, x);
+        }
+    }
+    v.finish()?;
+    let job_program = match &request.job_id {
+        Some(id) => {
+            let row =
+                store::get(pool, id).await.map_err(|_| ApiError::field("job_id", format!("no job with id {id}")))?;
+            Some(row.program.ok_or_else(|| {
+                ApiError::field("job_id", format!("job {id} ({}, {}) has no NC program", row.kind, row.status))
+            })?)
+        }
+        None => None,
+    };
+    let refs = PathJobRefs {
+        tool_id: request.tool_id,
+        tool_type: request.tool_type,
+        diameter_mm: request.diameter_mm,
+        material_id: request.material_id,
+        material: request.material.as_deref(),
+        machine_id: request.machine_id,
+        spindle_rpm: request.spindle_rpm,
+    };
+    let Resolved { prepared: base, standard, .. } = resolve(pool, &refs).await?;
+    let life = lookup::tool_life(pool, base.tool.id, base.material.id).await?.ok_or_else(|| {
+        ApiError::field(
+            "tool_id",
+            format!("no tool-life data for tool {} in {} (add it at /v1/tool-life)", base.tool.id, base.material.name),
+        )
+    })?;
+    let standard = standard.ok_or_else(|| {
+        ApiError::field(
+            "tool_id",
+            format!("no standard side-cutting conditions for tool {} in {}", base.tool.id, base.material.name),
+        )
+    })?;
+    let (t_um, arc_mm) = standard_centres(base.tool.geometry.diameter_mm / 2.0, standard.data.conditions())?;
+    let standard_force_n = base.force_model.as_ref().map(|m| m.model.force_n(t_um, arc_mm, m.model.ad_ref_mm));
+    let rates = lookup::cost_rates(pool, request.cost_rates_id).await?;
+    let tool_price = sqlx::query_scalar::<_, Option<f64>>("SELECT price FROM tools WHERE id = ?")
+        .bind(base.tool.id)
+        .fetch_one(pool)
+        .await?;
+    let tool_change_s = sqlx::query_scalar::<_, f64>("SELECT tool_change_s FROM machines WHERE id = ?")
+        .bind(base.machine.id)
+        .fetch_one(pool)
+        .await?;
+    let prepared = CostingPrepared {
+        job_program,
+        tool_life_id: life.id,
+        life_m: life.data.life_m,
+        gamma_table: life.data.gamma_table.iter().map(|g| (g.0, g.1)).collect(),
+        force_exponent: life.data.force_exponent,
+        standard_arc_length_mm: arc_mm,
+        standard_fz_mm: standard.data.fz_mm,
+        standard_force_n,
+        cost_rates: NamedRef { id: rates.id, name: rates.data.name.clone() },
+        machine_rate_per_hour: rates.data.machine_rate_per_hour,
+        tool_price: request.tool_price.or(tool_price).unwrap_or(rates.data.default_tool_price),
+        currency: rates.data.currency.clone(),
+        tool_change_s,
+        base,
+    };
+    prepared.life_model().validate()?;
+    let checked = prepared.clone();
+    tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
+        let analysis = request.analysis(request.program(&checked)?);
+        let (path, spec) = build(&analysis, &checked.base)?;
+        check(&path, &spec)?;
+        Ok(())
+    })
+    .await
+    .map_err(|e| ApiError::Internal(e.to_string()))??;
+    Ok(prepared)
+}
+
+impl CostingPrepared {
+    fn life_model(&self) -> ToolLifeModel {
+        ToolLifeModel {
+            life_m: self.life_m,
+            gamma_table: self.gamma_table.clone(),
+            force_exponent: self.force_exponent,
+            standard_arc_length_mm: self.standard_arc_length_mm,
+            standard_fz_mm: self.standard_fz_mm,
+            standard_force_n: self.standard_force_n,
+        }
+    }
+
+    pub fn rates(&self) -> Rates {
+        Rates {
+            machine_rate_per_hour: self.machine_rate_per_hour,
+            tool_price: self.tool_price,
+            currency: self.currency.clone(),
+        }
+    }
+}
+
+/// Runs the costing.
+pub fn run(
+    request: CostingRequest,
+    prepared: CostingPrepared,
+    progress: &dyn Progress,
+) -> Result<CostingResult, CoreError> {
+    let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
+    let analysis = request.analysis(request.program(&prepared).map_err(reread)?);
+    let (path, spec) = build(&analysis, &prepared.base).map_err(reread)?;
+    let (report, wear) = path_wear(&path, &spec, &prepared.life_model(), progress)?;
+    CostingResult::new(prepared, &path, report, wear)
+}

@@ -1,0 +1,78 @@
+//! `POST /v1/costing`: time, tool-life consumption and cost of a program.
+
+use crate::common::{assert_problem, close, TestApp};
+use serde_json::{json, Value};
+
+/// 100 mm of the 10 mm tool's standard straight cut (Rd 0.5, Ad 10, F5760).
+const STANDARD_CUT: &str = "G21 G90 G17\nT1 M6\nS9600 M3\nG0 X-10 Y4.5 Z5\nG1 Z-10 F1000\nG1 X110 F5760\nG0 Z5\nM30\n";
+
+/// A plunge at the wall, then once round a concave arc of R/r = 2 at F4320 (seed 003).
+const CONCAVE_CIRCLE: &str = "G21 G90 G17\nS9600 M3\nG0 X5 Y0 Z5\nG1 Z-10 F1000\nG3 X5 Y0 I-5 J0 F4320\nG0 Z5\nM30\n";
+
+fn concave_stock() -> Value {
+    json!({"box": {"x_min": -30, "y_min": -30, "z_min": -10, "x_max": 30, "y_max": 30, "z_max": 0},
+           "open": [{"circle": {"cx": 0, "cy": 0, "r": 9.5}}]})
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_standard_straight_cut_uses_the_tool_at_the_rate_of_its_320_m_life() {
+    let app = TestApp::start().await;
+    let body = json!({
+        "program": {"gcode": STANDARD_CUT}, "tool_type": "square", "diameter_mm": 10,
+        "stock": {"box": {"x_min": 0, "y_min": -40, "z_min": -10, "x_max": 100, "y_max": 0, "z_max": 0}}
+    });
+    let a = app.post_wait("/v1/costing", body).await;
+    assert_eq!(a.status, 201, "{}", a.text);
+    assert_eq!(a.body["status"], "succeeded", "{}", a.text);
+    let r = &a.body["result"];
+    assert!(close(&r["tool_life"]["equivalent_life_m"], 320.0, 320.0 * 0.05), "{}", r["tool_life"]);
+    assert_eq!(r["tool_life"]["by_line"][0]["line"], 6);
+    assert_eq!(r["time"]["tool_changes"], 1);
+    let t = r["time"]["nominal_min"].as_f64().unwrap();
+    assert!(close(&r["time"]["tool_change_min"], 8.0 / 60.0, 1e-9), "{}", r["time"]);
+    // C = c_m · T_m + c_t · L_t / L_f with the seeded rate (60 per hour) and the tool's price.
+    let price = r["cost"]["tool_price"].as_f64().unwrap();
+    let expected = 60.0 * t / 60.0 + price * r["tool_life"]["consumption"].as_f64().unwrap();
+    assert!(close(&r["cost"]["total"], expected, 1e-9), "{}", r["cost"]);
+    assert_eq!(r["cost"]["currency"], "USD");
+    assert!(r["removal_rate_cm3_min"].as_f64().unwrap() > 0.0);
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_feeds_jobs_program_costs_less_tool_and_more_time_than_the_original() {
+    let app = TestApp::start().await;
+    let original = json!({"program": {"gcode": CONCAVE_CIRCLE}, "tool_type": "square", "diameter_mm": 10, "stock": concave_stock()});
+    let before = app.post_wait("/v1/costing", original.clone()).await;
+    assert_eq!(before.body["status"], "succeeded", "{}", before.text);
+    let feeds = app.post_wait("/v1/feeds", original).await;
+    assert_eq!(feeds.body["status"], "succeeded", "{}", feeds.text);
+    let after = app
+        .post_wait(
+            "/v1/costing",
+            json!({"job_id": feeds.body["id"], "tool_type": "square", "diameter_mm": 10, "stock": concave_stock()}),
+        )
+        .await;
+    assert_eq!(after.body["status"], "succeeded", "{}", after.text);
+    let (b, a) = (&before.body["result"], &after.body["result"]);
+    let consumption = |r: &Value| r["tool_life"]["consumption"].as_f64().unwrap();
+    assert!(consumption(a) < 0.5 * consumption(b), "{} → {}", b["tool_life"], a["tool_life"]);
+    assert!(a["time"]["nominal_min"].as_f64().unwrap() > b["time"]["nominal_min"].as_f64().unwrap());
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn bad_costing_requests_are_refused_naming_the_field() {
+    let app = TestApp::start().await;
+    let both = json!({"program": {"gcode": STANDARD_CUT}, "job_id": "x", "tool_type": "square", "diameter_mm": 10, "stock": concave_stock()});
+    assert_problem(&app.post("/v1/costing", both).await, 422, Some("program"));
+    let unknown = json!({"job_id": "no-such-job", "tool_type": "square", "diameter_mm": 10, "stock": concave_stock()});
+    assert_problem(&app.post("/v1/costing", unknown).await, 422, Some("job_id"));
+    let conditions = app.post_wait("/v1/conditions", json!({"tool_type": "square", "diameter_mm": 10})).await;
+    let no_program =
+        json!({"job_id": conditions.body["id"], "tool_type": "square", "diameter_mm": 10, "stock": concave_stock()});
+    assert_problem(&app.post("/v1/costing", no_program).await, 422, Some("job_id"));
+    let price = json!({"program": {"gcode": STANDARD_CUT}, "tool_type": "square", "diameter_mm": 10, "stock": concave_stock(), "tool_price": -5});
+    assert_problem(&app.post("/v1/costing", price).await, 422, Some("tool_price"));
+    app.stop().await;
+}
