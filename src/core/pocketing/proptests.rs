@@ -1,0 +1,81 @@
+//! Properties of contour-parallel paths on random star-shaped pockets with arcs and islands:
+//! the path is continuous, stays `r + allowance` from every wall, and only a tool that fits
+//! nowhere is refused.
+
+use super::test_support::*;
+use super::*;
+use crate::core::geometry::{Loop, Vertex};
+use proptest::prelude::*;
+use std::f64::consts::TAU;
+
+/// Random cases per property (each builds a path and samples it every 0.02 mm).
+const CASES: u32 = 40;
+
+/// A path point may come this much closer to the wall than `r + allowance` (mm).
+const GOUGE_TOL_MM: f64 = 1e-6;
+
+/// A star-shaped loop about the origin: vertices at evenly spaced angles, radii and bulges
+/// as given (counter-clockwise).
+fn star(radii: &[f64], bulges: &[f64]) -> Loop {
+    let n = radii.len();
+    Loop::new(
+        (0..n)
+            .map(|k| {
+                let a = TAU * k as f64 / n as f64;
+                Vertex::new(radii[k] * a.cos(), radii[k] * a.sin(), bulges[k])
+            })
+            .collect(),
+    )
+}
+
+/// A square island of half-side `half_mm` about `(cx, cy)` turned by `angle_rad`.
+fn square_island(cx: f64, cy: f64, half_mm: f64, angle_rad: f64) -> Loop {
+    let corners = (0..4).map(|k| {
+        let a = angle_rad + TAU * (k as f64 + 0.5) / 4.0;
+        let d = half_mm * std::f64::consts::SQRT_2;
+        Vertex::new(cx + d * a.cos(), cy + d * a.sin(), 0.0)
+    });
+    Loop::new(corners.collect())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(CASES))]
+
+    #[test]
+    fn random_pockets_give_continuous_paths_that_never_gouge_or_a_clear_refusal(
+        radii in proptest::collection::vec(15.0..45.0f64, 5..12),
+        bulges in proptest::collection::vec(-0.3..0.3f64, 12),
+        island_kind in 0..3u8,
+        island_size in 2.0..6.0f64,
+        island_angle in 0.0..TAU,
+        r_mm in 1.0..8.0f64,
+        rd_fraction in 0.2..1.0f64,
+        allowance_mm in 0.0..1.0f64,
+        climb in any::<bool>(),
+    ) {
+        let outer = star(&radii, &bulges[..radii.len()]);
+        let islands = match island_kind {
+            0 => vec![],
+            1 => vec![Loop::circle(island_size, 0.0, island_size)],
+            _ => vec![square_island(0.0, 0.0, island_size, island_angle)],
+        };
+        let Ok(p) = Pocket::new(outer, islands) else {
+            // A random bulge made the loop cross itself: not a pocket.
+            return Ok(());
+        };
+        let s = PocketingSpec { allowance_mm, climb, ..spec(r_mm, rd_fraction * r_mm) };
+        match contour_parallel(&p, &s) {
+            Ok(out) => {
+                assert_continuous(&out.toolpath);
+                let margin = min_wall_distance_mm(&p, &out.toolpath) - (r_mm + allowance_mm);
+                prop_assert!(margin >= -GOUGE_TOL_MM, "margin {}", margin);
+                prop_assert!(out.loops >= out.regions && out.entries.len() >= out.regions);
+            }
+            Err(CoreError::Unsolvable { field, reason }) => {
+                prop_assert_eq!(field, "tool_radius_mm");
+                prop_assert!(reason.contains("does not fit in the pocket"), "{}", reason);
+            }
+            Err(other) => prop_assert!(false, "{other:?}"),
+        }
+    }
+}
