@@ -28,8 +28,9 @@ async fn the_standard_straight_cut_uses_the_tool_at_the_rate_of_its_320_m_life()
     assert!(close(&r["tool_life"]["equivalent_life_m"], 320.0, 320.0 * 0.05), "{}", r["tool_life"]);
     assert_eq!(r["tool_life"]["by_line"][0]["line"], 6);
     assert_eq!(r["time"]["tool_changes"], 1);
-    let t = r["time"]["nominal_min"].as_f64().unwrap();
     assert!(close(&r["time"]["tool_change_min"], 8.0 / 60.0, 1e-9), "{}", r["time"]);
+    let t = r["time"]["kinematic_min"].as_f64().unwrap();
+    assert!(t >= r["time"]["nominal_min"].as_f64().unwrap(), "{}", r["time"]);
     // C = c_m · T_m + c_t · L_t / L_f with the seeded rate (60 per hour) and the tool's price.
     let price = r["cost"]["tool_price"].as_f64().unwrap();
     let expected = 60.0 * t / 60.0 + price * r["tool_life"]["consumption"].as_f64().unwrap();
@@ -57,7 +58,7 @@ async fn a_feeds_jobs_program_costs_less_tool_and_more_time_than_the_original() 
     let (b, a) = (&before.body["result"], &after.body["result"]);
     let consumption = |r: &Value| r["tool_life"]["consumption"].as_f64().unwrap();
     assert!(consumption(a) < 0.5 * consumption(b), "{} → {}", b["tool_life"], a["tool_life"]);
-    assert!(a["time"]["nominal_min"].as_f64().unwrap() > b["time"]["nominal_min"].as_f64().unwrap());
+    assert!(a["time"]["kinematic_min"].as_f64().unwrap() > b["time"]["kinematic_min"].as_f64().unwrap());
     app.stop().await;
 }
 
@@ -74,5 +75,23 @@ async fn bad_costing_requests_are_refused_naming_the_field() {
     assert_problem(&app.post("/v1/costing", no_program).await, 422, Some("job_id"));
     let price = json!({"program": {"gcode": STANDARD_CUT}, "tool_type": "square", "diameter_mm": 10, "stock": concave_stock(), "tool_price": -5});
     assert_problem(&app.post("/v1/costing", price).await, 422, Some("tool_price"));
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_trochoidal_program_takes_longer_on_the_machine_than_at_its_programmed_feeds() {
+    let app = TestApp::start().await;
+    let path = format!("{}/../shared/data/trochoidal.ngc", env!("CARGO_MANIFEST_DIR"));
+    let gcode = std::fs::read_to_string(&path).unwrap();
+    let body = json!({
+        "program": {"gcode": gcode}, "tool_type": "square", "diameter_mm": 10,
+        "stock": {"box": {"x_min": -60, "y_min": -10, "z_min": -10, "x_max": 40, "y_max": 90, "z_max": 0}}
+    });
+    let a = app.send(reqwest::Method::POST, "/v1/costing", Some(body), &[("prefer", "wait=60")]).await;
+    assert_eq!(a.body["status"], "succeeded", "{}", &a.text[..a.text.len().min(2000)]);
+    let t = &a.body["result"]["time"];
+    let (nominal, kinematic) = (t["nominal_min"].as_f64().unwrap(), t["kinematic_min"].as_f64().unwrap());
+    assert!(kinematic > nominal && kinematic < 1.5 * nominal, "{t}");
+    assert!(t["exact_stops"].as_u64().unwrap() > 0, "{t}");
     app.stop().await;
 }

@@ -10,12 +10,14 @@ use crate::core::analysis::check;
 use crate::core::conditions::standard_centres;
 use crate::core::costing::cost::Rates;
 use crate::core::costing::wear::path_wear;
+use crate::core::kinematics::{machining_time, MachineLimits, TimeOptions};
 use crate::core::progress::Progress;
 use crate::core::tool::ToolType;
 use crate::core::tool_life::ToolLifeModel;
 use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
 use crate::service::lookup;
+use crate::service::resources::machines::Machine;
 use serde::{Deserialize, Serialize};
 use sqlx::SqlitePool;
 use utoipa::ToSchema;
@@ -73,7 +75,8 @@ pub struct CostingPrepared {
     pub machine_rate_per_hour: f64,
     pub tool_price: f64,
     pub currency: String,
-    pub tool_change_s: f64,
+    /// The machine's limits for the kinematic time.
+    pub limits: MachineLimits,
 }
 
 impl CostingRequest {
@@ -166,10 +169,19 @@ pub async fn prepare(pool: &SqlitePool, request: CostingRequest) -> Result<Costi
         .bind(base.tool.id)
         .fetch_one(pool)
         .await?;
-    let tool_change_s = sqlx::query_scalar::<_, f64>("SELECT tool_change_s FROM machines WHERE id = ?")
+    let machine = sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = ?")
         .bind(base.machine.id)
         .fetch_one(pool)
-        .await?;
+        .await?
+        .data;
+    let limits = MachineLimits {
+        rapid_mm_min: machine.rapid_mm_min,
+        max_feed_mm_min: machine.max_feed_mm_min,
+        accel_mm_s2: [machine.accel_x_mm_s2, machine.accel_y_mm_s2, machine.accel_z_mm_s2],
+        jerk_mm_s3: [machine.jerk_x_mm_s3, machine.jerk_y_mm_s3, machine.jerk_z_mm_s3],
+        tool_change_s: machine.tool_change_s,
+    };
+    limits.validate().map_err(|e| ApiError::field("machine_id", format!("machine {}: {e}", base.machine.id)))?;
     let prepared = CostingPrepared {
         job_program,
         tool_life_id: life.id,
@@ -183,7 +195,7 @@ pub async fn prepare(pool: &SqlitePool, request: CostingRequest) -> Result<Costi
         machine_rate_per_hour: rates.data.machine_rate_per_hour,
         tool_price: request.tool_price.or(tool_price).unwrap_or(rates.data.default_tool_price),
         currency: rates.data.currency.clone(),
-        tool_change_s,
+        limits,
         base,
     };
     prepared.life_model().validate()?;
@@ -230,5 +242,6 @@ pub fn run(
     let analysis = request.analysis(request.program(&prepared).map_err(reread)?);
     let (path, spec) = build(&analysis, &prepared.base).map_err(reread)?;
     let (report, wear) = path_wear(&path, &spec, &prepared.life_model(), progress)?;
-    CostingResult::new(prepared, &path, report, wear)
+    let time = machining_time(&path, &prepared.limits, &TimeOptions::default())?;
+    CostingResult::new(prepared, &path, report, wear, time)
 }

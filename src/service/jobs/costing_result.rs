@@ -6,26 +6,64 @@ use super::costing::CostingPrepared;
 use crate::core::analysis::Analysis;
 use crate::core::costing::cost::{cost, Cost};
 use crate::core::costing::wear::{AlphaWear, LineWear, WearReport};
-use crate::core::toolpath::{EventKind, Toolpath};
+use crate::core::kinematics::MachiningTime;
+use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 use serde::Serialize;
 use utoipa::ToSchema;
 
-/// Seconds per minute.
-const S_PER_MIN: f64 = 60.0;
 /// mm³ per cm³.
 const MM3_PER_CM3: f64 = 1000.0;
 
-/// Machining time, min.
+/// Machining time, min (MODEL.md §10).
 #[derive(Debug, Clone, Copy, Serialize, ToSchema)]
 pub struct TimeDto {
-    /// Feed moves at their feeds, rapids at the rapid rate, tool changes and dwells.
+    /// Feed moves at their feeds, rapids at the rapid rate, tool changes and dwells (the
+    /// papers' prediction).
     pub nominal_min: f64,
-    /// Feed moves and rapids at their programmed rates.
-    pub moves_min: f64,
+    /// With the machine's feed, acceleration and jerk limits, look-ahead and the
+    /// centripetal limit on arcs: never below the nominal time.
+    pub kinematic_min: f64,
+    pub kinematic_ratio: f64,
+    pub feed_nominal_min: f64,
+    pub feed_kinematic_min: f64,
+    pub rapid_nominal_min: f64,
+    pub rapid_kinematic_min: f64,
     pub tool_changes: usize,
     pub tool_change_min: f64,
     pub dwell_min: f64,
+    /// Kinematic minus nominal time by cause, min.
+    pub lost_to_feed_clamp_min: f64,
+    pub lost_to_arc_limits_min: f64,
+    pub lost_to_acceleration_min: f64,
+    pub lost_to_jerk_min: f64,
+    /// Junctions where a change of direction forces a lower speed.
+    pub slowed_corners: usize,
+    /// Junctions where the machine stops.
+    pub exact_stops: usize,
+}
+
+impl From<&MachiningTime> for TimeDto {
+    fn from(t: &MachiningTime) -> Self {
+        TimeDto {
+            nominal_min: t.nominal_min,
+            kinematic_min: t.kinematic_min,
+            kinematic_ratio: t.kinematic_ratio,
+            feed_nominal_min: t.feed_nominal_min,
+            feed_kinematic_min: t.feed_kinematic_min,
+            rapid_nominal_min: t.rapid_nominal_min,
+            rapid_kinematic_min: t.rapid_kinematic_min,
+            tool_changes: t.tool_changes,
+            tool_change_min: t.tool_change_min,
+            dwell_min: t.dwell_min,
+            lost_to_feed_clamp_min: t.breakdown.feed_clamp_min,
+            lost_to_arc_limits_min: t.breakdown.arc_limit_min,
+            lost_to_acceleration_min: t.breakdown.acceleration_min,
+            lost_to_jerk_min: t.breakdown.jerk_min,
+            slowed_corners: t.breakdown.slowed_corners,
+            exact_stops: t.breakdown.exact_stops,
+        }
+    }
 }
 
 /// Wear on one NC line.
@@ -67,11 +105,14 @@ pub struct ToolLifeDto {
     pub by_alpha: Vec<AlphaWearDto>,
 }
 
-/// Cost (seed 002, Eq. 4): `C = c_m · T_m + c_t · L_t / L_f`.
+/// Cost (seed 002, Eq. 4): `C = c_m · T_m + c_t · L_t / L_f`, with `T_m` the kinematic
+/// time.
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct CostDto {
     /// c_m · T_m.
     pub machine: f64,
+    /// c_m · T_m with the nominal time, as the papers estimated.
+    pub machine_at_nominal_time: f64,
     /// c_t · L_t / L_f.
     pub tool: f64,
     pub total: f64,
@@ -92,7 +133,7 @@ pub struct CostingResult {
     pub tool_life: ToolLifeDto,
     pub cost: CostDto,
     pub removed_volume_mm3: f64,
-    /// Removed volume over the nominal time, cm³/min.
+    /// Removed volume over the kinematic time, cm³/min.
     pub removal_rate_cm3_min: f64,
     /// The analysis of the program (engagement, force, critical regions).
     pub analysis: SummaryDto,
@@ -105,17 +146,13 @@ impl CostingResult {
         path: &Toolpath,
         analysis: Analysis,
         wear: WearReport,
+        time: MachiningTime,
     ) -> Result<CostingResult, CoreError> {
-        let tool_changes = path.events.iter().filter(|e| matches!(e.kind, EventKind::ToolChange { .. })).count();
-        let dwell_s: f64 =
-            path.events.iter().map(|e| if let EventKind::Dwell { seconds } = e.kind { seconds } else { 0.0 }).sum();
-        let moves_min = analysis.summary.time_at_programmed_feeds_min;
-        let tool_change_min = tool_changes as f64 * prepared.tool_change_s / S_PER_MIN;
-        let dwell_min = dwell_s / S_PER_MIN;
-        let nominal_min = moves_min + tool_change_min + dwell_min;
         let c = wear.consumption;
-        let Cost { machine, tool, total, currency } = cost(nominal_min, c.ratio, &prepared.rates())?;
+        let Cost { machine, tool, total, currency } = cost(time.kinematic_min, c.ratio, &prepared.rates())?;
+        let machine_at_nominal_time = cost(time.nominal_min, 0.0, &prepared.rates())?.machine;
         let mut warnings = analysis.summary.warnings.clone();
+        warnings.extend(time.warnings.iter().cloned());
         if prepared.standard_force_n.is_none() {
             warnings.push("no force model: tool wear is not increased for forces above the standard".to_string());
         }
@@ -128,7 +165,7 @@ impl CostingResult {
             machine: base.machine,
             cost_rates: prepared.cost_rates.clone(),
             force_model_id: base.force_model.map(|f| f.id),
-            time: TimeDto { nominal_min, moves_min, tool_changes, tool_change_min, dwell_min },
+            time: TimeDto::from(&time),
             tool_life: ToolLifeDto {
                 tool_life_id: prepared.tool_life_id,
                 consumption: c.ratio,
@@ -159,6 +196,7 @@ impl CostingResult {
             },
             cost: CostDto {
                 machine,
+                machine_at_nominal_time,
                 tool,
                 total,
                 currency,
@@ -166,7 +204,11 @@ impl CostingResult {
                 tool_price: prepared.tool_price,
             },
             removed_volume_mm3: removed,
-            removal_rate_cm3_min: if nominal_min > 0.0 { removed / MM3_PER_CM3 / nominal_min } else { 0.0 },
+            removal_rate_cm3_min: if time.kinematic_min > 0.0 {
+                removed / MM3_PER_CM3 / time.kinematic_min
+            } else {
+                0.0
+            },
             analysis: summary(path.moves.len(), analysis.summary, regions),
             warnings,
         })
