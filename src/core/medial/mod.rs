@@ -32,6 +32,7 @@ mod axis;
 mod boundary;
 mod build;
 mod classes;
+mod critical;
 mod graph;
 pub mod prune;
 mod refine;
@@ -53,6 +54,7 @@ pub use classes::{
     class_of, classify, BranchClasses, ClassInterval, RadiusClass, CLASS_A_RATIO_DEFAULT, CLASS_A_RATIO_MAX,
     CLASS_A_RATIO_MIN, CLASS_C_RATIO,
 };
+pub use critical::{critical_branches, CriticalBranches, CriticalInterval};
 
 use crate::core::error::{require_positive, CoreError};
 use crate::core::geometry::{Pocket, Point};
