@@ -23,6 +23,9 @@ pub const DEFAULT_MAX_FEED_CHANGE_PER_MM: f64 = 1000.0;
 /// Most samples one feed optimisation keeps (it keeps a 44-byte record of every sample
 /// for the change-rate limit and the blocks: about 440 MB).
 pub const MAX_FEED_SAMPLES: f64 = 10_000_000.0;
+/// The slowest feed a written program may carry, mm/min (`F1`): feed limits below it are
+/// refused (a feed rounded to `F0` would not be a feed).
+pub const MIN_FEED_MM_MIN: f64 = 1.0;
 /// Micrometres per millimetre.
 const UM_PER_MM: f64 = 1000.0;
 /// A limited feed this far below the required one counts as lowered by the rate limit.
@@ -81,9 +84,18 @@ pub struct FeedPlan {
 pub fn check_spec(spec: &FeedSpec) -> Result<(), CoreError> {
     let r = &spec.rule;
     let positive = |field: &str, v: f64| crate::core::error::require_positive(field, v).map(|_| ());
-    positive("min_feed_mm_min", r.min_feed_mm_min)?;
-    positive("max_feed_mm_min", r.max_feed_mm_min)?;
-    positive("air_feed_mm_min", r.air_feed_mm_min)?;
+    for (field, feed) in [
+        ("min_feed_mm_min", r.min_feed_mm_min),
+        ("max_feed_mm_min", r.max_feed_mm_min),
+        ("air_feed_mm_min", r.air_feed_mm_min),
+    ] {
+        if !(feed.is_finite() && feed >= MIN_FEED_MM_MIN) {
+            return Err(CoreError::invalid(
+                field,
+                format!("must be a finite feed of at least {MIN_FEED_MM_MIN} mm/min"),
+            ));
+        }
+    }
     positive("rapid_mm_min", spec.rapid_mm_min)?;
     if r.min_feed_mm_min > r.max_feed_mm_min {
         return Err(CoreError::invalid("min_feed_mm_min", "must not be above max_feed_mm_min"));

@@ -239,14 +239,8 @@ pub fn sample_count(path: &Toolpath, surface: &SurfaceSpec) -> (f64, f64) {
     (spacing, path.moves.iter().map(|m| (move_length(m) / spacing).ceil().max(1.0)).sum())
 }
 
-/// Optimises the feeds of a 3-D ball-end finishing path for a constant feed at the
-/// cutting point (no stock simulation: every feed move is taken to cut).
-pub fn optimize_surface_finishing(
-    path: &Toolpath,
-    surface: &SurfaceSpec,
-    spec: &FeedSpec,
-    progress: &dyn Progress,
-) -> Result<FeedPlan, CoreError> {
+/// Checks that `path` can be optimised for surface finishing with `surface` and `spec`.
+pub fn check_surface(path: &Toolpath, surface: &SurfaceSpec, spec: &FeedSpec) -> Result<(), CoreError> {
     check_spec(spec)?;
     if spec.rule.strategy != FeedStrategy::CuttingPoint {
         return Err(CoreError::invalid(
@@ -275,6 +269,18 @@ pub fn optimize_surface_finishing(
         return Err(CoreError::invalid("program", format!("line {}: a feed move with no feed (F)", m.line)));
     }
     super::plan::check_sample_count(sample_count(path, surface))?;
+    Ok(())
+}
+
+/// Optimises the feeds of a 3-D ball-end finishing path for a constant feed at the
+/// cutting point (no stock simulation: every feed move is taken to cut).
+pub fn optimize_surface_finishing(
+    path: &Toolpath,
+    surface: &SurfaceSpec,
+    spec: &FeedSpec,
+    progress: &dyn Progress,
+) -> Result<FeedPlan, CoreError> {
+    check_surface(path, surface, spec)?;
     let curvatures = move_curvatures_3d(path, surface.fit_half_width_mm);
     let mut collector = Collector::new(spec.rule);
     let (mut s_mm, mut n) = (0.0, 0usize);

@@ -148,6 +148,12 @@ pub async fn resolve(pool: &SqlitePool, refs: &PathJobRefs<'_>) -> Result<Resolv
         None => sqlx::query_as::<_, Machine>("SELECT * FROM machines ORDER BY id LIMIT 1").fetch_optional(pool).await?,
     }
     .ok_or_else(|| ApiError::field("machine_id", "no such machine (add one at /v1/machines)"))?;
+    if let Some(rpm) = refs.spindle_rpm.filter(|rpm| *rpm > machine.data.max_spindle_rpm) {
+        return Err(ApiError::field(
+            "spindle_rpm",
+            format!("{rpm} is above the machine's maximum of {} min⁻¹", machine.data.max_spindle_rpm),
+        ));
+    }
     let standard = lookup::standard_conditions(pool, tool.id, material.id, Operation::StandardSideCutting).await?;
     let default_spindle_rpm = refs.spindle_rpm.or(standard.as_ref().map(|c| c.data.spindle_rpm));
     let prepared = AnalysisPrepared {

@@ -279,7 +279,7 @@ pub async fn prepare(pool: &SqlitePool, request: FeedsRequest) -> Result<FeedsPr
             check_sample_count(sample_count(&job.path, analysis))?;
         }
         if let Some(surface) = &job.surface {
-            check_sample_count(surface::sample_count(&job.path, surface))?;
+            surface::check_surface(&job.path, surface, &job.spec)?;
         }
         Ok(())
     })
