@@ -67,8 +67,6 @@ struct Chunk {
     heading: (f64, f64),
     cut: usize,
     recent: Vec<(f64, f64)>,
-    /// Largest distance from `start` to a recent centre, mm.
-    reach: f64,
     /// The disc about `start` is already in the rasters (a previous flush ended there).
     start_cleared: bool,
 }
@@ -83,7 +81,6 @@ impl Chunk {
             self.start_cleared = true;
             self.recent.clear();
             self.recent.push(b);
-            self.reach = 0.0;
         }
     }
 }
@@ -115,7 +112,10 @@ pub fn simulate(
     let Cutter { spacing_mm, force_model, total_samples, .. } = cutter;
     let force_model = force_model.as_ref();
     let curvatures = move_curvatures(path);
-    let table = AngleTable::default();
+    // All slices share one cell size (with none, nothing is probed).
+    let cell_mm = slices.first().map_or(0.0, |s| s.raster.cell_mm());
+    let table = AngleTable::new(cutter.radius_mm, cell_mm);
+    let mut site = ProbeSite::default();
     let r = cutter.radius_mm;
     let cos_turn = CHUNK_TURN_DEG.to_radians().cos();
     let mut chunk = Chunk {
@@ -123,7 +123,6 @@ pub fn simulate(
         heading: (0.0, 0.0),
         cut: 0,
         recent: Vec::with_capacity(CHUNK_SAMPLES + 1),
-        reach: 0.0,
         start_cleared: false,
     };
     let mut contacts = vec![Contact::default(); slices.len()];
@@ -150,7 +149,6 @@ pub fn simulate(
                 heading: sample.heading,
                 cut,
                 recent: std::mem::take(&mut chunk.recent),
-                reach: 0.0,
                 start_cleared: false,
             };
             chunk.recent.clear();
@@ -168,11 +166,7 @@ pub fn simulate(
             force_extrapolated: false,
         };
         if cut > 0 && !plunge {
-            let recent_bound = match chunk.start {
-                Some(s) => (s.0, s.1, chunk.reach),
-                None => (p.0, p.1, -r),
-            };
-            let site = ProbeSite { center: p, radius: r, heading: sample.heading, recent: &chunk.recent, recent_bound };
+            site.set(&table, p, r, sample.heading, &chunk.recent);
             for (k, s) in slices.iter().take(cut).enumerate() {
                 contacts[k] = if s.raster.any_material_near(p.0, p.1, r) {
                     table.contact(&s.raster, &site)
@@ -188,9 +182,6 @@ pub fn simulate(
             chunk.heading = sample.heading;
         }
         chunk.recent.push(p);
-        if let Some(st) = chunk.start {
-            chunk.reach = chunk.reach.max((p.0 - st.0).hypot(p.1 - st.1));
-        }
         let turned = chunk.heading.0 * sample.heading.0 + chunk.heading.1 * sample.heading.1 < cos_turn;
         if chunk.recent.len() > CHUNK_SAMPLES || turned {
             chunk.flush(slices, r);

@@ -285,3 +285,5 @@ fn assemble(
 
 #[cfg(test)]
 mod accuracy_tests;
+#[cfg(test)]
+mod probe_tests;

@@ -1,7 +1,13 @@
 //! Engagement of the tool's leading half at one position (MODEL.md §6): the angle of
 //! the tool circle, within ±90° of the feed direction, that lies in material.
+//!
+//! A coarse scan every [`COARSE_STEP`] probe steps finds the runs of material, and a
+//! bisection places each change of state to one probe step. Coarse points need no probe
+//! where an earlier one lies in a tile neighbourhood of one state (see
+//! [`crate::core::stock::Certified`]) that reaches them: the result is the same as
+//! probing every coarse point.
 
-use crate::core::stock::Raster;
+use crate::core::stock::{Certified, Raster};
 use std::f64::consts::PI;
 
 /// Angular resolution of the probe: positions on the tool circle every 0.05°.
@@ -9,24 +15,23 @@ pub const PROBE_STEPS_PER_TURN: usize = 7200;
 /// Coarse scan step, in probe steps (2°): finer features are found by bisection only
 /// where the coarse scan sees a change.
 pub const COARSE_STEP: usize = 40;
+/// Probe steps across the leading half.
+const HALF_TURN: usize = PROBE_STEPS_PER_TURN / 2;
+/// Coarse intervals across the leading half.
+const COARSE_POINTS: usize = HALF_TURN / COARSE_STEP;
+/// A recent centre is dropped only when its disc misses the leading half by more than
+/// this, mm (rounding of the probe positions).
+const INTRUSION_MARGIN_MM: f64 = 1e-9;
+/// Certified radii are shortened by this, cells (rounding of the probe positions).
+const CERTIFY_MARGIN_CELLS: f64 = 1e-6;
 
-/// Precomputed unit vectors of the probe directions.
+/// Precomputed unit vectors of the probe directions, and how many coarse points a
+/// certified probe decides.
 pub struct AngleTable {
-    cos: Vec<f64>,
-    sin: Vec<f64>,
-}
-
-impl Default for AngleTable {
-    fn default() -> Self {
-        // Two turns, so a half-turn scan starting anywhere needs no wrap-around.
-        let (cos, sin) = (0..2 * PROBE_STEPS_PER_TURN)
-            .map(|k| {
-                let a = k as f64 * 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
-                (a.cos(), a.sin())
-            })
-            .unzip();
-        AngleTable { cos, sin }
-    }
+    /// Two turns, so a half-turn scan starting anywhere needs no wrap-around.
+    dirs: Vec<(f64, f64)>,
+    /// Per certification level: coarse points after a certified one that share its state.
+    skips: Vec<usize>,
 }
 
 /// The engaged part of the leading half.
@@ -39,34 +44,115 @@ pub struct Contact {
     pub exit_rad: f64,
 }
 
-/// Where the tool is and what else has just removed material.
-pub struct ProbeSite<'a> {
-    pub center: (f64, f64),
-    pub radius: f64,
-    pub heading: (f64, f64),
-    /// Tool centres swept since the raster was last updated: a probe within the radius
-    /// of one of them is not material.
-    pub recent: &'a [(f64, f64)],
-    /// A circle (x, y, radius) holding every recent centre: probes farther than the tool
-    /// radius from it need no check against them.
-    pub recent_bound: (f64, f64, f64),
+/// Where the tool is, which way it moves, and which recently swept discs can reach its
+/// leading half.
+#[derive(Debug, Clone, Default)]
+pub struct ProbeSite {
+    center: (f64, f64),
+    radius: f64,
+    /// Probe index of the start of the leading half (−90° from the feed direction).
+    first: usize,
+    /// Tool centres swept since the raster was last updated whose disc can reach the
+    /// leading half: a probe within the radius of one of them is not material.
+    intruders: Vec<(f64, f64)>,
+}
+
+impl ProbeSite {
+    /// Places the tool at `center` moving along the unit vector `heading`; `recent` are
+    /// the centres swept since the raster was last updated.
+    pub fn set(
+        &mut self,
+        table: &AngleTable,
+        center: (f64, f64),
+        radius: f64,
+        heading: (f64, f64),
+        recent: &[(f64, f64)],
+    ) {
+        let step = 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
+        let h = ((heading.1.atan2(heading.0) / step).round() as i64).rem_euclid(PROBE_STEPS_PER_TURN as i64);
+        let quarter = (PROBE_STEPS_PER_TURN / 4) as i64;
+        self.first = (h - quarter).rem_euclid(PROBE_STEPS_PER_TURN as i64) as usize;
+        self.center = center;
+        self.radius = radius;
+        // The leading half is the closed half circle about the probe direction h. A disc
+        // about c = center + v reaches it where u·v > |v|²/2r for a unit u of that half:
+        // the largest u·v there is |v| when v points forward, else |v × ĥ|.
+        let (hx, hy) = table.dirs[h as usize];
+        self.intruders.clear();
+        self.intruders.extend(recent.iter().copied().filter(|c| {
+            let (vx, vy) = (c.0 - center.0, c.1 - center.1);
+            let d2 = vx * vx + vy * vy;
+            let best = if vx * hx + vy * hy > -INTRUSION_MARGIN_MM { d2.sqrt() } else { (vy * hx - vx * hy).abs() };
+            best > d2 / (2.0 * radius) - INTRUSION_MARGIN_MM
+        }));
+    }
 }
 
 impl AngleTable {
+    /// The probe directions, with the coarse points a certified probe decides for a tool
+    /// of radius `radius_mm` on rasters with cells of `cell_mm`.
+    pub fn new(radius_mm: f64, cell_mm: f64) -> AngleTable {
+        let dirs = (0..2 * PROBE_STEPS_PER_TURN)
+            .map(|k| {
+                let a = k as f64 * 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
+                (a.cos(), a.sin())
+            })
+            .collect();
+        let coarse_rad = COARSE_STEP as f64 * 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
+        // Coarse points n steps apart are a chord 2r·sin(n·step/2) apart.
+        let skips = Certified::levels()
+            .map(|level| {
+                let reach_mm = (level.cells() - CERTIFY_MARGIN_CELLS) * cell_mm;
+                (0..COARSE_POINTS)
+                    .take_while(|&n| 2.0 * radius_mm * (n as f64 * coarse_rad / 2.0).sin() <= reach_mm)
+                    .last()
+                    .unwrap_or(0)
+            })
+            .collect();
+        AngleTable { dirs, skips }
+    }
+
+    /// Coarse points after a probe certified at `level` that share its state.
+    fn skip(&self, level: Certified) -> usize {
+        match level {
+            Certified::No => 0,
+            Certified::Level(l) => self.skips[l - 1],
+        }
+    }
+
+    /// The probe position `k` steps into the leading half.
+    #[inline]
+    fn position(&self, site: &ProbeSite, k: usize) -> (f64, f64) {
+        let (c, s) = self.dirs[site.first + k];
+        (site.center.0 + site.radius * c, site.center.1 + site.radius * s)
+    }
+
+    /// `true` when a recent centre has swept `(x, y)`.
+    #[inline]
+    fn swept(site: &ProbeSite, x: f64, y: f64) -> bool {
+        let r2 = site.radius * site.radius;
+        site.intruders.iter().any(|c| (x - c.0) * (x - c.0) + (y - c.1) * (y - c.1) < r2)
+    }
+
     #[inline]
     fn material(&self, raster: &Raster, site: &ProbeSite, k: usize) -> bool {
-        let x = site.center.0 + site.radius * self.cos[k];
-        let y = site.center.1 + site.radius * self.sin[k];
-        if !raster.is_material(x, y) {
-            return false;
+        let (x, y) = self.position(site, k);
+        raster.is_material(x, y) && !Self::swept(site, x, y)
+    }
+
+    /// As `material`, with how far the state is known to hold; material is certified
+    /// only when no recent disc reaches the leading half.
+    #[inline]
+    fn certified_material(&self, raster: &Raster, site: &ProbeSite, k: usize) -> (bool, Certified) {
+        let (x, y) = self.position(site, k);
+        let (material, level) = raster.probe(x, y);
+        if !material {
+            return (false, level);
         }
-        let (bx, by, reach) = site.recent_bound;
-        let far = site.radius + reach;
-        if (x - bx) * (x - bx) + (y - by) * (y - by) >= far * far {
-            return true;
+        if site.intruders.is_empty() {
+            return (true, level);
         }
-        let r2 = site.radius * site.radius;
-        site.recent.iter().all(|c| (x - c.0) * (x - c.0) + (y - c.1) * (y - c.1) >= r2)
+        (!Self::swept(site, x, y), Certified::No)
     }
 
     /// First probe index in (a, b] whose state differs from index `a`'s.
@@ -86,22 +172,26 @@ impl AngleTable {
     /// Measures the engagement of the leading half at `site`.
     pub fn contact(&self, raster: &Raster, site: &ProbeSite) -> Contact {
         let step = 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
-        let heading = site.heading.1.atan2(site.heading.0);
-        let h = (heading / step).round() as i64;
-        let quarter = (PROBE_STEPS_PER_TURN / 4) as i64;
-        let first = (h - quarter).rem_euclid(PROBE_STEPS_PER_TURN as i64) as usize;
-        let span = 2 * PROBE_STEPS_PER_TURN / 4;
-
         let mut engaged = 0usize;
         let mut entry: Option<usize> = None;
         let mut exit = 0usize;
-        let mut prev_k = 0usize;
-        let mut prev = self.material(raster, site, first);
-        let mut offset = COARSE_STEP;
+        let (mut prev, mut level) = self.certified_material(raster, site, 0);
+        // Coarse point m, in probe steps m · COARSE_STEP, has state `prev`.
+        let mut m = 0usize;
         loop {
-            let k = offset.min(span);
-            let now = self.material(raster, site, first + k);
-            let (a, b) = (prev_k, k);
+            // The next `same` coarse points share the state of point m.
+            let same = self.skip(level).min(COARSE_POINTS - m);
+            if prev && same > 0 {
+                engaged += same * COARSE_STEP;
+                entry.get_or_insert(m * COARSE_STEP);
+                exit = (m + same) * COARSE_STEP;
+            }
+            m += same;
+            if m == COARSE_POINTS {
+                break;
+            }
+            let (a, b) = (m * COARSE_STEP, (m + 1) * COARSE_STEP);
+            let (now, now_level) = self.certified_material(raster, site, b);
             if prev == now {
                 if now {
                     engaged += b - a;
@@ -109,11 +199,11 @@ impl AngleTable {
                     exit = b;
                 }
             } else {
-                let at = self.boundary(raster, site, first + a, first + b, prev) - first;
+                let at = self.boundary(raster, site, a, b, prev);
                 // A run narrower than one coarse step at an edge of the leading half is a
                 // wall the tool circle touches tangentially (a pass along cut ground), not
                 // engagement.
-                let tangent_wall = (prev && a == 0) || (now && b == span);
+                let tangent_wall = (prev && a == 0) || (now && b == HALF_TURN);
                 let run = if prev { (a, at) } else { (at, b) };
                 if !tangent_wall {
                     engaged += run.1 - run.0;
@@ -122,11 +212,11 @@ impl AngleTable {
                 }
             }
             prev = now;
-            prev_k = k;
-            if k == span {
+            level = now_level;
+            m += 1;
+            if m == COARSE_POINTS {
                 break;
             }
-            offset += COARSE_STEP;
         }
         let to_rad = |k: usize| k as f64 * step - PI / 2.0;
         Contact {
@@ -157,49 +247,44 @@ mod tests {
         r
     }
 
+    fn site(table: &AngleTable, center: (f64, f64), heading: (f64, f64), recent: &[(f64, f64)]) -> ProbeSite {
+        let mut site = ProbeSite::default();
+        site.set(table, center, 5.0, heading, recent);
+        site
+    }
+
     #[test]
     fn a_tool_buried_in_material_engages_its_whole_leading_half() {
-        let table = AngleTable::default();
-        let site = ProbeSite {
-            center: (0.0, 0.0),
-            radius: 5.0,
-            heading: (1.0, 0.0),
-            recent: &[],
-            recent_bound: (0.0, 0.0, 0.0),
-        };
-        let c = table.contact(&block(), &site);
+        let table = AngleTable::new(5.0, 0.02);
+        let c = table.contact(&block(), &site(&table, (0.0, 0.0), (1.0, 0.0), &[]));
         assert!((c.alpha_rad - PI).abs() < 1e-9);
         assert!((c.entry_rad + PI / 2.0).abs() < 1e-9 && (c.exit_rad - PI / 2.0).abs() < 1e-9);
     }
 
     #[test]
     fn the_recent_centres_remove_what_they_swept() {
-        let table = AngleTable::default();
+        let table = AngleTable::new(5.0, 0.02);
         // A disc about (1, 0) covers the circle where cos θ > 0.1: what stays engaged is
         // 2 × (90° − acos 0.1).
-        let recent = [(1.0, 0.0)];
-        let site = ProbeSite {
-            center: (0.0, 0.0),
-            radius: 5.0,
-            heading: (1.0, 0.0),
-            recent: &recent,
-            recent_bound: (0.0, 0.0, 2.0),
-        };
-        let c = table.contact(&block(), &site);
+        let c = table.contact(&block(), &site(&table, (0.0, 0.0), (1.0, 0.0), &[(1.0, 0.0)]));
         let expected = 2.0 * (PI / 2.0 - 0.1f64.acos());
         assert!((c.alpha_rad - expected).abs() < 0.2f64.to_radians(), "{} vs {expected}", c.alpha_rad);
     }
 
     #[test]
+    fn centres_behind_a_straight_move_cannot_reach_the_leading_half() {
+        let table = AngleTable::new(5.0, 0.02);
+        let recent: Vec<(f64, f64)> = (1..=16).map(|k| (-0.05 * k as f64, 0.0)).collect();
+        assert!(site(&table, (0.0, 0.0), (1.0, 0.0), &recent).intruders.is_empty());
+        // Behind a tight turn they can.
+        let turned: Vec<(f64, f64)> = (1..=16).map(|k| (-0.05 * k as f64, -0.02 * (k * k) as f64)).collect();
+        assert!(!site(&table, (0.0, 0.0), (1.0, 0.0), &turned).intruders.is_empty());
+    }
+
+    #[test]
     fn a_tool_in_the_air_engages_nothing() {
-        let table = AngleTable::default();
-        let site = ProbeSite {
-            center: (100.0, 0.0),
-            radius: 5.0,
-            heading: (0.0, 1.0),
-            recent: &[],
-            recent_bound: (0.0, 0.0, 0.0),
-        };
-        assert_eq!(table.contact(&block(), &site).alpha_rad, 0.0);
+        let table = AngleTable::new(5.0, 0.02);
+        let c = table.contact(&block(), &site(&table, (100.0, 0.0), (0.0, 1.0), &[]));
+        assert!(c.alpha_rad.abs() < 1e-12);
     }
 }

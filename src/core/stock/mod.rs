@@ -5,6 +5,10 @@
 //! a cell. Memory grows with the stock area (one byte per cell), not with the path.
 
 mod capsule;
+mod tiles;
+
+pub use tiles::Certified;
+use tiles::Tiles;
 
 /// Distances are clamped to this many cells either side of the boundary.
 pub const SDF_CLAMP_CELLS: f64 = 2.0;
@@ -54,6 +58,8 @@ pub struct Raster {
     /// Cells holding material (value > 0) per block of BLOCK_CELLS × BLOCK_CELLS.
     blocks: Vec<u32>,
     bx: usize,
+    /// Material counts over small tiles, to certify probes far from the boundary.
+    tiles: Tiles,
     /// The last capsule applied cleared its end disc (see [`Raster::clear_capsule_after`]).
     end_disc_cleared: bool,
 }
@@ -77,6 +83,7 @@ impl Raster {
             f: vec![-FULL; nx * ny],
             blocks: vec![0; nx.div_ceil(BLOCK_CELLS) * ny.div_ceil(BLOCK_CELLS)],
             bx: nx.div_ceil(BLOCK_CELLS),
+            tiles: Tiles::new(nx, ny),
             end_disc_cleared: false,
         }
     }
@@ -109,7 +116,7 @@ impl Raster {
         (v + 0.5f64.copysign(v)) as i8
     }
 
-    /// Writes `v` into cell (i, j), keeping the block counts.
+    /// Writes `v` into cell (i, j), keeping the block and tile counts.
     #[inline]
     fn write(&mut self, i: usize, j: usize, v: i8) {
         let k = j * self.nx + i;
@@ -121,6 +128,7 @@ impl Raster {
             } else {
                 self.blocks[b] -= 1;
             }
+            self.tiles.update(i, j, v > 0);
         }
         self.f[k] = v;
     }
@@ -221,14 +229,27 @@ impl Raster {
     /// `true` when the bilinearly interpolated distance at `(x, y)` is inside material.
     #[inline]
     pub fn is_material(&self, x: f64, y: f64) -> bool {
+        self.classify::<false>(x, y).0
+    }
+
+    /// As [`Raster::is_material`], and how far around `(x, y)` the answer is known to
+    /// hold: away from the boundary, the tiles around the point may all be air or all
+    /// material.
+    #[inline]
+    pub fn probe(&self, x: f64, y: f64) -> (bool, Certified) {
+        self.classify::<true>(x, y)
+    }
+
+    #[inline]
+    fn classify<const CERTIFY: bool>(&self, x: f64, y: f64) -> (bool, Certified) {
         let fx = (x - self.x0) * self.inv_cell - 0.5;
         let fy = (y - self.y0) * self.inv_cell - 0.5;
         if fx < 0.0 || fy < 0.0 {
-            return false;
+            return (false, Certified::No);
         }
         let (i, j) = (fx as usize, fy as usize);
         if i + 1 >= self.nx || j + 1 >= self.ny {
-            return false;
+            return (false, Certified::No);
         }
         let (tx, ty) = (fx - i as f64, fy - j as f64);
         let k = j * self.nx + i;
@@ -236,13 +257,20 @@ impl Raster {
         // outside decides alone.
         let nearest = self.f[k + usize::from(tx > 0.5) + if ty > 0.5 { self.nx } else { 0 }];
         if nearest.unsigned_abs() >= DECISIVE {
-            return nearest > 0;
+            let material = nearest > 0;
+            // Only a cell at the clamp can lie in a tile neighbourhood of one state.
+            let certified = if CERTIFY && nearest.unsigned_abs() == FULL.unsigned_abs() {
+                self.tiles.certified(i, j, material)
+            } else {
+                Certified::No
+            };
+            return (material, certified);
         }
         let (a, b) = (f64::from(self.f[k]), f64::from(self.f[k + 1]));
         let (c, d) = (f64::from(self.f[k + self.nx]), f64::from(self.f[k + self.nx + 1]));
         let bottom = a + (b - a) * tx;
         let top = c + (d - c) * tx;
-        bottom + (top - bottom) * ty > 0.0
+        (bottom + (top - bottom) * ty > 0.0, Certified::No)
     }
 
     /// Area holding material (cells with a positive distance), mm².
