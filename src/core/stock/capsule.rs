@@ -135,6 +135,12 @@ pub(super) struct Capsule {
     r: f64,
     /// Unit direction and length, when the segment is not degenerate.
     dir: Option<((f64, f64), f64)>,
+    /// Where a row crosses the band |n·(q − a)| < r (n the normal): x = a.x + slope·dy
+    /// ± half, dy = y − a.y (None when the segment runs along the rows).
+    across: Option<(f64, f64)>,
+    /// Where a row crosses the band 0 ≤ u·(q − a) ≤ len: x = a.x + slope·dy + [0, span]
+    /// (None when the segment runs across the rows).
+    along: Option<(f64, f64)>,
 }
 
 impl Capsule {
@@ -142,17 +148,20 @@ impl Capsule {
         let (dx, dy) = (b.0 - a.0, b.1 - a.1);
         let len = dx.hypot(dy);
         let dir = (len > DEGENERATE_SEGMENT_MM).then(|| ((dx / len, dy / len), len));
-        Capsule { a, b, r, dir }
+        let across = dir.and_then(|((ux, uy), _)| (uy.abs() >= DEGENERATE_SEGMENT_MM).then(|| (ux / uy, r / uy.abs())));
+        let along = dir.and_then(|((ux, uy), len)| (ux.abs() >= DEGENERATE_SEGMENT_MM).then(|| (-uy / ux, len / ux)));
+        Capsule { a, b, r, dir, across, along }
     }
 
     /// Where the row at `y` leaves the half-plane behind the start (None: the row runs
     /// along the start line or the segment is degenerate; test each cell).
     fn front_half_line(&self, y: f64) -> Option<FrontHalf> {
-        let ((ux, uy), _) = self.dir?;
+        let ((ux, _), _) = self.dir?;
+        let (slope, _) = self.along?;
         if ux.abs() < MIN_ROW_SLOPE {
             return None;
         }
-        let x = self.a.0 - (y - self.a.1) * uy / ux;
+        let x = self.a.0 + slope * (y - self.a.1);
         Some(if ux > 0.0 { FrontHalf::Above(x) } else { FrontHalf::Below(x) })
     }
 
@@ -193,18 +202,23 @@ impl Capsule {
             hi = hi.max(chord.1);
         }
         if let Some(((ux, uy), len)) = self.dir {
-            // Band: |n·(q − a)| < r and 0 ≤ u·(q − a) ≤ len, with n = (−uy, ux), q = (x, y).
             let dy = y - self.a.1;
             let mut band = (f64::NEG_INFINITY, f64::INFINITY);
             let mut ok = true;
-            for (coef, offset, min, max) in [(-uy, ux * dy, -self.r, self.r), (ux, uy * dy, 0.0, len)] {
-                if coef.abs() < DEGENERATE_SEGMENT_MM {
-                    ok &= offset > min && offset < max;
-                } else {
-                    let (p, q) = ((min - offset) / coef, (max - offset) / coef);
-                    let (p, q) = if p < q { (p, q) } else { (q, p) };
-                    band = (band.0.max(p + self.a.0), band.1.min(q + self.a.0));
+            match self.across {
+                Some((slope, half)) => {
+                    let x = self.a.0 + slope * dy;
+                    band = (x - half, x + half);
                 }
+                None => ok &= (ux * dy).abs() < self.r,
+            }
+            match self.along {
+                Some((slope, span)) => {
+                    let x = self.a.0 + slope * dy;
+                    let (p, q) = if span > 0.0 { (x, x + span) } else { (x + span, x) };
+                    band = (band.0.max(p), band.1.min(q));
+                }
+                None => ok &= uy * dy > 0.0 && uy * dy < len,
             }
             if ok && band.0 < band.1 {
                 lo = lo.min(band.0);
