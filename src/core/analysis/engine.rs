@@ -166,7 +166,9 @@ pub fn simulate(
             force_extrapolated: false,
         };
         if cut > 0 && !plunge {
-            site.set(&table, p, r, sample.heading, &chunk.recent);
+            // All slices share one grid.
+            let grid = slices[0].raster.grid_position(p.0, p.1);
+            site.set(&table, p, grid, sample.heading, &chunk.recent);
             for (k, s) in slices.iter().take(cut).enumerate() {
                 contacts[k] = if s.raster.any_material_near(p.0, p.1, r) {
                     table.contact(&s.raster, &site)

@@ -28,8 +28,11 @@ const CERTIFY_MARGIN_CELLS: f64 = 1e-6;
 /// Precomputed unit vectors of the probe directions, and how many coarse points a
 /// certified probe decides.
 pub struct AngleTable {
+    radius_mm: f64,
     /// Two turns, so a half-turn scan starting anywhere needs no wrap-around.
     dirs: Vec<(f64, f64)>,
+    /// The probe offsets from the tool centre in raster cells, same order.
+    offsets: Vec<(f64, f64)>,
     /// Per certification level: coarse points after a certified one that share its state.
     skips: Vec<usize>,
 }
@@ -50,6 +53,8 @@ pub struct Contact {
 pub struct ProbeSite {
     center: (f64, f64),
     radius: f64,
+    /// The tool centre on the rasters' grid of cell centres, in cells.
+    grid_center: (f64, f64),
     /// Probe index of the start of the leading half (−90° from the feed direction).
     first: usize,
     /// Tool centres swept since the raster was last updated whose disc can reach the
@@ -58,21 +63,24 @@ pub struct ProbeSite {
 }
 
 impl ProbeSite {
-    /// Places the tool at `center` moving along the unit vector `heading`; `recent` are
-    /// the centres swept since the raster was last updated.
+    /// Places the tool of `table` at `center` (`grid_center` on the rasters' grid, see
+    /// [`Raster::grid_position`]) moving along the unit vector `heading`; `recent` are the
+    /// centres swept since the raster was last updated.
     pub fn set(
         &mut self,
         table: &AngleTable,
         center: (f64, f64),
-        radius: f64,
+        grid_center: (f64, f64),
         heading: (f64, f64),
         recent: &[(f64, f64)],
     ) {
+        let radius = table.radius_mm;
         let step = 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
         let h = ((heading.1.atan2(heading.0) / step).round() as i64).rem_euclid(PROBE_STEPS_PER_TURN as i64);
         let quarter = (PROBE_STEPS_PER_TURN / 4) as i64;
         self.first = (h - quarter).rem_euclid(PROBE_STEPS_PER_TURN as i64) as usize;
         self.center = center;
+        self.grid_center = grid_center;
         self.radius = radius;
         // The leading half is the closed half circle about the probe direction h. A disc
         // about c = center + v reaches it where u·v > |v|²/2r for a unit u of that half:
@@ -92,7 +100,7 @@ impl AngleTable {
     /// The probe directions, with the coarse points a certified probe decides for a tool
     /// of radius `radius_mm` on rasters with cells of `cell_mm`.
     pub fn new(radius_mm: f64, cell_mm: f64) -> AngleTable {
-        let dirs = (0..2 * PROBE_STEPS_PER_TURN)
+        let dirs: Vec<(f64, f64)> = (0..2 * PROBE_STEPS_PER_TURN)
             .map(|k| {
                 let a = k as f64 * 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
                 (a.cos(), a.sin())
@@ -109,7 +117,8 @@ impl AngleTable {
                     .unwrap_or(0)
             })
             .collect();
-        AngleTable { dirs, skips }
+        let offsets = dirs.iter().map(|&(c, s)| (radius_mm * c / cell_mm, radius_mm * s / cell_mm)).collect();
+        AngleTable { radius_mm, dirs, offsets, skips }
     }
 
     /// Coarse points after a probe certified at `level` that share its state.
@@ -120,39 +129,40 @@ impl AngleTable {
         }
     }
 
-    /// The probe position `k` steps into the leading half.
+    /// The probe position `k` steps into the leading half, on the rasters' grid.
     #[inline]
-    fn position(&self, site: &ProbeSite, k: usize) -> (f64, f64) {
-        let (c, s) = self.dirs[site.first + k];
-        (site.center.0 + site.radius * c, site.center.1 + site.radius * s)
+    fn grid_point(&self, site: &ProbeSite, k: usize) -> (f64, f64) {
+        let (ox, oy) = self.offsets[site.first + k];
+        (site.grid_center.0 + ox, site.grid_center.1 + oy)
     }
 
-    /// `true` when a recent centre has swept `(x, y)`.
+    /// `true` when a recent centre has swept the probe position `k` steps into the
+    /// leading half.
     #[inline]
-    fn swept(site: &ProbeSite, x: f64, y: f64) -> bool {
+    fn swept(&self, site: &ProbeSite, k: usize) -> bool {
+        let (c, s) = self.dirs[site.first + k];
+        let (x, y) = (site.center.0 + site.radius * c, site.center.1 + site.radius * s);
         let r2 = site.radius * site.radius;
         site.intruders.iter().any(|c| (x - c.0) * (x - c.0) + (y - c.1) * (y - c.1) < r2)
     }
 
     #[inline]
     fn material(&self, raster: &Raster, site: &ProbeSite, k: usize) -> bool {
-        let (x, y) = self.position(site, k);
-        raster.is_material(x, y) && !Self::swept(site, x, y)
+        raster.is_material_at(self.grid_point(site, k)) && (site.intruders.is_empty() || !self.swept(site, k))
     }
 
     /// As `material`, with how far the state is known to hold; material is certified
     /// only when no recent disc reaches the leading half.
     #[inline]
     fn certified_material(&self, raster: &Raster, site: &ProbeSite, k: usize) -> (bool, Certified) {
-        let (x, y) = self.position(site, k);
-        let (material, level) = raster.probe(x, y);
+        let (material, level) = raster.probe_at(self.grid_point(site, k));
         if !material {
             return (false, level);
         }
         if site.intruders.is_empty() {
             return (true, level);
         }
-        (!Self::swept(site, x, y), Certified::No)
+        (!self.swept(site, k), Certified::No)
     }
 
     /// First probe index in (a, b] whose state differs from index `a`'s.
@@ -169,53 +179,62 @@ impl AngleTable {
         hi
     }
 
+    /// The material state of every coarse point: first every `stride`-th one, then the
+    /// points between two of them that neither certifies. The probes of each pass are
+    /// independent of each other, so they overlap in the processor.
+    fn coarse_states(&self, raster: &Raster, site: &ProbeSite) -> [bool; COARSE_POINTS + 1] {
+        let mut state = [false; COARSE_POINTS + 1];
+        let mut reach = [0usize; COARSE_POINTS + 1];
+        let stride = self.skips[0] + 1;
+        let anchors = (0..COARSE_POINTS).step_by(stride).chain(std::iter::once(COARSE_POINTS));
+        for m in anchors.clone() {
+            let (material, level) = self.certified_material(raster, site, m * COARSE_STEP);
+            state[m] = material;
+            reach[m] = self.skip(level);
+        }
+        let mut left = 0;
+        for right in anchors.skip(1) {
+            for j in left + 1..right {
+                state[j] = if j - left <= reach[left] {
+                    state[left]
+                } else if right - j <= reach[right] {
+                    state[right]
+                } else {
+                    self.material(raster, site, j * COARSE_STEP)
+                };
+            }
+            left = right;
+        }
+        state
+    }
+
     /// Measures the engagement of the leading half at `site`.
     pub fn contact(&self, raster: &Raster, site: &ProbeSite) -> Contact {
         let step = 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
+        let state = self.coarse_states(raster, site);
         let mut engaged = 0usize;
         let mut entry: Option<usize> = None;
         let mut exit = 0usize;
-        let (mut prev, mut level) = self.certified_material(raster, site, 0);
-        // Coarse point m, in probe steps m · COARSE_STEP, has state `prev`.
-        let mut m = 0usize;
-        loop {
-            // The next `same` coarse points share the state of point m.
-            let same = self.skip(level).min(COARSE_POINTS - m);
-            if prev && same > 0 {
-                engaged += same * COARSE_STEP;
-                entry.get_or_insert(m * COARSE_STEP);
-                exit = (m + same) * COARSE_STEP;
-            }
-            m += same;
-            if m == COARSE_POINTS {
-                break;
-            }
+        for m in 0..COARSE_POINTS {
+            let (prev, now) = (state[m], state[m + 1]);
             let (a, b) = (m * COARSE_STEP, (m + 1) * COARSE_STEP);
-            let (now, now_level) = self.certified_material(raster, site, b);
             if prev == now {
                 if now {
                     engaged += b - a;
                     entry.get_or_insert(a);
                     exit = b;
                 }
-            } else {
-                let at = self.boundary(raster, site, a, b, prev);
-                // A run narrower than one coarse step at an edge of the leading half is a
-                // wall the tool circle touches tangentially (a pass along cut ground), not
-                // engagement.
-                let tangent_wall = (prev && a == 0) || (now && b == HALF_TURN);
-                let run = if prev { (a, at) } else { (at, b) };
-                if !tangent_wall {
-                    engaged += run.1 - run.0;
-                    entry.get_or_insert(run.0);
-                    exit = run.1;
-                }
+                continue;
             }
-            prev = now;
-            level = now_level;
-            m += 1;
-            if m == COARSE_POINTS {
-                break;
+            let at = self.boundary(raster, site, a, b, prev);
+            // A run narrower than one coarse step at an edge of the leading half is a wall
+            // the tool circle touches tangentially (a pass along cut ground), not engagement.
+            let tangent_wall = (prev && a == 0) || (now && b == HALF_TURN);
+            let run = if prev { (a, at) } else { (at, b) };
+            if !tangent_wall {
+                engaged += run.1 - run.0;
+                entry.get_or_insert(run.0);
+                exit = run.1;
             }
         }
         let to_rad = |k: usize| k as f64 * step - PI / 2.0;
@@ -249,7 +268,7 @@ mod tests {
 
     fn site(table: &AngleTable, center: (f64, f64), heading: (f64, f64), recent: &[(f64, f64)]) -> ProbeSite {
         let mut site = ProbeSite::default();
-        site.set(table, center, 5.0, heading, recent);
+        site.set(table, center, block().grid_position(center.0, center.1), heading, recent);
         site
     }
 

@@ -18,10 +18,13 @@ const RIB_HALF_MM: f64 = 8.0;
 /// The scan without shortcuts (the probe as it was before them).
 fn plain_contact(raster: &Raster, center: (f64, f64), heading: (f64, f64), recent: &[(f64, f64)]) -> Contact {
     let step = 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
+    let g = raster.grid_position(center.0, center.1);
     let material = |k: usize| {
         let a = k as f64 * 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
         let (x, y) = (center.0 + RADIUS * a.cos(), center.1 + RADIUS * a.sin());
-        raster.is_material(x, y) && recent.iter().all(|c| (x - c.0).powi(2) + (y - c.1).powi(2) >= RADIUS * RADIUS)
+        // The probe's position on the grid, computed as the probe does.
+        let at = (g.0 + RADIUS * a.cos() / CELL, g.1 + RADIUS * a.sin() / CELL);
+        raster.is_material_at(at) && recent.iter().all(|c| (x - c.0).powi(2) + (y - c.1).powi(2) >= RADIUS * RADIUS)
     };
     let h = (heading.1.atan2(heading.0) / step).round() as i64;
     let quarter = (PROBE_STEPS_PER_TURN / 4) as i64;
@@ -131,7 +134,7 @@ proptest! {
                 (1..=16).map(|k| (center.0 - 0.05 * k as f64 * heading.0, center.1 - 0.05 * k as f64 * heading.1)).collect();
             recent.extend(offsets.iter().map(|o| (center.0 + o.0, center.1 + o.1)));
             for recent in [&recent[..16], &recent[..]] {
-                site.set(&table, center, RADIUS, heading, recent);
+                site.set(&table, center, raster.grid_position(center.0, center.1), heading, recent);
                 let got = table.contact(&raster, &site);
                 let want = plain_contact(&raster, center, heading, recent);
                 // Both count whole probe steps: equal up to rounding of the conversion.

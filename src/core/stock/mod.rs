@@ -229,29 +229,46 @@ impl Raster {
     /// `true` when the bilinearly interpolated distance at `(x, y)` is inside material.
     #[inline]
     pub fn is_material(&self, x: f64, y: f64) -> bool {
-        self.classify::<false>(x, y).0
+        self.classify::<false>(self.grid_position(x, y)).0
     }
 
-    /// As [`Raster::is_material`], and how far around `(x, y)` the answer is known to
-    /// hold: away from the boundary, the tiles around the point may all be air or all
-    /// material.
+    /// Where `(x, y)` falls on the grid of cell centres, in cells (cell (i, j) at (i, j)).
     #[inline]
-    pub fn probe(&self, x: f64, y: f64) -> (bool, Certified) {
-        self.classify::<true>(x, y)
+    pub fn grid_position(&self, x: f64, y: f64) -> (f64, f64) {
+        ((x - self.x0) * self.inv_cell - 0.5, (y - self.y0) * self.inv_cell - 0.5)
+    }
+
+    /// Cells per millimetre.
+    pub fn cells_per_mm(&self) -> f64 {
+        self.inv_cell
+    }
+
+    /// [`Raster::is_material`] at a position on the grid of cell centres.
+    #[inline]
+    pub fn is_material_at(&self, g: (f64, f64)) -> bool {
+        self.classify::<false>(g).0
+    }
+
+    /// As [`Raster::is_material_at`], and how far around the position the answer is known
+    /// to hold: away from the boundary, the tiles around it may all be air or all material.
+    #[inline]
+    pub fn probe_at(&self, g: (f64, f64)) -> (bool, Certified) {
+        self.classify::<true>(g)
     }
 
     #[inline]
-    fn classify<const CERTIFY: bool>(&self, x: f64, y: f64) -> (bool, Certified) {
-        let fx = (x - self.x0) * self.inv_cell - 0.5;
-        let fy = (y - self.y0) * self.inv_cell - 0.5;
-        if fx < 0.0 || fy < 0.0 {
+    fn classify<const CERTIFY: bool>(&self, (fx, fy): (f64, f64)) -> (bool, Certified) {
+        // (Also false for NaN.)
+        if !(fx >= 0.0 && fy >= 0.0) {
             return (false, Certified::No);
         }
-        let (i, j) = (fx as usize, fy as usize);
+        // Through u32 (the raster has far fewer cells per side): cheap conversions.
+        let (i, j) = (fx as u32, fy as u32);
+        let (tx, ty) = (fx - f64::from(i), fy - f64::from(j));
+        let (i, j) = (i as usize, j as usize);
         if i + 1 >= self.nx || j + 1 >= self.ny {
             return (false, Certified::No);
         }
-        let (tx, ty) = (fx - i as f64, fy - j as f64);
         let k = j * self.nx + i;
         // The distance is 1-Lipschitz: a nearest cell more than half a diagonal inside or
         // outside decides alone.
