@@ -7,6 +7,7 @@
 //! [`crate::core::stock::Certified`]) that reaches them: the result is the same as
 //! probing every coarse point.
 
+use super::recent::{intruders, Corridor};
 use crate::core::stock::{Certified, Raster};
 use std::f64::consts::PI;
 
@@ -19,9 +20,6 @@ pub const COARSE_STEP: usize = 40;
 const HALF_TURN: usize = PROBE_STEPS_PER_TURN / 2;
 /// Coarse intervals across the leading half.
 const COARSE_POINTS: usize = HALF_TURN / COARSE_STEP;
-/// A recent centre is dropped only when its disc misses the leading half by more than
-/// this, mm (rounding of the probe positions).
-const INTRUSION_MARGIN_MM: f64 = 1e-9;
 /// Certified radii are shortened by this, cells (rounding of the probe positions).
 const CERTIFY_MARGIN_CELLS: f64 = 1e-6;
 
@@ -65,7 +63,7 @@ pub struct ProbeSite {
 impl ProbeSite {
     /// Places the tool of `table` at `center` (`grid_center` on the rasters' grid, see
     /// [`Raster::grid_position`]) moving along the unit vector `heading`; `recent` are the
-    /// centres swept since the raster was last updated.
+    /// centres swept since the raster was last updated, laid out along `corridor`.
     pub fn set(
         &mut self,
         table: &AngleTable,
@@ -73,6 +71,7 @@ impl ProbeSite {
         grid_center: (f64, f64),
         heading: (f64, f64),
         recent: &[(f64, f64)],
+        corridor: &Corridor,
     ) {
         let radius = table.radius_mm;
         let step = 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
@@ -82,17 +81,8 @@ impl ProbeSite {
         self.center = center;
         self.grid_center = grid_center;
         self.radius = radius;
-        // The leading half is the closed half circle about the probe direction h. A disc
-        // about c = center + v reaches it where u·v > |v|²/2r for a unit u of that half:
-        // the largest u·v there is |v| when v points forward, else |v × ĥ|.
-        let (hx, hy) = table.dirs[h as usize];
-        self.intruders.clear();
-        self.intruders.extend(recent.iter().copied().filter(|c| {
-            let (vx, vy) = (c.0 - center.0, c.1 - center.1);
-            let d2 = vx * vx + vy * vy;
-            let best = if vx * hx + vy * hy > -INTRUSION_MARGIN_MM { d2.sqrt() } else { (vy * hx - vx * hy).abs() };
-            best > d2 / (2.0 * radius) - INTRUSION_MARGIN_MM
-        }));
+        // The leading half is the closed half circle about the probe direction h.
+        intruders(recent, corridor, center, radius, table.dirs[h as usize], &mut self.intruders);
     }
 }
 
@@ -268,7 +258,7 @@ mod tests {
 
     fn site(table: &AngleTable, center: (f64, f64), heading: (f64, f64), recent: &[(f64, f64)]) -> ProbeSite {
         let mut site = ProbeSite::default();
-        site.set(table, center, block().grid_position(center.0, center.1), heading, recent);
+        site.set(table, center, block().grid_position(center.0, center.1), heading, recent, &Corridor::UNKNOWN);
         site
     }
 
@@ -288,16 +278,6 @@ mod tests {
         let c = table.contact(&block(), &site(&table, (0.0, 0.0), (1.0, 0.0), &[(1.0, 0.0)]));
         let expected = 2.0 * (PI / 2.0 - 0.1f64.acos());
         assert!((c.alpha_rad - expected).abs() < 0.2f64.to_radians(), "{} vs {expected}", c.alpha_rad);
-    }
-
-    #[test]
-    fn centres_behind_a_straight_move_cannot_reach_the_leading_half() {
-        let table = AngleTable::new(5.0, 0.02);
-        let recent: Vec<(f64, f64)> = (1..=16).map(|k| (-0.05 * k as f64, 0.0)).collect();
-        assert!(site(&table, (0.0, 0.0), (1.0, 0.0), &recent).intruders.is_empty());
-        // Behind a tight turn they can.
-        let turned: Vec<(f64, f64)> = (1..=16).map(|k| (-0.05 * k as f64, -0.02 * (k * k) as f64)).collect();
-        assert!(!site(&table, (0.0, 0.0), (1.0, 0.0), &turned).intruders.is_empty());
     }
 
     #[test]

@@ -3,6 +3,7 @@
 //! every coarse point and checks every recent centre.
 
 use super::probe::{AngleTable, Contact, ProbeSite, COARSE_STEP, PROBE_STEPS_PER_TURN};
+use super::recent::Corridor;
 use crate::core::stock::{Raster, Rect};
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -134,7 +135,7 @@ proptest! {
                 (1..=16).map(|k| (center.0 - 0.05 * k as f64 * heading.0, center.1 - 0.05 * k as f64 * heading.1)).collect();
             recent.extend(offsets.iter().map(|o| (center.0 + o.0, center.1 + o.1)));
             for recent in [&recent[..16], &recent[..]] {
-                site.set(&table, center, raster.grid_position(center.0, center.1), heading, recent);
+                site.set(&table, center, raster.grid_position(center.0, center.1), heading, recent, &Corridor::UNKNOWN);
                 let got = table.contact(&raster, &site);
                 let want = plain_contact(&raster, center, heading, recent);
                 // Both count whole probe steps: equal up to rounding of the conversion.
