@@ -2,6 +2,7 @@
 //! is updated move by move and, at every sample, the engagement of the leading half,
 //! the arc length, the chip thickness at the programmed feed and the force are found.
 
+use super::chunk::Chunk;
 use super::probe::{AngleTable, Contact, ProbeSite};
 use super::sampling::{for_each_sample, move_curvatures, Sample};
 use super::slices::{self, Slice};
@@ -12,7 +13,7 @@ use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 
 /// The raster is brought up to date every this many samples …
-pub const CHUNK_SAMPLES: usize = 16;
+pub const CHUNK_SAMPLES: usize = 64;
 /// … or sooner when the direction has turned by more than this since the last update,
 /// so one straight capsule stands for the swept area.
 pub const CHUNK_TURN_DEG: f64 = 5.0;
@@ -65,32 +66,6 @@ pub struct SampleResult {
     pub cutting_point_ratio: f64,
 }
 
-struct Chunk {
-    start: Option<(f64, f64)>,
-    heading: (f64, f64),
-    cut: usize,
-    recent: Vec<(f64, f64)>,
-    /// Largest distance from `start` to a recent centre, mm.
-    reach: f64,
-    /// The disc about `start` is already in the rasters (a previous flush ended there).
-    start_cleared: bool,
-}
-
-impl Chunk {
-    fn flush(&mut self, slices: &mut [Slice], radius: f64) {
-        if let (Some(a), Some(&b)) = (self.start, self.recent.last()) {
-            for s in slices.iter_mut().take(self.cut) {
-                s.raster.clear_capsule_after(a, b, radius, self.start_cleared);
-            }
-            self.start = Some(b);
-            self.start_cleared = true;
-            self.recent.clear();
-            self.recent.push(b);
-            self.reach = 0.0;
-        }
-    }
-}
-
 /// Feed per tooth at the cutting point over that at the centre, from the path's
 /// curvature and the side the material is on (MODEL.md §2, seed 000 Eq. 1).
 fn cutting_point_ratio(sample: &Sample, contact: &Contact, radius: f64) -> f64 {
@@ -118,17 +93,12 @@ pub fn simulate(
     let Cutter { spacing_mm, force_model, total_samples, .. } = cutter;
     let force_model = force_model.as_ref();
     let curvatures = move_curvatures(path);
-    let table = AngleTable::default();
+    // All slices share one cell size (with none, nothing is probed).
+    let cell_mm = slices.first().map_or(0.0, |s| s.raster.cell_mm());
+    let table = AngleTable::new(cutter.radius_mm, cell_mm);
+    let mut site = ProbeSite::default();
     let r = cutter.radius_mm;
-    let cos_turn = CHUNK_TURN_DEG.to_radians().cos();
-    let mut chunk = Chunk {
-        start: None,
-        heading: (0.0, 0.0),
-        cut: 0,
-        recent: Vec::with_capacity(CHUNK_SAMPLES + 1),
-        reach: 0.0,
-        start_cleared: false,
-    };
+    let mut chunk = Chunk::new(0, cell_mm);
     let mut contacts = vec![Contact::default(); slices.len()];
     let mut s_mm = 0.0;
     let mut n = 0usize;
@@ -147,16 +117,7 @@ pub fn simulate(
         let p = (sample.p.x, sample.p.y);
         let cut = slices::slices_cut(slices, sample.p.z);
         if cut != chunk.cut {
-            chunk.flush(slices, r);
-            chunk = Chunk {
-                start: None,
-                heading: sample.heading,
-                cut,
-                recent: std::mem::take(&mut chunk.recent),
-                reach: 0.0,
-                start_cleared: false,
-            };
-            chunk.recent.clear();
+            chunk.restart(slices, r, cut);
         }
         let plunge = sample.heading.0.abs() + sample.heading.1.abs() < PLUNGE_HEADING;
         let mut result = SampleResult {
@@ -172,11 +133,9 @@ pub fn simulate(
             cutting_point_ratio: 1.0,
         };
         if cut > 0 && !plunge {
-            let recent_bound = match chunk.start {
-                Some(s) => (s.0, s.1, chunk.reach),
-                None => (p.0, p.1, -r),
-            };
-            let site = ProbeSite { center: p, radius: r, heading: sample.heading, recent: &chunk.recent, recent_bound };
+            // All slices share one grid.
+            let grid = slices[0].raster.grid_position(p.0, p.1);
+            site.set(&table, p, grid, sample.heading, chunk.recent(), &chunk.corridor());
             for (k, s) in slices.iter().take(cut).enumerate() {
                 contacts[k] = if s.raster.any_material_near(p.0, p.1, r) {
                     table.contact(&s.raster, &site)
@@ -186,20 +145,7 @@ pub fn simulate(
             }
             evaluate(&mut result, &contacts[..cut], slices, cutter, force_model);
         }
-        // Update the stock.
-        if chunk.start.is_none() {
-            chunk.start = Some(p);
-            chunk.heading = sample.heading;
-        }
-        chunk.recent.push(p);
-        if let Some(st) = chunk.start {
-            chunk.reach = chunk.reach.max((p.0 - st.0).hypot(p.1 - st.1));
-        }
-        let turned = chunk.heading.0 * sample.heading.0 + chunk.heading.1 * sample.heading.1 < cos_turn;
-        if chunk.recent.len() > CHUNK_SAMPLES || turned {
-            chunk.flush(slices, r);
-            chunk.heading = sample.heading;
-        }
+        chunk.push(slices, r, p, sample.heading, sample.step_mm);
         sink(&result);
         true
     });

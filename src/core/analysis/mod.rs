@@ -2,8 +2,10 @@
 //! material removal of a layer along a tool path and report, per sample, the engagement,
 //! chip thickness and force, and the critical regions where the tool is overloaded.
 
+pub mod chunk;
 pub mod engine;
 pub mod probe;
+pub mod recent;
 pub mod region;
 pub mod report;
 pub mod sampling;
@@ -305,3 +307,5 @@ fn assemble(
 
 #[cfg(test)]
 mod accuracy_tests;
+#[cfg(test)]
+mod probe_tests;

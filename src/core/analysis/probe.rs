@@ -1,7 +1,14 @@
 //! Engagement of the tool's leading half at one position (MODEL.md §6): the angle of
 //! the tool circle, within ±90° of the feed direction, that lies in material.
+//!
+//! A coarse scan every [`COARSE_STEP`] probe steps finds the runs of material, and a
+//! bisection places each change of state to one probe step. Coarse points need no probe
+//! where an earlier one lies in a tile neighbourhood of one state (see
+//! [`crate::core::stock::Certified`]) that reaches them: the result is the same as
+//! probing every coarse point.
 
-use crate::core::stock::Raster;
+use super::recent::{intruders, Corridor};
+use crate::core::stock::{Certified, Raster};
 use std::f64::consts::PI;
 
 /// Angular resolution of the probe: positions on the tool circle every 0.05°.
@@ -9,24 +16,23 @@ pub const PROBE_STEPS_PER_TURN: usize = 7200;
 /// Coarse scan step, in probe steps (2°): finer features are found by bisection only
 /// where the coarse scan sees a change.
 pub const COARSE_STEP: usize = 40;
+/// Probe steps across the leading half.
+const HALF_TURN: usize = PROBE_STEPS_PER_TURN / 2;
+/// Coarse intervals across the leading half.
+const COARSE_POINTS: usize = HALF_TURN / COARSE_STEP;
+/// Certified radii are shortened by this, cells (rounding of the probe positions).
+const CERTIFY_MARGIN_CELLS: f64 = 1e-6;
 
-/// Precomputed unit vectors of the probe directions.
+/// Precomputed unit vectors of the probe directions, and how many coarse points a
+/// certified probe decides.
 pub struct AngleTable {
-    cos: Vec<f64>,
-    sin: Vec<f64>,
-}
-
-impl Default for AngleTable {
-    fn default() -> Self {
-        // Two turns, so a half-turn scan starting anywhere needs no wrap-around.
-        let (cos, sin) = (0..2 * PROBE_STEPS_PER_TURN)
-            .map(|k| {
-                let a = k as f64 * 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
-                (a.cos(), a.sin())
-            })
-            .unzip();
-        AngleTable { cos, sin }
-    }
+    radius_mm: f64,
+    /// Two turns, so a half-turn scan starting anywhere needs no wrap-around.
+    dirs: Vec<(f64, f64)>,
+    /// The probe offsets from the tool centre in raster cells, same order.
+    offsets: Vec<(f64, f64)>,
+    /// Per certification level: coarse points after a certified one that share its state.
+    skips: Vec<usize>,
 }
 
 /// The engaged part of the leading half.
@@ -39,34 +45,114 @@ pub struct Contact {
     pub exit_rad: f64,
 }
 
-/// Where the tool is and what else has just removed material.
-pub struct ProbeSite<'a> {
-    pub center: (f64, f64),
-    pub radius: f64,
-    pub heading: (f64, f64),
-    /// Tool centres swept since the raster was last updated: a probe within the radius
-    /// of one of them is not material.
-    pub recent: &'a [(f64, f64)],
-    /// A circle (x, y, radius) holding every recent centre: probes farther than the tool
-    /// radius from it need no check against them.
-    pub recent_bound: (f64, f64, f64),
+/// Where the tool is, which way it moves, and which recently swept discs can reach its
+/// leading half.
+#[derive(Debug, Clone, Default)]
+pub struct ProbeSite {
+    center: (f64, f64),
+    radius: f64,
+    /// The tool centre on the rasters' grid of cell centres, in cells.
+    grid_center: (f64, f64),
+    /// Probe index of the start of the leading half (−90° from the feed direction).
+    first: usize,
+    /// Tool centres swept since the raster was last updated whose disc can reach the
+    /// leading half: a probe within the radius of one of them is not material.
+    intruders: Vec<(f64, f64)>,
+}
+
+impl ProbeSite {
+    /// Places the tool of `table` at `center` (`grid_center` on the rasters' grid, see
+    /// [`Raster::grid_position`]) moving along the unit vector `heading`; `recent` are the
+    /// centres swept since the raster was last updated, laid out along `corridor`.
+    pub fn set(
+        &mut self,
+        table: &AngleTable,
+        center: (f64, f64),
+        grid_center: (f64, f64),
+        heading: (f64, f64),
+        recent: &[(f64, f64)],
+        corridor: &Corridor,
+    ) {
+        let radius = table.radius_mm;
+        let step = 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
+        let h = ((heading.1.atan2(heading.0) / step).round() as i64).rem_euclid(PROBE_STEPS_PER_TURN as i64);
+        let quarter = (PROBE_STEPS_PER_TURN / 4) as i64;
+        self.first = (h - quarter).rem_euclid(PROBE_STEPS_PER_TURN as i64) as usize;
+        self.center = center;
+        self.grid_center = grid_center;
+        self.radius = radius;
+        // The leading half is the closed half circle about the probe direction h.
+        intruders(recent, corridor, center, radius, table.dirs[h as usize], &mut self.intruders);
+    }
 }
 
 impl AngleTable {
+    /// The probe directions, with the coarse points a certified probe decides for a tool
+    /// of radius `radius_mm` on rasters with cells of `cell_mm`.
+    pub fn new(radius_mm: f64, cell_mm: f64) -> AngleTable {
+        let dirs: Vec<(f64, f64)> = (0..2 * PROBE_STEPS_PER_TURN)
+            .map(|k| {
+                let a = k as f64 * 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
+                (a.cos(), a.sin())
+            })
+            .collect();
+        let coarse_rad = COARSE_STEP as f64 * 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
+        // Coarse points n steps apart are a chord 2r·sin(n·step/2) apart.
+        let skips = Certified::levels()
+            .map(|level| {
+                let reach_mm = (level.cells() - CERTIFY_MARGIN_CELLS) * cell_mm;
+                (0..COARSE_POINTS)
+                    .take_while(|&n| 2.0 * radius_mm * (n as f64 * coarse_rad / 2.0).sin() <= reach_mm)
+                    .last()
+                    .unwrap_or(0)
+            })
+            .collect();
+        let offsets = dirs.iter().map(|&(c, s)| (radius_mm * c / cell_mm, radius_mm * s / cell_mm)).collect();
+        AngleTable { radius_mm, dirs, offsets, skips }
+    }
+
+    /// Coarse points after a probe certified at `level` that share its state.
+    fn skip(&self, level: Certified) -> usize {
+        match level {
+            Certified::No => 0,
+            Certified::Level(l) => self.skips[l - 1],
+        }
+    }
+
+    /// The probe position `k` steps into the leading half, on the rasters' grid.
+    #[inline]
+    fn grid_point(&self, site: &ProbeSite, k: usize) -> (f64, f64) {
+        let (ox, oy) = self.offsets[site.first + k];
+        (site.grid_center.0 + ox, site.grid_center.1 + oy)
+    }
+
+    /// `true` when a recent centre has swept the probe position `k` steps into the
+    /// leading half.
+    #[inline]
+    fn swept(&self, site: &ProbeSite, k: usize) -> bool {
+        let (c, s) = self.dirs[site.first + k];
+        let (x, y) = (site.center.0 + site.radius * c, site.center.1 + site.radius * s);
+        let r2 = site.radius * site.radius;
+        site.intruders.iter().any(|c| (x - c.0) * (x - c.0) + (y - c.1) * (y - c.1) < r2)
+    }
+
     #[inline]
     fn material(&self, raster: &Raster, site: &ProbeSite, k: usize) -> bool {
-        let x = site.center.0 + site.radius * self.cos[k];
-        let y = site.center.1 + site.radius * self.sin[k];
-        if !raster.is_material(x, y) {
-            return false;
+        raster.is_material_at(self.grid_point(site, k)) && (site.intruders.is_empty() || !self.swept(site, k))
+    }
+
+    /// As `material`, with how far the state is known to hold; material is certified
+    /// only when no recent disc reaches the leading half.
+    #[inline]
+    fn certified_material(&self, raster: &Raster, site: &ProbeSite, k: usize) -> (bool, Certified) {
+        let (material, level) = raster.probe_at(self.grid_point(site, k));
+        if !material {
+            return (false, level);
         }
-        let (bx, by, reach) = site.recent_bound;
-        let far = site.radius + reach;
-        if (x - bx) * (x - bx) + (y - by) * (y - by) >= far * far {
-            return true;
+        if site.intruders.is_empty() {
+            return (true, level);
         }
-        let r2 = site.radius * site.radius;
-        site.recent.iter().all(|c| (x - c.0) * (x - c.0) + (y - c.1) * (y - c.1) >= r2)
+        (!self.swept(site, k), Certified::No)
     }
 
     /// First probe index in (a, b] whose state differs from index `a`'s.
@@ -83,50 +169,63 @@ impl AngleTable {
         hi
     }
 
+    /// The material state of every coarse point: first every `stride`-th one, then the
+    /// points between two of them that neither certifies. The probes of each pass are
+    /// independent of each other, so they overlap in the processor.
+    fn coarse_states(&self, raster: &Raster, site: &ProbeSite) -> [bool; COARSE_POINTS + 1] {
+        let mut state = [false; COARSE_POINTS + 1];
+        let mut reach = [0usize; COARSE_POINTS + 1];
+        let stride = self.skips[0] + 1;
+        let anchors = (0..COARSE_POINTS).step_by(stride).chain(std::iter::once(COARSE_POINTS));
+        for m in anchors.clone() {
+            let (material, level) = self.certified_material(raster, site, m * COARSE_STEP);
+            state[m] = material;
+            reach[m] = self.skip(level);
+        }
+        let mut left = 0;
+        for right in anchors.skip(1) {
+            for j in left + 1..right {
+                state[j] = if j - left <= reach[left] {
+                    state[left]
+                } else if right - j <= reach[right] {
+                    state[right]
+                } else {
+                    self.material(raster, site, j * COARSE_STEP)
+                };
+            }
+            left = right;
+        }
+        state
+    }
+
     /// Measures the engagement of the leading half at `site`.
     pub fn contact(&self, raster: &Raster, site: &ProbeSite) -> Contact {
         let step = 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
-        let heading = site.heading.1.atan2(site.heading.0);
-        let h = (heading / step).round() as i64;
-        let quarter = (PROBE_STEPS_PER_TURN / 4) as i64;
-        let first = (h - quarter).rem_euclid(PROBE_STEPS_PER_TURN as i64) as usize;
-        let span = 2 * PROBE_STEPS_PER_TURN / 4;
-
+        let state = self.coarse_states(raster, site);
         let mut engaged = 0usize;
         let mut entry: Option<usize> = None;
         let mut exit = 0usize;
-        let mut prev_k = 0usize;
-        let mut prev = self.material(raster, site, first);
-        let mut offset = COARSE_STEP;
-        loop {
-            let k = offset.min(span);
-            let now = self.material(raster, site, first + k);
-            let (a, b) = (prev_k, k);
+        for m in 0..COARSE_POINTS {
+            let (prev, now) = (state[m], state[m + 1]);
+            let (a, b) = (m * COARSE_STEP, (m + 1) * COARSE_STEP);
             if prev == now {
                 if now {
                     engaged += b - a;
                     entry.get_or_insert(a);
                     exit = b;
                 }
-            } else {
-                let at = self.boundary(raster, site, first + a, first + b, prev) - first;
-                // A run narrower than one coarse step at an edge of the leading half is a
-                // wall the tool circle touches tangentially (a pass along cut ground), not
-                // engagement.
-                let tangent_wall = (prev && a == 0) || (now && b == span);
-                let run = if prev { (a, at) } else { (at, b) };
-                if !tangent_wall {
-                    engaged += run.1 - run.0;
-                    entry.get_or_insert(run.0);
-                    exit = run.1;
-                }
+                continue;
             }
-            prev = now;
-            prev_k = k;
-            if k == span {
-                break;
+            let at = self.boundary(raster, site, a, b, prev);
+            // A run narrower than one coarse step at an edge of the leading half is a wall
+            // the tool circle touches tangentially (a pass along cut ground), not engagement.
+            let tangent_wall = (prev && a == 0) || (now && b == HALF_TURN);
+            let run = if prev { (a, at) } else { (at, b) };
+            if !tangent_wall {
+                engaged += run.1 - run.0;
+                entry.get_or_insert(run.0);
+                exit = run.1;
             }
-            offset += COARSE_STEP;
         }
         let to_rad = |k: usize| k as f64 * step - PI / 2.0;
         Contact {
@@ -157,49 +256,34 @@ mod tests {
         r
     }
 
+    fn site(table: &AngleTable, center: (f64, f64), heading: (f64, f64), recent: &[(f64, f64)]) -> ProbeSite {
+        let mut site = ProbeSite::default();
+        site.set(table, center, block().grid_position(center.0, center.1), heading, recent, &Corridor::UNKNOWN);
+        site
+    }
+
     #[test]
     fn a_tool_buried_in_material_engages_its_whole_leading_half() {
-        let table = AngleTable::default();
-        let site = ProbeSite {
-            center: (0.0, 0.0),
-            radius: 5.0,
-            heading: (1.0, 0.0),
-            recent: &[],
-            recent_bound: (0.0, 0.0, 0.0),
-        };
-        let c = table.contact(&block(), &site);
+        let table = AngleTable::new(5.0, 0.02);
+        let c = table.contact(&block(), &site(&table, (0.0, 0.0), (1.0, 0.0), &[]));
         assert!((c.alpha_rad - PI).abs() < 1e-9);
         assert!((c.entry_rad + PI / 2.0).abs() < 1e-9 && (c.exit_rad - PI / 2.0).abs() < 1e-9);
     }
 
     #[test]
     fn the_recent_centres_remove_what_they_swept() {
-        let table = AngleTable::default();
+        let table = AngleTable::new(5.0, 0.02);
         // A disc about (1, 0) covers the circle where cos θ > 0.1: what stays engaged is
         // 2 × (90° − acos 0.1).
-        let recent = [(1.0, 0.0)];
-        let site = ProbeSite {
-            center: (0.0, 0.0),
-            radius: 5.0,
-            heading: (1.0, 0.0),
-            recent: &recent,
-            recent_bound: (0.0, 0.0, 2.0),
-        };
-        let c = table.contact(&block(), &site);
+        let c = table.contact(&block(), &site(&table, (0.0, 0.0), (1.0, 0.0), &[(1.0, 0.0)]));
         let expected = 2.0 * (PI / 2.0 - 0.1f64.acos());
         assert!((c.alpha_rad - expected).abs() < 0.2f64.to_radians(), "{} vs {expected}", c.alpha_rad);
     }
 
     #[test]
     fn a_tool_in_the_air_engages_nothing() {
-        let table = AngleTable::default();
-        let site = ProbeSite {
-            center: (100.0, 0.0),
-            radius: 5.0,
-            heading: (0.0, 1.0),
-            recent: &[],
-            recent_bound: (0.0, 0.0, 0.0),
-        };
-        assert_eq!(table.contact(&block(), &site).alpha_rad, 0.0);
+        let table = AngleTable::new(5.0, 0.02);
+        let c = table.contact(&block(), &site(&table, (100.0, 0.0), (0.0, 1.0), &[]));
+        assert!(c.alpha_rad.abs() < 1e-12);
     }
 }

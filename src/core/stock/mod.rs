@@ -4,6 +4,12 @@
 //! a probe interpolates bilinearly, which places a smooth boundary to a small fraction of
 //! a cell. Memory grows with the stock area (one byte per cell), not with the path.
 
+mod capsule;
+mod tiles;
+
+pub use tiles::Certified;
+use tiles::Tiles;
+
 /// Distances are clamped to this many cells either side of the boundary.
 pub const SDF_CLAMP_CELLS: f64 = 2.0;
 /// Stored units per cell of distance (so ±2 cells fit an i8).
@@ -52,6 +58,10 @@ pub struct Raster {
     /// Cells holding material (value > 0) per block of BLOCK_CELLS × BLOCK_CELLS.
     blocks: Vec<u32>,
     bx: usize,
+    /// Material counts over small tiles, to certify probes far from the boundary.
+    tiles: Tiles,
+    /// The last capsule applied cleared its end disc (see [`Raster::clear_capsule_after`]).
+    end_disc_cleared: bool,
 }
 
 impl Raster {
@@ -73,6 +83,8 @@ impl Raster {
             f: vec![-FULL; nx * ny],
             blocks: vec![0; nx.div_ceil(BLOCK_CELLS) * ny.div_ceil(BLOCK_CELLS)],
             bx: nx.div_ceil(BLOCK_CELLS),
+            tiles: Tiles::new(nx, ny),
+            end_disc_cleared: false,
         }
     }
 
@@ -104,7 +116,7 @@ impl Raster {
         (v + 0.5f64.copysign(v)) as i8
     }
 
-    /// Writes `v` into cell (i, j), keeping the block counts.
+    /// Writes `v` into cell (i, j), keeping the block and tile counts.
     #[inline]
     fn write(&mut self, i: usize, j: usize, v: i8) {
         let k = j * self.nx + i;
@@ -116,6 +128,7 @@ impl Raster {
             } else {
                 self.blocks[b] -= 1;
             }
+            self.tiles.update(i, j, v > 0);
         }
         self.f[k] = v;
     }
@@ -134,13 +147,31 @@ impl Raster {
     }
 
     /// Cells whose centres lie in `[x_lo, x_hi]`, as a half-open index range.
+    #[inline]
     fn cell_range(&self, x_lo: f64, x_hi: f64) -> (usize, usize) {
-        let first = ((x_lo - self.x0) * self.inv_cell - 0.5).ceil().max(0.0);
-        let last = ((x_hi - self.x0) * self.inv_cell - 0.5).floor().min(self.nx as f64 - 1.0);
-        if last < first {
+        self.index_range(x_lo, x_hi, self.x0, self.nx)
+    }
+
+    /// Indices of the cell centres in `[lo, hi]` along an axis starting at `origin` with
+    /// `n` cells, as a half-open range; (0, 0) when there are none. (Integer conversions
+    /// instead of `ceil`/`floor`, which are library calls on baseline x86-64.)
+    #[inline]
+    fn index_range(&self, lo: f64, hi: f64, origin: f64, n: usize) -> (usize, usize) {
+        let (v_lo, v_hi) = ((lo - origin) * self.inv_cell - 0.5, (hi - origin) * self.inv_cell - 0.5);
+        // Through i64 (one instruction each way; the raster has far fewer cells): the
+        // smallest index ≥ v_lo (v_lo > 0 is false for NaN too) …
+        let first = if v_lo > 0.0 {
+            let t = v_lo.min(n as f64) as i64;
+            (t + i64::from((t as f64) < v_lo)) as usize
+        } else {
+            0
+        };
+        // … and one past the largest index ≤ v_hi, at most n.
+        let end = if v_hi >= 0.0 { ((v_hi.min(n as f64) as i64) as usize + 1).min(n) } else { 0 };
+        if end <= first {
             return (0, 0);
         }
-        (first as usize, last as usize + 1)
+        (first, end)
     }
 
     /// Paints a region as material (`add`) or as removed. `intervals(y, out)` gives the
@@ -153,6 +184,7 @@ impl Raster {
         mut intervals: impl FnMut(f64, &mut Vec<(f64, f64)>),
         distance: impl Fn(f64, f64) -> f64,
     ) {
+        self.end_disc_cleared = false;
         let (nx, ny) = (self.nx, self.ny);
         let mut inside = vec![false; nx * ny];
         let mut out = Vec::new();
@@ -197,159 +229,70 @@ impl Raster {
     /// `true` when the bilinearly interpolated distance at `(x, y)` is inside material.
     #[inline]
     pub fn is_material(&self, x: f64, y: f64) -> bool {
-        let fx = (x - self.x0) * self.inv_cell - 0.5;
-        let fy = (y - self.y0) * self.inv_cell - 0.5;
-        if fx < 0.0 || fy < 0.0 {
-            return false;
+        self.classify::<false>(self.grid_position(x, y)).0
+    }
+
+    /// Where `(x, y)` falls on the grid of cell centres, in cells (cell (i, j) at (i, j)).
+    #[inline]
+    pub fn grid_position(&self, x: f64, y: f64) -> (f64, f64) {
+        ((x - self.x0) * self.inv_cell - 0.5, (y - self.y0) * self.inv_cell - 0.5)
+    }
+
+    /// Cells per millimetre.
+    pub fn cells_per_mm(&self) -> f64 {
+        self.inv_cell
+    }
+
+    /// [`Raster::is_material`] at a position on the grid of cell centres.
+    #[inline]
+    pub fn is_material_at(&self, g: (f64, f64)) -> bool {
+        self.classify::<false>(g).0
+    }
+
+    /// As [`Raster::is_material_at`], and how far around the position the answer is known
+    /// to hold: away from the boundary, the tiles around it may all be air or all material.
+    #[inline]
+    pub fn probe_at(&self, g: (f64, f64)) -> (bool, Certified) {
+        self.classify::<true>(g)
+    }
+
+    #[inline]
+    fn classify<const CERTIFY: bool>(&self, (fx, fy): (f64, f64)) -> (bool, Certified) {
+        // (Also false for NaN.)
+        if !(fx >= 0.0 && fy >= 0.0) {
+            return (false, Certified::No);
         }
-        let (i, j) = (fx as usize, fy as usize);
+        // Through u32 (the raster has far fewer cells per side): cheap conversions.
+        let (i, j) = (fx as u32, fy as u32);
+        let (tx, ty) = (fx - f64::from(i), fy - f64::from(j));
+        let (i, j) = (i as usize, j as usize);
         if i + 1 >= self.nx || j + 1 >= self.ny {
-            return false;
+            return (false, Certified::No);
         }
-        let (tx, ty) = (fx - i as f64, fy - j as f64);
         let k = j * self.nx + i;
         // The distance is 1-Lipschitz: a nearest cell more than half a diagonal inside or
         // outside decides alone.
         let nearest = self.f[k + usize::from(tx > 0.5) + if ty > 0.5 { self.nx } else { 0 }];
         if nearest.unsigned_abs() >= DECISIVE {
-            return nearest > 0;
+            let material = nearest > 0;
+            // Only a cell at the clamp can lie in a tile neighbourhood of one state.
+            let certified = if CERTIFY && nearest.unsigned_abs() == FULL.unsigned_abs() {
+                self.tiles.certified(i, j, material)
+            } else {
+                Certified::No
+            };
+            return (material, certified);
         }
         let (a, b) = (f64::from(self.f[k]), f64::from(self.f[k + 1]));
         let (c, d) = (f64::from(self.f[k + self.nx]), f64::from(self.f[k + self.nx + 1]));
         let bottom = a + (b - a) * tx;
         let top = c + (d - c) * tx;
-        bottom + (top - bottom) * ty > 0.0
+        (bottom + (top - bottom) * ty > 0.0, Certified::No)
     }
 
     /// Area holding material (cells with a positive distance), mm².
     pub fn material_area_mm2(&self) -> f64 {
         self.blocks.iter().map(|&n| f64::from(n)).sum::<f64>() * self.cell_mm * self.cell_mm
-    }
-
-    /// Removes the area swept by a disc of radius `r` moving from `a` to `b` (a capsule).
-    pub fn clear_capsule(&mut self, a: (f64, f64), b: (f64, f64), r: f64) {
-        self.clear_capsule_after(a, b, r, false);
-    }
-
-    /// As [`Raster::clear_capsule`]; with `disc_at_a_cleared`, the disc about `a` was
-    /// cleared by the previous capsule of the path, so cells behind `a` (whose nearest
-    /// point of the segment is `a`) already hold their distance and are skipped.
-    pub fn clear_capsule_after(&mut self, a: (f64, f64), b: (f64, f64), r: f64, disc_at_a_cleared: bool) {
-        let reach = SDF_CLAMP_CELLS * self.cell_mm;
-        let y_lo = a.1.min(b.1) - r - reach;
-        let y_hi = a.1.max(b.1) + r + reach;
-        let j_first = ((y_lo - self.y0) * self.inv_cell - 0.5).ceil().max(0.0) as usize;
-        let j_last = ((y_hi - self.y0) * self.inv_cell - 0.5).floor();
-        if j_last < 0.0 {
-            return;
-        }
-        let j_last = (j_last as usize).min(self.ny - 1);
-        let centre = ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0);
-        let half = ((b.0 - a.0).hypot(b.1 - a.1)) / 2.0 + r + reach;
-        if !self.any_material_near(centre.0, centre.1, half) {
-            return;
-        }
-        let outer = Capsule::new(a, b, r + reach);
-        let inner = Capsule::new(a, b, (r - reach).max(0.0));
-        for j in j_first..=j_last {
-            let y = self.row_y(j);
-            let Some((lo, hi)) = outer.row_interval(y) else {
-                continue;
-            };
-            let (from, to) = self.cell_range(lo, hi);
-            let (in_from, in_to) = inner.row_interval(y).map_or((from, from), |(l, h)| self.cell_range(l, h));
-            let row = j * self.nx;
-            for i in (from..in_from.max(from)).chain(in_to.max(in_from)..to) {
-                if self.f[row + i] == -FULL || (disc_at_a_cleared && outer.behind_start((self.col_x(i), y))) {
-                    continue;
-                }
-                // Material stays where it is farther than r from the segment.
-                let v = self.encode(outer.distance((self.col_x(i), y)) - r);
-                if v < self.f[row + i] {
-                    self.write(i, j, v);
-                }
-            }
-            for i in in_from..in_to.max(in_from) {
-                if self.f[row + i] != -FULL {
-                    self.write(i, j, -FULL);
-                }
-            }
-        }
-    }
-}
-
-/// The set of points within `r` of a segment.
-struct Capsule {
-    a: (f64, f64),
-    b: (f64, f64),
-    r: f64,
-    /// Unit direction and length, when the segment is not degenerate.
-    dir: Option<((f64, f64), f64)>,
-}
-
-impl Capsule {
-    fn new(a: (f64, f64), b: (f64, f64), r: f64) -> Capsule {
-        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-        let len = dx.hypot(dy);
-        let dir = (len > DEGENERATE_SEGMENT_MM).then(|| ((dx / len, dy / len), len));
-        Capsule { a, b, r, dir }
-    }
-
-    /// `true` when `q` projects before the segment's start (its nearest point is `a`).
-    fn behind_start(&self, q: (f64, f64)) -> bool {
-        self.dir.is_some_and(|((ux, uy), _)| (q.0 - self.a.0) * ux + (q.1 - self.a.1) * uy <= 0.0)
-    }
-
-    /// Distance from `q` to the segment.
-    fn distance(&self, q: (f64, f64)) -> f64 {
-        let (px, py) = (q.0 - self.a.0, q.1 - self.a.1);
-        match self.dir {
-            Some(((ux, uy), len)) => {
-                let t = (px * ux + py * uy).clamp(0.0, len);
-                let (ex, ey) = (px - t * ux, py - t * uy);
-                (ex * ex + ey * ey).sqrt()
-            }
-            None => (px * px + py * py).sqrt(),
-        }
-    }
-
-    fn disc_chord(&self, c: (f64, f64), y: f64) -> Option<(f64, f64)> {
-        let dy = y - c.1;
-        let h2 = self.r * self.r - dy * dy;
-        (h2 > 0.0).then(|| {
-            let h = h2.sqrt();
-            (c.0 - h, c.0 + h)
-        })
-    }
-
-    /// The x-interval of the capsule on the line at `y` (the capsule is convex).
-    fn row_interval(&self, y: f64) -> Option<(f64, f64)> {
-        let mut lo = f64::INFINITY;
-        let mut hi = f64::NEG_INFINITY;
-        for chord in [self.disc_chord(self.a, y), self.disc_chord(self.b, y)].into_iter().flatten() {
-            lo = lo.min(chord.0);
-            hi = hi.max(chord.1);
-        }
-        if let Some(((ux, uy), len)) = self.dir {
-            // Band: |n·(q − a)| < r and 0 ≤ u·(q − a) ≤ len, with n = (−uy, ux), q = (x, y).
-            let dy = y - self.a.1;
-            let mut band = (f64::NEG_INFINITY, f64::INFINITY);
-            let mut ok = true;
-            for (coef, offset, min, max) in [(-uy, ux * dy, -self.r, self.r), (ux, uy * dy, 0.0, len)] {
-                if coef.abs() < DEGENERATE_SEGMENT_MM {
-                    ok &= offset > min && offset < max;
-                } else {
-                    let (p, q) = ((min - offset) / coef, (max - offset) / coef);
-                    let (p, q) = if p < q { (p, q) } else { (q, p) };
-                    band = (band.0.max(p + self.a.0), band.1.min(q + self.a.0));
-                }
-            }
-            if ok && band.0 < band.1 {
-                lo = lo.min(band.0);
-                hi = hi.max(band.1);
-            }
-        }
-        (lo < hi).then_some((lo, hi))
     }
 }
 

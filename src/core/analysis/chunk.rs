@@ -1,0 +1,139 @@
+//! The stretch of path swept since the rasters were last updated (MODEL.md §6). Its
+//! tool centres are checked exactly by the probe; when it is applied, one capsule (its
+//! chord swept by the tool) stands for it, so a chunk ends before the path turns or bows
+//! away from its chord.
+
+use super::recent::Corridor;
+use super::slices::Slice;
+
+/// A chunk holds at most this many steps: straight stretches are applied in capsules
+/// this long (the search for recent centres that reach the leading half stops early on
+/// them, see [`super::recent`]).
+pub const MAX_CHUNK_STEPS: usize = 256;
+/// A sample whose heading turns by more than this from the chunk's first heading starts
+/// a new chunk, deg.
+pub const CHUNK_TURN_DEG: f64 = 5.0;
+/// A chunk's chord strays at most this far from its path, in raster cells.
+pub const CHORD_DEVIATION_CELLS: f64 = 0.05;
+/// A chord strays from a path that turns by θ (rad) over a length L by at most L·θ/4 (a
+/// kink halfway; L·θ/8 on an arc).
+const KINK_DEVIATION_PER_TURN: f64 = 4.0;
+
+/// The centres swept since the last update of the rasters.
+pub struct Chunk {
+    /// Where the chunk starts: the end of the previous one, or its first centre.
+    start: Option<(f64, f64)>,
+    /// Heading of the chunk's first sample.
+    heading: (f64, f64),
+    /// Slices the chunk cuts (from the top).
+    pub cut: usize,
+    /// Centres from `start` on.
+    recent: Vec<(f64, f64)>,
+    /// Path length from `start` to the last centre, mm.
+    length_mm: f64,
+    /// Largest distance of a centre from the line through `start` along `heading`, mm.
+    lateral_mm: f64,
+    /// The centres' distances along that line never decrease; the last one's, mm.
+    ordered: bool,
+    last_along_mm: f64,
+    /// The disc about `start` is already in the rasters (a previous flush ended there).
+    start_cleared: bool,
+    cos_turn: f64,
+    max_deviation_mm: f64,
+}
+
+impl Chunk {
+    /// An empty chunk cutting `cut` slices whose rasters have cells of `cell_mm`.
+    pub fn new(cut: usize, cell_mm: f64) -> Chunk {
+        Chunk {
+            start: None,
+            heading: (0.0, 0.0),
+            cut,
+            recent: Vec::with_capacity(MAX_CHUNK_STEPS + 1),
+            length_mm: 0.0,
+            lateral_mm: 0.0,
+            ordered: true,
+            last_along_mm: 0.0,
+            start_cleared: false,
+            cos_turn: CHUNK_TURN_DEG.to_radians().cos(),
+            max_deviation_mm: CHORD_DEVIATION_CELLS * cell_mm,
+        }
+    }
+
+    /// The centres swept since the rasters were last updated.
+    pub fn recent(&self) -> &[(f64, f64)] {
+        &self.recent
+    }
+
+    /// Where the recent centres lie.
+    pub fn corridor(&self) -> Corridor {
+        match self.start {
+            Some(start) => Corridor { start, dir: self.heading, half_width: self.lateral_mm, ordered: self.ordered },
+            None => Corridor::UNKNOWN,
+        }
+    }
+
+    /// Applies the chunk and starts an empty one cutting `cut` slices.
+    pub fn restart(&mut self, slices: &mut [Slice], radius: f64, cut: usize) {
+        self.flush(slices, radius);
+        self.start = None;
+        self.recent.clear();
+        self.reset_line();
+        self.start_cleared = false;
+        self.cut = cut;
+    }
+
+    /// Adds the centre `p` of a sample reached by a step of `step_mm` along `heading`;
+    /// when `p` would turn the chunk or bow it away from its chord, or it is full, the
+    /// chunk is first applied, so it ends at the previous centre.
+    pub fn push(&mut self, slices: &mut [Slice], radius: f64, p: (f64, f64), heading: (f64, f64), step_mm: f64) {
+        if self.start.is_some() {
+            let (h, c) = (self.heading, heading);
+            let turn = (h.0 * c.1 - h.1 * c.0).abs();
+            let turned = h.0 * c.0 + h.1 * c.1 < self.cos_turn;
+            let bowed = (self.length_mm + step_mm) * turn / KINK_DEVIATION_PER_TURN > self.max_deviation_mm;
+            if turned || bowed || self.recent.len() > MAX_CHUNK_STEPS {
+                self.flush(slices, radius);
+                self.heading = heading;
+            }
+        }
+        match self.start {
+            None => {
+                self.start = Some(p);
+                self.heading = heading;
+            }
+            Some(start) => {
+                self.length_mm += step_mm;
+                let (dx, dy) = (p.0 - start.0, p.1 - start.1);
+                let along = dx * self.heading.0 + dy * self.heading.1;
+                self.lateral_mm = self.lateral_mm.max((dx * self.heading.1 - dy * self.heading.0).abs());
+                self.ordered &= along >= self.last_along_mm;
+                self.last_along_mm = along;
+            }
+        }
+        self.recent.push(p);
+    }
+
+    /// The chunk's line restarts at its start.
+    fn reset_line(&mut self) {
+        self.length_mm = 0.0;
+        self.lateral_mm = 0.0;
+        self.ordered = true;
+        self.last_along_mm = 0.0;
+    }
+
+    /// Removes the chunk's capsule from the rasters of the slices it cuts; the next chunk
+    /// starts at its last centre.
+    pub fn flush(&mut self, slices: &mut [Slice], radius: f64) {
+        if let (Some(a), Some(&b)) = (self.start, self.recent.last()) {
+            for s in slices.iter_mut().take(self.cut) {
+                s.raster.clear_capsule_after(a, b, radius, self.start_cleared);
+            }
+            self.start = Some(b);
+            self.start_cleared = true;
+            self.recent.clear();
+            self.recent.push(b);
+            self.reset_line();
+        }
+    }
+}

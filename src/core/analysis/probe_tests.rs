@@ -1,0 +1,150 @@
+//! The probe's shortcuts (certified coarse points, recent centres filtered to those that
+//! can reach the leading half) give exactly the contact of the plain scan that probes
+//! every coarse point and checks every recent centre.
+
+use super::probe::{AngleTable, Contact, ProbeSite, COARSE_STEP, PROBE_STEPS_PER_TURN};
+use super::recent::Corridor;
+use crate::core::stock::{Raster, Rect};
+use proptest::prelude::*;
+use std::f64::consts::PI;
+
+const RADIUS: f64 = 5.0;
+const CELL: f64 = 0.1;
+const SIDE: f64 = 60.0;
+/// Contacts are whole probe steps (1e-3 rad): anything closer is the same contact.
+const SAME_RAD: f64 = 1e-12;
+/// Half the length of a rib, mm.
+const RIB_HALF_MM: f64 = 8.0;
+
+/// The scan without shortcuts (the probe as it was before them).
+fn plain_contact(raster: &Raster, center: (f64, f64), heading: (f64, f64), recent: &[(f64, f64)]) -> Contact {
+    let step = 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
+    let g = raster.grid_position(center.0, center.1);
+    let material = |k: usize| {
+        let a = k as f64 * 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
+        let (x, y) = (center.0 + RADIUS * a.cos(), center.1 + RADIUS * a.sin());
+        // The probe's position on the grid, computed as the probe does.
+        let at = (g.0 + RADIUS * a.cos() / CELL, g.1 + RADIUS * a.sin() / CELL);
+        raster.is_material_at(at) && recent.iter().all(|c| (x - c.0).powi(2) + (y - c.1).powi(2) >= RADIUS * RADIUS)
+    };
+    let h = (heading.1.atan2(heading.0) / step).round() as i64;
+    let quarter = (PROBE_STEPS_PER_TURN / 4) as i64;
+    let first = (h - quarter).rem_euclid(PROBE_STEPS_PER_TURN as i64) as usize;
+    let span = PROBE_STEPS_PER_TURN / 2;
+    let (mut engaged, mut entry, mut exit) = (0usize, None::<usize>, 0usize);
+    let mut prev = material(first);
+    for b in (COARSE_STEP..=span).step_by(COARSE_STEP) {
+        let a = b - COARSE_STEP;
+        let now = material(first + b);
+        if prev == now {
+            if now {
+                engaged += b - a;
+                entry.get_or_insert(a);
+                exit = b;
+            }
+        } else {
+            let (mut lo, mut hi) = (first + a, first + b);
+            while hi - lo > 1 {
+                let mid = (lo + hi) / 2;
+                if material(mid) == prev {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            let at = hi - first;
+            let tangent_wall = (prev && a == 0) || (now && b == span);
+            let run = if prev { (a, at) } else { (at, b) };
+            if !tangent_wall {
+                engaged += run.1 - run.0;
+                entry.get_or_insert(run.0);
+                exit = run.1;
+            }
+        }
+        prev = now;
+    }
+    let to_rad = |k: usize| k as f64 * step - PI / 2.0;
+    Contact {
+        alpha_rad: engaged as f64 * step,
+        entry_rad: entry.map_or(0.0, to_rad),
+        exit_rad: if entry.is_some() { to_rad(exit) } else { 0.0 },
+    }
+}
+
+/// A block with discs, slots and pairs of slots leaving a thin rib between them cleared
+/// from it: walls of every direction, narrow features, wide areas of air and material.
+fn stock(discs: &[(f64, f64, f64)], slots: &[Slot], ribs: &[Rib]) -> Raster {
+    let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: SIDE, y_max: SIDE };
+    let mut r = Raster::new(rect, CELL);
+    r.paint(
+        true,
+        |y, out| {
+            if (0.0..SIDE).contains(&y) {
+                out.push((0.0, SIDE))
+            }
+        },
+        |x, y| crate::core::stock::rect_signed_distance(&rect, x, y),
+    );
+    for &(x, y, radius) in discs {
+        r.clear_capsule((x, y), (x, y), radius);
+    }
+    for &(a, b, radius) in slots {
+        r.clear_capsule(a, b, radius);
+    }
+    for &((x, y), angle, width, radius) in ribs {
+        let (ux, uy) = (angle.cos(), angle.sin());
+        let offset = radius + width / 2.0;
+        for side in [-1.0, 1.0] {
+            let (ox, oy) = (-uy * offset * side, ux * offset * side);
+            let ends = [
+                (x + ox - RIB_HALF_MM * ux, y + oy - RIB_HALF_MM * uy),
+                (x + ox + RIB_HALF_MM * ux, y + oy + RIB_HALF_MM * uy),
+            ];
+            r.clear_capsule(ends[0], ends[1], radius);
+        }
+    }
+    r
+}
+
+/// Ends and radius, mm.
+type Slot = ((f64, f64), (f64, f64), f64);
+/// Centre, direction (rad), width and the radius of the slots either side, mm.
+type Rib = ((f64, f64), f64, f64, f64);
+
+fn point() -> impl Strategy<Value = (f64, f64)> {
+    (0.0..SIDE, 0.0..SIDE)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn the_certified_scan_finds_the_contact_of_the_plain_scan(
+        discs in prop::collection::vec((0.0..SIDE, 0.0..SIDE, 0.5..12.0f64), 0..6),
+        slots in prop::collection::vec((point(), point(), 0.05..6.0f64), 0..4),
+        ribs in prop::collection::vec((point(), 0.0..PI, 0.05..0.6f64, 0.5..4.0f64), 0..4),
+        sites in prop::collection::vec((point(), 0.0..2.0 * PI, prop::collection::vec((-4.0..4.0f64, -4.0..4.0f64), 0..6)), 24),
+    ) {
+        let raster = stock(&discs, &slots, &ribs);
+        let table = AngleTable::new(RADIUS, CELL);
+        let mut site = ProbeSite::default();
+        for (center, angle, offsets) in sites {
+            let heading = (angle.cos(), angle.sin());
+            // Recent centres behind the tool along its heading, or scattered anywhere.
+            let mut recent: Vec<(f64, f64)> =
+                (1..=16).map(|k| (center.0 - 0.05 * k as f64 * heading.0, center.1 - 0.05 * k as f64 * heading.1)).collect();
+            recent.extend(offsets.iter().map(|o| (center.0 + o.0, center.1 + o.1)));
+            for recent in [&recent[..16], &recent[..]] {
+                site.set(&table, center, raster.grid_position(center.0, center.1), heading, recent, &Corridor::UNKNOWN);
+                let got = table.contact(&raster, &site);
+                let want = plain_contact(&raster, center, heading, recent);
+                // Both count whole probe steps: equal up to rounding of the conversion.
+                let same = |a: f64, b: f64| (a - b).abs() < SAME_RAD;
+                prop_assert!(
+                    same(got.alpha_rad, want.alpha_rad) && same(got.entry_rad, want.entry_rad) && same(got.exit_rad, want.exit_rad),
+                    "at {:?} heading {:?}: {:?} vs {:?}", center, heading, got, want
+                );
+            }
+        }
+    }
+}

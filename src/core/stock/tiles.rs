@@ -1,0 +1,143 @@
+//! Material counts over small square tiles of a raster, and per tile how many tiles of
+//! its neighbourhood are not all air / not all material. A probe whose tile has a
+//! uniform neighbourhood decides a whole disc around it: the probe's predicate reads
+//! only the 2 × 2 cells around a point, and all of them lie in that neighbourhood.
+
+/// Side of a tile, cells.
+pub const TILE_CELLS: usize = 8;
+/// Neighbourhood radii, tiles (Chebyshev): level 1 is the 3 × 3 tiles around a tile,
+/// level 2 the 5 × 5.
+const LEVEL_RADII: [usize; 2] = [1, 2];
+/// Material cells in a tile whose cells all hold material.
+const CELLS_PER_TILE: u8 = (TILE_CELLS * TILE_CELLS) as u8;
+
+/// How far around a point a uniform neighbourhood reaches.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Certified {
+    /// Nothing beyond the point itself.
+    No,
+    /// Every point within [`Certified::cells`] (Chebyshev, cells) has the same state.
+    Level(usize),
+}
+
+impl Certified {
+    /// Radius of the uniform disc, cells: a stencil base cell in tile `t` and a point
+    /// within `TILE_CELLS · radius − 1` cells keep the point's 2 × 2 cells inside the
+    /// neighbourhood of that radius.
+    pub fn cells(self) -> f64 {
+        match self {
+            Certified::No => 0.0,
+            Certified::Level(l) => (TILE_CELLS * LEVEL_RADII[l - 1] - 1) as f64,
+        }
+    }
+
+    /// The levels, smallest first.
+    pub fn levels() -> impl Iterator<Item = Certified> {
+        (1..=LEVEL_RADII.len()).map(Certified::Level)
+    }
+}
+
+/// Per-tile counts of one raster.
+#[derive(Debug, Clone)]
+pub struct Tiles {
+    /// Tiles per row and per column.
+    tx: usize,
+    ty: usize,
+    /// Material cells per tile.
+    material: Vec<u8>,
+    /// Per tile and level: tiles of the neighbourhood that are not all air, then tiles
+    /// that are not all material (tiles outside the raster count as air, not material).
+    mixed: Vec<[u8; 2 * LEVEL_RADII.len()]>,
+}
+
+impl Tiles {
+    /// Counts for an all-air raster of `nx` × `ny` cells.
+    pub fn new(nx: usize, ny: usize) -> Tiles {
+        let (tx, ty) = (nx.div_ceil(TILE_CELLS), ny.div_ceil(TILE_CELLS));
+        let mut level = [0u8; 2 * LEVEL_RADII.len()];
+        for (l, r) in LEVEL_RADII.iter().enumerate() {
+            level[LEVEL_RADII.len() + l] = ((2 * r + 1) * (2 * r + 1)) as u8;
+        }
+        Tiles { tx, ty, material: vec![0; tx * ty], mixed: vec![level; tx * ty] }
+    }
+
+    /// Records that cell (i, j) gained (`gained`) or lost its material.
+    #[inline]
+    pub fn update(&mut self, i: usize, j: usize, gained: bool) {
+        let (ti, tj) = (i / TILE_CELLS, j / TILE_CELLS);
+        let t = tj * self.tx + ti;
+        let before = self.material[t];
+        let after = if gained { before + 1 } else { before - 1 };
+        self.material[t] = after;
+        // A tile turns from air to not air (or back) between 0 and 1 material cells,
+        // from not material to material (or back) between 63 and 64.
+        if before.min(after) == 0 {
+            self.spread(ti, tj, 0, gained);
+        }
+        if before.max(after) == CELLS_PER_TILE {
+            self.spread(ti, tj, LEVEL_RADII.len(), !gained);
+        }
+    }
+
+    /// Adds (`more`) or removes one mixed tile at (ti, tj) from the counts of `offset`
+    /// (0: not air, LEVEL_RADII.len(): not material) of its neighbours.
+    fn spread(&mut self, ti: usize, tj: usize, offset: usize, more: bool) {
+        for (l, &r) in LEVEL_RADII.iter().enumerate() {
+            for nj in tj.saturating_sub(r)..(tj + r + 1).min(self.ty) {
+                for ni in ti.saturating_sub(r)..(ti + r + 1).min(self.tx) {
+                    let c = &mut self.mixed[nj * self.tx + ni][offset + l];
+                    *c = if more { *c + 1 } else { *c - 1 };
+                }
+            }
+        }
+    }
+
+    /// How far the state `material` of a point whose 2 × 2 cells start at cell (i, j)
+    /// is known to hold.
+    #[inline]
+    pub fn certified(&self, i: usize, j: usize, material: bool) -> Certified {
+        let counts = &self.mixed[(j / TILE_CELLS) * self.tx + i / TILE_CELLS];
+        let base = if material { LEVEL_RADII.len() } else { 0 };
+        match (1..=LEVEL_RADII.len()).rev().find(|&l| counts[base + l - 1] == 0) {
+            Some(l) => Certified::Level(l),
+            None => Certified::No,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_tile_far_from_material_is_certified_air_at_both_levels() {
+        let mut t = Tiles::new(80, 80);
+        assert_eq!(t.certified(40, 40, false), Certified::Level(2));
+        // One material cell three tiles away leaves level 2 at (40, 40) but not at a tile
+        // two tiles from it.
+        t.update(40 + 3 * TILE_CELLS, 40, true);
+        assert_eq!(t.certified(40, 40, false), Certified::Level(2));
+        assert_eq!(t.certified(40 + TILE_CELLS, 40, false), Certified::Level(1));
+        assert_eq!(t.certified(40 + 2 * TILE_CELLS, 40, false), Certified::No);
+        t.update(40 + 3 * TILE_CELLS, 40, false);
+        assert_eq!(t.certified(40 + 2 * TILE_CELLS, 40, false), Certified::Level(2));
+    }
+
+    #[test]
+    fn only_tiles_surrounded_by_full_tiles_are_certified_material() {
+        let mut t = Tiles::new(80, 80);
+        for j in 0..80 {
+            for i in 0..80 {
+                t.update(i, j, true);
+            }
+        }
+        assert_eq!(t.certified(40, 40, true), Certified::Level(2));
+        // Tiles at the edge of the raster have neighbours outside it.
+        assert_eq!(t.certified(0, 40, true), Certified::No);
+        assert_eq!(t.certified(TILE_CELLS, 40, true), Certified::Level(1));
+        t.update(40, 40, false);
+        assert_eq!(t.certified(40 + TILE_CELLS, 40, true), Certified::No);
+        assert_eq!(t.certified(40 + 2 * TILE_CELLS, 40, true), Certified::Level(1));
+        assert_eq!(t.certified(40, 40, false), Certified::No);
+    }
+}
