@@ -16,6 +16,8 @@ pub(crate) mod fixtures;
 pub mod force_fit;
 pub mod force_model;
 pub mod geometry;
+/// Trochoid insertion into contour-parallel paths (seed 004 §2).
+pub mod insertion;
 pub mod kinematics;
 /// The medial axis of a pocket and its radius-ratio classes (seed 004 §2.1, §2.3).
 pub mod medial;

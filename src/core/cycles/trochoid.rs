@@ -166,6 +166,28 @@ impl LoopPlan {
         let pitch = require_positive("pitch_mm", pitch_mm)?;
         let s_mm = centre_stations(guide.length_mm(), pitch)?;
         let rho_mm = radii(guide, radius, r, &s_mm)?;
+        LoopPlan::from_stations(guide, s_mm, rho_mm, r, direction)
+    }
+
+    /// Plans loops at the given stations along `guide` (increasing arc lengths, at least two)
+    /// with the given radii — the planner's variable pitch (one station per loop).
+    pub fn from_stations(
+        guide: &Guide,
+        s_mm: Vec<f64>,
+        rho_mm: Vec<f64>,
+        tool_radius_mm: f64,
+        direction: CutDirection,
+    ) -> Result<LoopPlan, CoreError> {
+        let r = require_positive("tool_radius_mm", tool_radius_mm)?;
+        if s_mm.len() < 2 || s_mm.len() != rho_mm.len() {
+            return Err(CoreError::invalid("stations", "need at least two loops and one radius per loop"));
+        }
+        if let Some((k, v)) = rho_mm.iter().enumerate().find(|(_, v)| !v.is_finite() || **v < MIN_LOOP_RADIUS_MM) {
+            return Err(CoreError::invalid(
+                "loop_radius",
+                format!("ρ = {v} mm at loop {k} is below {MIN_LOOP_RADIUS_MM} mm: too narrow for a trochoid"),
+            ));
+        }
         let centres: Vec<Point> = s_mm.iter().map(|&s| guide.point_at(s)).collect();
         let sign = direction.turn_sign();
         let mut normals = Vec::with_capacity(centres.len() - 1);

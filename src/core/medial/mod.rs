@@ -50,6 +50,7 @@ mod proptests;
 mod test_shapes;
 
 pub use axis::{AxisBranch, AxisNode, AxisPoint, MedialAxis, MedialOptions, NodeKind};
+pub(crate) use boundary::Boundary;
 pub use classes::{
     class_of, classify, BranchClasses, ClassInterval, RadiusClass, CLASS_A_RATIO_DEFAULT, CLASS_A_RATIO_MAX,
     CLASS_A_RATIO_MIN, CLASS_C_RATIO,
@@ -58,7 +59,6 @@ pub use critical::{critical_branches, CriticalBranches, CriticalInterval};
 
 use crate::core::error::{require_positive, CoreError};
 use crate::core::geometry::{Pocket, Point};
-use boundary::Boundary;
 use build::{assemble, Context};
 use sampling::Sampling;
 use std::collections::BTreeMap;

@@ -30,6 +30,11 @@ impl PathWriter {
         self.position.map(|p| Point::new(p.x, p.y))
     }
 
+    /// The tool radius r (mm).
+    pub fn tool_radius_mm(&self) -> f64 {
+        self.spec.tool_radius_mm
+    }
+
     /// `true` when the tool is at the cutting level.
     pub fn at_cutting_depth(&self) -> bool {
         self.position.is_some_and(|p| p.z < self.spec.safe_z_mm)

@@ -4,10 +4,16 @@
 
 use super::emit::{PathWriter, MIN_MOVE_MM};
 use super::offsets::{Component, OffsetTree};
-use super::seam::{nearest_on_loop, starting_at, Nearest};
+use super::seam::{advance, nearest_on_loop, starting_at, Nearest};
 use super::PocketingSpec;
 use crate::core::geometry::{Loop, Point, Segment};
 use crate::core::toolpath::Toolpath;
+
+/// A link joins the next loop this many tool radii ahead of the point nearest to the tool
+/// (the first that gives a link inside the region), so that it enters the new step-over at a
+/// shallow angle (`atan(Rd / (k·r))`: under 6° for Rd ≤ r/10 and k ≥ 1) instead of straight
+/// across it (MODEL.md §2: a sideways step of Rd engages the tool far more than a pass at Rd).
+pub const LINK_ADVANCE_RADII: [f64; 5] = [2.0, 1.5, 1.0, 0.5, 0.25];
 
 /// A link may touch the region's boundary this close to its ends (mm): that is where it
 /// leaves one loop and reaches the next.
@@ -86,13 +92,24 @@ fn cut_component(component: &Component, climb: bool, writer: &mut PathWriter) ->
                 .unwrap_or((0, first_vertex(&remaining[0]))),
             None => (0, first_vertex(&remaining[0])),
         };
-        let lp = starting_at(&remaining.swap_remove(index), &at);
+        let chosen = remaining.swap_remove(index);
+        let linkable = |to: Point| {
+            here.is_some_and(|p| may_link && writer.at_cutting_depth() && link_stays_inside(component, p, to))
+        };
+        // A gentle link: onto the next loop a little ahead, so the tool takes the new step-over
+        // gradually instead of plunging sideways into it; the nearest point if that fails.
+        let r = writer.tool_radius_mm();
+        let ahead = LINK_ADVANCE_RADII.iter().map(|k| advance(&chosen, &at, k * r)).find(|a| linkable(a.point));
+        let (at, linked) = match ahead {
+            Some(a) => (a, true),
+            None => (at, linkable(at.point)),
+        };
+        let lp = starting_at(&chosen, &at);
         let start = lp.vertices[0].point();
-        match here {
-            Some(p) if may_link && writer.at_cutting_depth() && link_stays_inside(component, p, start) => {
-                writer.feed_to(start)
-            }
-            _ => writer.enter_at(start),
+        if linked {
+            writer.feed_to(start);
+        } else {
+            writer.enter_at(start);
         }
         writer.cut_loop(&lp);
         count += 1;

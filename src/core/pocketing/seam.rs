@@ -34,6 +34,28 @@ pub(super) fn nearest_on_loop(lp: &Loop, p: Point) -> Nearest {
     best
 }
 
+/// The point `distance_mm` further along `lp` (in its direction) from `at`, going round the
+/// loop at most once.
+pub(super) fn advance(lp: &Loop, at: &Nearest, distance_mm: f64) -> Nearest {
+    let n = lp.vertices.len();
+    let mut left = distance_mm;
+    let mut segment = at.segment;
+    let mut t = at.t;
+    for _ in 0..=n {
+        let seg = lp.segment(segment);
+        let len = seg.length_mm();
+        let rest = (1.0 - t) * len;
+        if rest >= left && len > 0.0 {
+            let t_new = t + left / len;
+            return Nearest { segment, t: t_new, point: seg.point_at(t_new), distance_mm: at.distance_mm };
+        }
+        left -= rest;
+        segment = (segment + 1) % n;
+        t = 0.0;
+    }
+    *at
+}
+
 /// `lp` traversed from the point `at` (on segment `at.segment`) round to the same point: the
 /// vertices rotated and, unless the point is within [`MIN_SPLIT_MM`] of a vertex, that segment
 /// split in two (an arc into two arcs of the same circle).
@@ -89,6 +111,15 @@ mod tests {
             let (c, r) = seg.circle().unwrap();
             assert!(c.near(Point::new(0.0, 0.0), TOL_MM) && (r - 10.0).abs() < TOL_MM);
         }
+    }
+
+    #[test]
+    fn advancing_along_a_loop_crosses_its_vertices() {
+        let lp = Loop::rectangle(0.0, 0.0, 60.0, 40.0);
+        let at = nearest_on_loop(&lp, Point::new(50.0, -3.0));
+        let ahead = advance(&lp, &at, 15.0);
+        assert!(ahead.point.near(Point::new(60.0, 5.0), TOL_MM), "{ahead:?}");
+        assert_eq!(ahead.segment, 1);
     }
 
     #[test]

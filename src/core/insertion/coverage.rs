@@ -1,0 +1,258 @@
+//! A raster of the pocket at the bottom of the layer: which treatment removed each cell first,
+//! and which cells the tool can reach at all (the pocket "opened" by the tool: within `r` of a
+//! centre position whose clearance is at least `r + allowance`). It gives the area each
+//! treatment removes and the check that nothing reachable is left.
+
+use crate::core::analysis::sampling::{move_length, point_on};
+use crate::core::geometry::{Pocket, Point};
+use crate::core::medial::Boundary;
+use crate::core::toolpath::Move;
+
+/// Cells per tool radius of the coverage raster.
+pub const CELLS_PER_RADIUS: f64 = 25.0;
+
+/// Most cells of the coverage raster; beyond it the cell grows.
+pub const MAX_CELLS: usize = 4_000_000;
+
+/// Owner of a cell nothing removed.
+pub const NOBODY: u16 = u16::MAX;
+
+/// The pocket's raster.
+pub struct Coverage {
+    x0: f64,
+    y0: f64,
+    pub cell_mm: f64,
+    w: usize,
+    h: usize,
+    inside: Vec<bool>,
+    /// Clearance of each cell centre (0 outside the pocket), mm.
+    clearance: Vec<f64>,
+    pub owner: Vec<u16>,
+}
+
+impl Coverage {
+    /// The raster of `pocket` for a tool of radius `r_mm`.
+    pub fn new(pocket: &Pocket, boundary: &Boundary, r_mm: f64) -> Coverage {
+        let b = pocket.bounds();
+        let mut cell = r_mm / CELLS_PER_RADIUS;
+        while (b.width_mm() / cell).ceil() * (b.height_mm() / cell).ceil() > MAX_CELLS as f64 {
+            cell *= 1.25;
+        }
+        let (w, h) = ((b.width_mm() / cell).ceil() as usize + 1, (b.height_mm() / cell).ceil() as usize + 1);
+        let mut c = Coverage {
+            x0: b.x_min,
+            y0: b.y_min,
+            cell_mm: cell,
+            w,
+            h,
+            inside: vec![false; w * h],
+            clearance: vec![0.0; w * h],
+            owner: vec![NOBODY; w * h],
+        };
+        for j in 0..h {
+            for i in 0..w {
+                let p = c.centre(i, j);
+                if pocket.contains(p.x, p.y) {
+                    c.inside[j * w + i] = true;
+                    c.clearance[j * w + i] = boundary.clearance_mm(p);
+                }
+            }
+        }
+        c
+    }
+
+    fn centre(&self, i: usize, j: usize) -> Point {
+        Point::new(self.x0 + (i as f64 + 0.5) * self.cell_mm, self.y0 + (j as f64 + 0.5) * self.cell_mm)
+    }
+
+    /// Marks the cells within `r_mm` of `c` as removed by `owner` unless already removed.
+    pub fn stamp(&mut self, c: Point, r_mm: f64, owner: u16) {
+        let j0 = (((c.y - r_mm - self.y0) / self.cell_mm).floor().max(0.0)) as usize;
+        let j1 = (((c.y + r_mm - self.y0) / self.cell_mm).ceil().max(0.0) as usize).min(self.h);
+        for j in j0..j1 {
+            let y = self.y0 + (j as f64 + 0.5) * self.cell_mm;
+            let dy = y - c.y;
+            let half2 = r_mm * r_mm - dy * dy;
+            if half2 < 0.0 {
+                continue;
+            }
+            let half = half2.sqrt();
+            let i0 = ((c.x - half - self.x0) / self.cell_mm - 0.5).ceil().max(0.0) as usize;
+            let i1 = (((c.x + half - self.x0) / self.cell_mm - 0.5).floor() + 1.0).max(0.0) as usize;
+            for o in &mut self.owner[j * self.w + i0.min(self.w)..j * self.w + i1.min(self.w)] {
+                if *o == NOBODY {
+                    *o = owner;
+                }
+            }
+        }
+    }
+
+    /// Stamps the tool along the moves of `moves` that reach down to `z_max_mm`.
+    pub fn stamp_moves(&mut self, moves: &[Move], r_mm: f64, z_max_mm: f64, owner: u16) {
+        let step = 0.5 * self.cell_mm;
+        for m in moves {
+            if m.start.z > z_max_mm && m.end.z > z_max_mm {
+                continue;
+            }
+            let n = (move_length(m) / step).ceil().max(1.0) as usize;
+            for k in 0..=n {
+                let (p, _) = point_on(m, k as f64 / n as f64);
+                if p.z <= z_max_mm {
+                    self.stamp(Point::new(p.x, p.y), r_mm, owner);
+                }
+            }
+        }
+    }
+
+    /// Area of the pocket removed by `owner`, mm².
+    pub fn area_of(&self, owner: u16) -> f64 {
+        let n = self.owner.iter().zip(&self.inside).filter(|(o, i)| **i && **o == owner).count();
+        n as f64 * self.cell_mm * self.cell_mm
+    }
+
+    /// Area of the pocket, mm² (by cells).
+    pub fn pocket_area(&self) -> f64 {
+        self.inside.iter().filter(|i| **i).count() as f64 * self.cell_mm * self.cell_mm
+    }
+
+    /// Cells the tool can reach (`r_mm`, `allowance_mm`) that are farther than the allowance
+    /// plus `tol_mm` from the walls and that nothing removed: their area (mm²) and the centre
+    /// of one of them.
+    pub fn left_over(&self, r_mm: f64, allowance_mm: f64, tol_mm: f64) -> (f64, Option<Point>) {
+        let sources: Vec<bool> =
+            self.clearance.iter().zip(&self.inside).map(|(c, i)| *i && *c >= r_mm + allowance_mm).collect();
+        let d2 = squared_distance_transform(&sources, self.w, self.h);
+        let reach = (r_mm - tol_mm) / self.cell_mm;
+        let mut area = 0.0;
+        let mut example = None;
+        for j in 0..self.h {
+            for i in 0..self.w {
+                let k = j * self.w + i;
+                if self.inside[k]
+                    && self.owner[k] == NOBODY
+                    && self.clearance[k] > allowance_mm + tol_mm
+                    && d2[k] <= reach * reach
+                {
+                    area += self.cell_mm * self.cell_mm;
+                    example.get_or_insert(self.centre(i, j));
+                }
+            }
+        }
+        (area, example)
+    }
+}
+
+/// Squared Euclidean distance (in cells) from every cell to the nearest `true` cell
+/// (Felzenszwalb and Huttenlocher's separable transform); infinite when there is none.
+fn squared_distance_transform(sources: &[bool], w: usize, h: usize) -> Vec<f64> {
+    let mut grid: Vec<f64> = sources.iter().map(|s| if *s { 0.0 } else { f64::INFINITY }).collect();
+    let mut column = vec![0.0; h];
+    for i in 0..w {
+        for j in 0..h {
+            column[j] = grid[j * w + i];
+        }
+        let out = transform_1d(&column);
+        for j in 0..h {
+            grid[j * w + i] = out[j];
+        }
+    }
+    for j in 0..h {
+        let out = transform_1d(&grid[j * w..(j + 1) * w]);
+        grid[j * w..(j + 1) * w].copy_from_slice(&out);
+    }
+    grid
+}
+
+/// One-dimensional squared distance transform of the sampled function `f` (lower envelope of
+/// parabolas).
+fn transform_1d(f: &[f64]) -> Vec<f64> {
+    let n = f.len();
+    let mut out = vec![f64::INFINITY; n];
+    let mut v = vec![0usize; n];
+    let mut z = vec![0.0f64; n + 1];
+    let mut k: usize = 0;
+    let Some(first) = (0..n).find(|&q| f[q].is_finite()) else { return out };
+    v[0] = first;
+    z[0] = f64::NEG_INFINITY;
+    z[1] = f64::INFINITY;
+    for q in first + 1..n {
+        if !f[q].is_finite() {
+            continue;
+        }
+        loop {
+            let p = v[k];
+            let s = ((f[q] + (q * q) as f64) - (f[p] + (p * p) as f64)) / (2.0 * (q as f64 - p as f64));
+            if s <= z[k] && k > 0 {
+                k -= 1;
+                continue;
+            }
+            if s <= z[k] {
+                v[0] = q;
+                z[0] = f64::NEG_INFINITY;
+                z[1] = f64::INFINITY;
+                break;
+            }
+            k += 1;
+            v[k] = q;
+            z[k] = s;
+            z[k + 1] = f64::INFINITY;
+            break;
+        }
+    }
+    let mut k = 0;
+    for (q, o) in out.iter_mut().enumerate() {
+        while z[k + 1] < q as f64 {
+            k += 1;
+        }
+        let p = v[k];
+        let d = q as f64 - p as f64;
+        *o = d * d + f[p];
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::geometry::Loop;
+
+    #[test]
+    fn the_distance_transform_is_the_squared_distance_to_the_nearest_source() {
+        let (w, h) = (7, 5);
+        let mut s = vec![false; w * h];
+        s[2 * w + 1] = true;
+        s[4 * w + 6] = true;
+        let d = squared_distance_transform(&s, w, h);
+        for j in 0..h {
+            for i in 0..w {
+                let a = ((i as f64 - 1.0).powi(2) + (j as f64 - 2.0).powi(2))
+                    .min((i as f64 - 6.0).powi(2) + (j as f64 - 4.0).powi(2));
+                assert!((d[j * w + i] - a).abs() < 1e-9, "({i},{j}) {} vs {a}", d[j * w + i]);
+            }
+        }
+    }
+
+    #[test]
+    fn a_square_swept_by_a_disc_path_leaves_only_its_corners() {
+        let pocket = Pocket::new(Loop::rectangle(0.0, 0.0, 20.0, 20.0), vec![]).unwrap();
+        let boundary = Boundary::of_pocket(&pocket);
+        let mut c = Coverage::new(&pocket, &boundary, 5.0);
+        assert!((c.pocket_area() - 400.0).abs() < 4.0);
+        // Nothing cut: everything the tool can reach is left: the square but its four
+        // corners beyond the tool's reach (4·(1 − π/4)·r²) and a band of the tolerance.
+        let (left, _) = c.left_over(5.0, 0.0, 0.05);
+        let reachable = 400.0 - 4.0 * (1.0 - std::f64::consts::PI / 4.0) * 25.0;
+        assert!(left > 0.95 * reachable && left < reachable, "{left}");
+        // The tool centre around the square 5 mm from the walls and through the middle.
+        for k in 0..=100 {
+            let t = k as f64 / 100.0 * 10.0;
+            for p in [(5.0 + t, 5.0), (15.0, 5.0 + t), (15.0 - t, 15.0), (5.0, 15.0 - t), (5.0 + t, 10.0)] {
+                c.stamp(Point::new(p.0, p.1), 5.0, 0);
+            }
+        }
+        let (left, at) = c.left_over(5.0, 0.0, 0.05);
+        assert!(left < 0.5, "{left} {at:?} removed {}", c.area_of(0));
+        // The corners the tool cannot reach are not counted, but are not removed either.
+        assert!(c.area_of(0) < 400.0 - 4.0 * (25.0 - 25.0 * std::f64::consts::PI / 4.0) + 2.0);
+    }
+}

@@ -1,0 +1,228 @@
+//! Trochoid insertion (seed 004 §2; MODEL.md §6–8): the contour-parallel path of a pocket —
+//! generated, or the one given — is analysed; its overloaded samples are mapped onto the
+//! medial axis ([`critical_branches`]); each critical stretch gets trochoid cycles (classes A
+//! and B) or z-cut division (class C); the base path is cut where the trochoids have removed
+//! the material and re-linked; and the finished program is checked by the full simulation.
+//!
+//! Rounds: samples still above the limit after a round (outside z-cut regions and ramps) are
+//! mapped onto the axis again and their stretches treated too, up to [`MAX_ROUNDS`] rounds.
+
+mod cleared;
+mod compose;
+mod coverage;
+pub mod pitch;
+mod report;
+mod spec;
+mod treatments;
+mod verify;
+
+#[cfg(test)]
+mod tests;
+
+pub use cleared::{ClearedZone, TrimReport};
+pub use compose::RAMP_START_ABOVE_MM;
+pub use report::{InsertionPlan, Treatment, TreatmentKind};
+pub use spec::{
+    InsertionSpec, LoopSize, DEFAULT_INSERTION_ALPHA_LIMIT_DEG, DEFAULT_WALL_GAP_MM, PITCH_DESIGN_MARGIN_DEG,
+};
+pub use verify::{EngagementCheck, Spot, Verification};
+
+use crate::core::analysis::{AnalysisSpec, StockRegion};
+use crate::core::conditions::feed_mm_min;
+use crate::core::cycles::setup::DEFAULT_PLUNGE_FEED_RATIO;
+use crate::core::cycles::z_levels;
+use crate::core::geometry::Pocket;
+use crate::core::medial::{classify, critical_branches, medial_axis, Boundary, CriticalInterval, MedialOptions};
+use crate::core::pocketing::{contour_parallel, PocketingSpec};
+use crate::core::progress::Progress;
+use crate::core::toolpath::{Event, EventKind, Toolpath, Units};
+use crate::core::CoreError;
+use cleared::ClearedZone as Zone;
+use treatments::Stretch;
+
+/// Most rounds of treatment.
+pub const MAX_ROUNDS: usize = 3;
+
+/// Overloaded samples within this many tool radii of a branch count on it.
+pub const AXIS_DISTANCE_RADII: f64 = 1.0;
+
+/// Overloaded samples closer than this many tool radii along a branch form one interval,
+/// which is widened by the same amount at both ends.
+pub const INTERVAL_MERGE_RADII: f64 = 1.0;
+
+/// The contour-parallel roughing path of `pocket` at every level of the layer (`Ad` of the
+/// roughing conditions), the levels joined over the safe height.
+pub fn base_path(pocket: &Pocket, spec: &InsertionSpec) -> Result<Toolpath, CoreError> {
+    let mut moves = Vec::new();
+    for z in z_levels(spec.z_top_mm, spec.z_bottom_mm, spec.roughing.ad_mm)? {
+        let feed = feed_mm_min(spec.roughing.fz_mm, spec.tool.flutes, spec.roughing.spindle_rpm);
+        let level = contour_parallel(
+            pocket,
+            &PocketingSpec {
+                tool_radius_mm: spec.r_mm(),
+                radial_depth_mm: spec.roughing.rd_mm,
+                allowance_mm: spec.allowance_mm,
+                z_mm: z,
+                safe_z_mm: spec.safe_z_mm,
+                feed_mm_min: feed,
+                plunge_feed_mm_min: DEFAULT_PLUNGE_FEED_RATIO * feed,
+                spindle_rpm: spec.roughing.spindle_rpm,
+                climb: matches!(spec.direction, crate::core::cycles::CutDirection::Climb),
+            },
+        )?;
+        compose::append_over(&mut moves, &level.toolpath.moves, spec.safe_z_mm);
+    }
+    Ok(program(moves))
+}
+
+/// A tool path of `moves` with the spindle on (clockwise) before the first and off after the
+/// last.
+fn program(mut moves: Vec<crate::core::toolpath::Move>) -> Toolpath {
+    for (i, m) in moves.iter_mut().enumerate() {
+        m.line = u32::try_from(i + 1).unwrap_or(u32::MAX);
+    }
+    let last = u32::try_from(moves.len()).unwrap_or(u32::MAX);
+    let events = vec![
+        Event { kind: EventKind::SpindleOn { clockwise: true }, before_move: 0, line: 1 },
+        Event { kind: EventKind::SpindleOff, before_move: moves.len(), line: last },
+    ];
+    Toolpath { moves, events, source_units: Units::Mm, warnings: Vec::new() }
+}
+
+/// The simulation of a plan's paths.
+pub fn analysis_spec(pocket: &Pocket, spec: &InsertionSpec) -> AnalysisSpec {
+    AnalysisSpec {
+        tool: spec.tool,
+        stock: vec![StockRegion::Pocket(pocket.clone())],
+        open: Vec::new(),
+        z_top: spec.z_top_mm,
+        z_bottom: spec.z_bottom_mm,
+        force_model: None,
+        default_spindle_rpm: Some(spec.roughing.spindle_rpm),
+        rapid_mm_min: spec.rapid_mm_min,
+        sample_spacing_mm: spec.sample_spacing_mm,
+        cell_mm: None,
+        alpha_limit_deg: spec.alpha_limit_deg,
+        series_points: 0,
+    }
+}
+
+/// Adds `found` to `intervals`, merging overlapping intervals of the same branch.
+fn merge_intervals(intervals: &mut Vec<CriticalInterval>, found: Vec<CriticalInterval>) {
+    intervals.extend(found);
+    intervals.sort_by(|a, b| a.branch.cmp(&b.branch).then(a.s_start_mm.total_cmp(&b.s_start_mm)));
+    let mut merged: Vec<CriticalInterval> = Vec::new();
+    for c in intervals.drain(..) {
+        match merged.last_mut() {
+            Some(last) if last.branch == c.branch && c.s_start_mm <= last.s_end_mm => {
+                last.s_end_mm = last.s_end_mm.max(c.s_end_mm);
+                last.max_alpha_deg = last.max_alpha_deg.max(c.max_alpha_deg);
+                last.min_clearance_mm = last.min_clearance_mm.min(c.min_clearance_mm);
+                last.samples += c.samples;
+            }
+            _ => merged.push(c),
+        }
+    }
+    *intervals = merged;
+}
+
+/// Plans the trochoid insertion for `pocket`: `existing` is the path to modify (its cutting
+/// levels are treated where it first goes down to them), or `None` for the generated
+/// contour-parallel path (see the module documentation).
+pub fn plan_insertion(
+    pocket: &Pocket,
+    spec: &InsertionSpec,
+    existing: Option<&Toolpath>,
+    progress: &dyn Progress,
+) -> Result<InsertionPlan, CoreError> {
+    spec.validate()?;
+    let axis = medial_axis(pocket, &MedialOptions::default())?;
+    let classes = classify(&axis, spec.r_mm(), spec.class_a_ratio)?;
+    let boundary = Boundary::of_pocket(pocket);
+    let base = match existing {
+        Some(path) => path.clone(),
+        None => base_path(pocket, spec)?,
+    };
+    let analysis = analysis_spec(pocket, spec);
+    let r = spec.r_mm();
+    let empty = Zone::new(r);
+    let before = verify::check_engagement(&base, &analysis, &empty, &[], progress)?;
+    let map = |overloaded: &[(crate::core::geometry::Point, f64)]| {
+        critical_branches(
+            &axis,
+            overloaded,
+            AXIS_DISTANCE_RADII * r,
+            INTERVAL_MERGE_RADII * r,
+            INTERVAL_MERGE_RADII * r,
+        )
+    };
+    let found = map(&before.overloaded);
+    let mut intervals = Vec::new();
+    merge_intervals(&mut intervals, found.intervals.clone());
+    let mut rounds = 0;
+    loop {
+        rounds += 1;
+        let mut stretches = Vec::new();
+        for c in &intervals {
+            stretches.extend(treatments::treat_interval(&axis.branches[c.branch], c, &boundary, pocket, spec)?);
+        }
+        let (air, zcut) = zones(&stretches, r);
+        let composed = compose::compose(&base.moves, &stretches, &air, spec)?;
+        let (levels, per_level) = (composed.levels, composed.per_level);
+        let path = program(composed.moves);
+        let after = verify::check_engagement(&path, &analysis, &zcut, &composed.entry, progress)?;
+        let more = map(&after.overloaded);
+        let grows = more.intervals.iter().any(|m| {
+            !intervals.iter().any(|c| c.branch == m.branch && c.s_start_mm <= m.s_start_mm && m.s_end_mm <= c.s_end_mm)
+        });
+        if after.outside.overloaded == 0 || rounds >= MAX_ROUNDS || !grows {
+            return Ok(report::assemble(report::Parts {
+                pocket,
+                boundary: &boundary,
+                spec,
+                axis,
+                classes,
+                base_check: before,
+                critical: found,
+                intervals,
+                stretches,
+                per_level,
+                levels,
+                path,
+                after,
+                rounds,
+                existing: existing.is_some(),
+            }));
+        }
+        merge_intervals(&mut intervals, more.intervals);
+    }
+}
+
+/// The air zone of the trochoids (loop centres, radius ρ) and the z-cut zone (the inscribed
+/// discs along each z-cut stretch).
+fn zones(stretches: &[Stretch], r_mm: f64) -> (Zone, Zone) {
+    let (mut air, mut zcut) = (Zone::new(r_mm), Zone::new(r_mm));
+    for s in stretches {
+        match s {
+            Stretch::Trochoid(t) => {
+                for (c, rho) in t.plan.centres.iter().zip(&t.plan.rho_mm) {
+                    air.add(*c, *rho);
+                }
+            }
+            Stretch::ZCut(z) => {
+                for (w, c) in z.path.windows(2).zip(z.clearance_mm.windows(2)) {
+                    let n = (w[0].distance_mm(w[1]) / cleared::AIR_TEST_STEP_MM).ceil().max(1.0) as usize;
+                    for k in 0..=n {
+                        let t = k as f64 / n as f64;
+                        let p = crate::core::geometry::Point::new(
+                            w[0].x + (w[1].x - w[0].x) * t,
+                            w[0].y + (w[1].y - w[0].y) * t,
+                        );
+                        zcut.add(p, c[0] + (c[1] - c[0]) * t);
+                    }
+                }
+            }
+        }
+    }
+    (air, zcut)
+}

@@ -1,0 +1,253 @@
+//! What the planner returns: the axis and its classes, the treatments with the area each
+//! removes, the program, and the checks of the finished program.
+
+use super::cleared::TrimReport;
+use super::compose::LevelMoves;
+use super::coverage::Coverage;
+use super::spec::InsertionSpec;
+use super::treatments::{interval_class, Stretch};
+use super::verify::{check_gouges, EngagementOutcome, Verification};
+use crate::core::cycles::CycleReport;
+use crate::core::geometry::Pocket;
+use crate::core::medial::{Boundary, BranchClasses, CriticalBranches, CriticalInterval, MedialAxis, RadiusClass};
+use crate::core::toolpath::Toolpath;
+use serde::Serialize;
+
+/// Points closer than this to the reachable area's edge are not counted as left over, mm
+/// (the coverage raster's resolution).
+const COVERAGE_TOLERANCE_CELLS: f64 = 2.0;
+
+/// What a region got.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TreatmentKind {
+    /// The contour-parallel (base) path as it is, trimmed where the trochoids cut first.
+    Kept,
+    /// Trochoid cycles along a stretch of the medial axis.
+    Trochoid,
+    /// z-cut division: the stretch cut in passes of the reduced axial depth.
+    ZCut,
+}
+
+/// One treatment and its figures over all levels.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Treatment {
+    pub kind: TreatmentKind,
+    /// The medial-axis branch and the stretch of it (arc length from its first point, mm),
+    /// walked from `s_from_mm` to `s_to_mm`; `None` for the kept path.
+    pub branch: Option<usize>,
+    pub s_from_mm: Option<f64>,
+    pub s_to_mm: Option<f64>,
+    /// Radius class of the critical interval the stretch belongs to (its smallest R).
+    pub class: Option<RadiusClass>,
+    /// Trochoid loops per level.
+    pub loops: usize,
+    pub pitch_min_mm: Option<f64>,
+    pub pitch_max_mm: Option<f64>,
+    pub loop_radius_min_mm: Option<f64>,
+    pub loop_radius_max_mm: Option<f64>,
+    /// z-cut passes per level.
+    pub passes_per_level: usize,
+    /// Area of the pocket this treatment removes first (at the bottom level), mm².
+    pub area_mm2: f64,
+    /// Feed length, rapid length and time at the programmed feeds, over all levels.
+    pub feed_length_mm: f64,
+    pub rapid_length_mm: f64,
+    pub time_min: f64,
+}
+
+/// The plan.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct InsertionPlan {
+    pub axis: MedialAxis,
+    pub classes: Vec<BranchClasses>,
+    /// The base path's engagement before any treatment.
+    pub base_max_alpha_deg: f64,
+    pub base_overloaded_samples: usize,
+    /// Its overloaded samples mapped onto the axis.
+    pub critical: CriticalBranches,
+    /// The stretches treated (after all rounds).
+    pub treated: Vec<CriticalInterval>,
+    pub treatments: Vec<Treatment>,
+    /// The cutting levels, top first, mm.
+    pub levels_mm: Vec<f64>,
+    pub toolpath: Toolpath,
+    /// What was cut out of the base path, over all levels.
+    pub trim: TrimReport,
+    pub verification: Verification,
+    pub rounds: usize,
+    pub pocket_area_mm2: f64,
+    pub warnings: Vec<String>,
+}
+
+/// Everything [`assemble`] needs.
+pub(super) struct Parts<'a> {
+    pub pocket: &'a Pocket,
+    pub boundary: &'a Boundary,
+    pub spec: &'a InsertionSpec,
+    pub axis: MedialAxis,
+    pub classes: Vec<BranchClasses>,
+    pub base_check: EngagementOutcome,
+    pub critical: CriticalBranches,
+    pub intervals: Vec<CriticalInterval>,
+    pub stretches: Vec<Stretch>,
+    pub per_level: Vec<LevelMoves>,
+    pub levels: Vec<f64>,
+    pub path: Toolpath,
+    pub after: EngagementOutcome,
+    pub rounds: usize,
+    pub existing: bool,
+}
+
+fn range(values: impl Iterator<Item = f64>) -> (Option<f64>, Option<f64>) {
+    values.fold((None, None), |(lo, hi), v| {
+        (Some(lo.map_or(v, |l: f64| l.min(v))), Some(hi.map_or(v, |h: f64| h.max(v))))
+    })
+}
+
+pub(super) fn assemble(p: Parts) -> InsertionPlan {
+    let spec = p.spec;
+    let r = spec.r_mm();
+    let mut warnings = Vec::new();
+    let bottom = p.levels.iter().copied().fold(f64::INFINITY, f64::min);
+    let mut coverage = Coverage::new(p.pocket, p.boundary, r);
+    let base_owner = u16::try_from(p.stretches.len()).unwrap_or(u16::MAX - 1);
+    if let Some(last) = p.per_level.last() {
+        for (i, moves) in last.stretch_moves.iter().enumerate() {
+            coverage.stamp_moves(
+                moves,
+                r,
+                bottom + super::cleared::SAME_LEVEL_MM,
+                u16::try_from(i).unwrap_or(base_owner),
+            );
+        }
+        coverage.stamp_moves(&last.base, r, bottom + super::cleared::SAME_LEVEL_MM, base_owner);
+    }
+    let tol = COVERAGE_TOLERANCE_CELLS * coverage.cell_mm;
+    let (uncleared, uncleared_at) =
+        if bottom.is_finite() { coverage.left_over(r, spec.allowance_mm, tol) } else { (coverage.pocket_area(), None) };
+    if bottom > spec.z_bottom_mm + super::cleared::SAME_LEVEL_MM {
+        warnings.push(format!(
+            "the path's lowest cutting level is {bottom} mm, above the layer's bottom {} mm",
+            spec.z_bottom_mm
+        ));
+    }
+    let mut treatments = Vec::new();
+    for (i, s) in p.stretches.iter().enumerate() {
+        let moves: Vec<_> = p.per_level.iter().flat_map(|l| l.stretch_moves[i].iter().copied()).collect();
+        let figures = CycleReport::of_moves(&moves, spec.rapid_mm_min);
+        let owner = u16::try_from(i).unwrap_or(base_owner);
+        let class_of = |branch: usize, s_mm: f64| {
+            p.intervals
+                .iter()
+                .find(|c| c.branch == branch && c.s_start_mm - 1e-6 <= s_mm && s_mm <= c.s_end_mm + 1e-6)
+                .map(|c| interval_class(c, spec))
+        };
+        let t = match s {
+            Stretch::Trochoid(t) => {
+                let (rho_lo, rho_hi) = range(t.plan.rho_mm.iter().copied());
+                Treatment {
+                    kind: TreatmentKind::Trochoid,
+                    branch: Some(t.branch),
+                    s_from_mm: Some(t.s_from_mm),
+                    s_to_mm: Some(t.s_to_mm),
+                    class: class_of(t.branch, t.s_from_mm),
+                    loops: t.plan.loops(),
+                    pitch_min_mm: Some(t.pitch_min_mm),
+                    pitch_max_mm: Some(t.pitch_max_mm),
+                    loop_radius_min_mm: rho_lo,
+                    loop_radius_max_mm: rho_hi,
+                    passes_per_level: 0,
+                    area_mm2: coverage.area_of(owner),
+                    feed_length_mm: figures.feed_length_mm,
+                    rapid_length_mm: figures.rapid_length_mm,
+                    time_min: figures.time_min,
+                }
+            }
+            Stretch::ZCut(z) => Treatment {
+                kind: TreatmentKind::ZCut,
+                branch: Some(z.branch),
+                s_from_mm: Some(z.s_from_mm),
+                s_to_mm: Some(z.s_to_mm),
+                class: class_of(z.branch, z.s_from_mm),
+                loops: 0,
+                pitch_min_mm: None,
+                pitch_max_mm: None,
+                loop_radius_min_mm: None,
+                loop_radius_max_mm: None,
+                passes_per_level: ((spec.roughing.ad_mm.min(spec.z_top_mm - spec.z_bottom_mm)) / spec.zcut_ad_mm).ceil()
+                    as usize,
+                area_mm2: coverage.area_of(owner),
+                feed_length_mm: figures.feed_length_mm,
+                rapid_length_mm: figures.rapid_length_mm,
+                time_min: figures.time_min,
+            },
+        };
+        treatments.push(t);
+    }
+    let base_moves: Vec<_> = p.per_level.iter().flat_map(|l| l.base.iter().copied()).collect();
+    let figures = CycleReport::of_moves(&base_moves, spec.rapid_mm_min);
+    treatments.push(Treatment {
+        kind: TreatmentKind::Kept,
+        branch: None,
+        s_from_mm: None,
+        s_to_mm: None,
+        class: None,
+        loops: 0,
+        pitch_min_mm: None,
+        pitch_max_mm: None,
+        loop_radius_min_mm: None,
+        loop_radius_max_mm: None,
+        passes_per_level: 0,
+        area_mm2: coverage.area_of(base_owner),
+        feed_length_mm: figures.feed_length_mm,
+        rapid_length_mm: figures.rapid_length_mm,
+        time_min: figures.time_min,
+    });
+    let (gouges, min_margin, first_gouge) =
+        check_gouges(&p.path, p.pocket, p.boundary, r, spec.allowance_mm, spec.z_top_mm);
+    if p.existing && gouges > 0 {
+        warnings.push("the given path comes closer to the walls than the tool radius plus the allowance".to_string());
+    }
+    let trim = p.per_level.iter().fold(TrimReport::default(), |a, l| TrimReport {
+        removed_mm: a.removed_mm + l.trim.removed_mm,
+        links: a.links + l.trim.links,
+        hops: a.hops + l.trim.hops,
+    });
+    if p.after.outside.overloaded > 0 {
+        warnings.push(format!(
+            "{} samples outside the z-cut regions still exceed {}° after {} rounds (largest {:.1}°): see verification.first_overload",
+            p.after.outside.overloaded, spec.alpha_limit_deg, p.rounds, p.after.outside.max_alpha_deg
+        ));
+    }
+    let passed = p.after.outside.overloaded == 0 && gouges == 0 && uncleared <= 0.0;
+    let verification = Verification {
+        alpha_limit_deg: spec.alpha_limit_deg,
+        outside_zcut: p.after.outside,
+        inside_zcut: p.after.inside,
+        ramps: p.after.ramps,
+        first_overload: p.after.first_overload,
+        gouges,
+        min_wall_margin_mm: if min_margin.is_finite() { min_margin } else { 0.0 },
+        first_gouge,
+        uncleared_area_mm2: uncleared,
+        uncleared_at: uncleared_at.map(|q| (q.x, q.y)),
+        passed,
+    };
+    InsertionPlan {
+        axis: p.axis,
+        classes: p.classes,
+        base_max_alpha_deg: p.base_check.outside.max_alpha_deg,
+        base_overloaded_samples: p.base_check.outside.overloaded,
+        critical: p.critical,
+        treated: p.intervals,
+        treatments,
+        levels_mm: p.levels,
+        toolpath: p.path,
+        trim,
+        verification,
+        rounds: p.rounds,
+        pocket_area_mm2: coverage.pocket_area(),
+        warnings,
+    }
+}

@@ -1,0 +1,170 @@
+//! The checks of a plan (issue: "analysing the new path shows no sample above the engagement
+//! limit outside the reported z-cut regions, the pocket is fully cleared and no move gouges
+//! the contour or an island"), run on the finished program by the full simulation.
+
+use super::cleared::ClearedZone;
+use crate::core::analysis::sampling::{move_length, point_on};
+use crate::core::analysis::{analyze_with, AnalysisSpec};
+use crate::core::geometry::{Pocket, Point};
+use crate::core::medial::Boundary;
+use crate::core::progress::Progress;
+use crate::core::toolpath::Toolpath;
+use crate::core::CoreError;
+use serde::Serialize;
+
+/// A move is a gouge when its tool centre comes closer than `r + allowance` to a wall by
+/// more than this, mm.
+pub const GOUGE_TOLERANCE_MM: f64 = 1e-3;
+
+/// Spacing of the gouge test along the moves, mm.
+pub const GOUGE_STEP_MM: f64 = 0.1;
+
+/// Where a check failed.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Spot {
+    pub x_mm: f64,
+    pub y_mm: f64,
+    pub z_mm: f64,
+    /// The program's move (1-based) there.
+    pub line: u32,
+    /// α (deg) for an overload, the wall margin (mm, negative) for a gouge.
+    pub value: f64,
+}
+
+/// The engagement of one kind of sample.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct EngagementCheck {
+    pub samples: usize,
+    pub max_alpha_deg: f64,
+    /// Samples above the limit.
+    pub overloaded: usize,
+}
+
+impl EngagementCheck {
+    fn add(&mut self, alpha_deg: f64, limit_deg: f64) {
+        self.samples += 1;
+        self.max_alpha_deg = self.max_alpha_deg.max(alpha_deg);
+        if alpha_deg > limit_deg {
+            self.overloaded += 1;
+        }
+    }
+}
+
+/// The result of the checks.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Verification {
+    pub alpha_limit_deg: f64,
+    /// Horizontal cutting samples outside the z-cut regions: must have no overload.
+    pub outside_zcut: EngagementCheck,
+    /// Samples inside the z-cut regions (cut at the reduced axial depth).
+    pub inside_zcut: EngagementCheck,
+    /// Samples of ramps and plunges (the tool going down: axial engagement) and of the
+    /// approach holes (a trochoid's helical entry and the full circle at its bottom).
+    pub ramps: EngagementCheck,
+    /// The first overloaded sample outside the z-cut regions.
+    pub first_overload: Option<Spot>,
+    /// Test points where the tool comes closer to a wall than `r + allowance`.
+    pub gouges: usize,
+    /// Smallest `clearance − r − allowance` of the tool centre below the top, mm.
+    pub min_wall_margin_mm: f64,
+    pub first_gouge: Option<Spot>,
+    /// Area the tool could reach but nothing removed, mm².
+    pub uncleared_area_mm2: f64,
+    pub uncleared_at: Option<(f64, f64)>,
+    /// `true` when all three checks pass.
+    pub passed: bool,
+}
+
+/// Overloaded samples outside the z-cut zone, as `(xy, α deg)` (for another round of
+/// treatment) and the engagement checks.
+pub struct EngagementOutcome {
+    pub outside: EngagementCheck,
+    pub inside: EngagementCheck,
+    pub ramps: EngagementCheck,
+    pub first_overload: Option<Spot>,
+    pub overloaded: Vec<(Point, f64)>,
+}
+
+/// Simulates `path` and sorts its samples into outside the z-cut zone, inside it and ramps.
+pub fn check_engagement(
+    path: &Toolpath,
+    analysis: &AnalysisSpec,
+    zcut_zone: &ClearedZone,
+    entry_moves: &[bool],
+    progress: &dyn Progress,
+) -> Result<EngagementOutcome, CoreError> {
+    let limit = analysis.alpha_limit_deg;
+    let mut out = EngagementOutcome {
+        outside: EngagementCheck::default(),
+        inside: EngagementCheck::default(),
+        ramps: EngagementCheck::default(),
+        first_overload: None,
+        overloaded: Vec::new(),
+    };
+    analyze_with(path, analysis, progress, |r| {
+        if r.sample.rapid {
+            return;
+        }
+        let m = &path.moves[r.sample.move_index];
+        let alpha = r.contact.alpha_rad.to_degrees();
+        let p = Point::new(r.sample.p.x, r.sample.p.y);
+        let entry = entry_moves.get(r.sample.move_index).copied().unwrap_or(false);
+        if entry || r.plunge || (m.end.z - m.start.z).abs() > super::cleared::SAME_LEVEL_MM {
+            out.ramps.add(alpha, limit);
+        } else if zcut_zone.is_air(p) {
+            out.inside.add(alpha, limit);
+        } else {
+            out.outside.add(alpha, limit);
+            if alpha > limit {
+                out.overloaded.push((p, alpha));
+                out.first_overload.get_or_insert(Spot {
+                    x_mm: p.x,
+                    y_mm: p.y,
+                    z_mm: r.sample.p.z,
+                    line: r.sample.line,
+                    value: alpha,
+                });
+            }
+        }
+    })?;
+    Ok(out)
+}
+
+/// Checks every move that goes below `z_top_mm` against the walls: the tool centre must stay
+/// inside the pocket at least `r + allowance` from every wall and island.
+pub fn check_gouges(
+    path: &Toolpath,
+    pocket: &Pocket,
+    boundary: &Boundary,
+    r_mm: f64,
+    allowance_mm: f64,
+    z_top_mm: f64,
+) -> (usize, f64, Option<Spot>) {
+    let mut count = 0;
+    let mut min_margin = f64::INFINITY;
+    let mut first = None;
+    for m in &path.moves {
+        if m.start.z >= z_top_mm && m.end.z >= z_top_mm {
+            continue;
+        }
+        let n = (move_length(m) / GOUGE_STEP_MM).ceil().max(1.0) as usize;
+        for k in 0..=n {
+            let (p, _) = point_on(m, k as f64 / n as f64);
+            if p.z >= z_top_mm {
+                continue;
+            }
+            let c = if pocket.contains(p.x, p.y) {
+                boundary.clearance_mm(Point::new(p.x, p.y))
+            } else {
+                -boundary.clearance_mm(Point::new(p.x, p.y))
+            };
+            let margin = c - r_mm - allowance_mm;
+            min_margin = min_margin.min(margin);
+            if margin < -GOUGE_TOLERANCE_MM {
+                count += 1;
+                first.get_or_insert(Spot { x_mm: p.x, y_mm: p.y, z_mm: p.z, line: m.line, value: margin });
+            }
+        }
+    }
+    (count, min_margin, first)
+}
