@@ -103,9 +103,14 @@ async fn check<D: Resource>(conn: &mut SqliteConnection, data: &D) -> Result<(),
     v.finish()
 }
 
+/// Write transactions take SQLite's write lock when they begin: a deferred transaction that
+/// reads first cannot upgrade its lock once another connection (a worker claiming a job) has
+/// written, and would fail at once with SQLITE_BUSY instead of waiting.
+const WRITE_TRANSACTION: &str = "BEGIN IMMEDIATE";
+
 /// Inserts a validated row and returns it.
 pub async fn create<R: Record>(pool: &SqlitePool, data: R::Data) -> Result<R, ApiError> {
-    let mut tx = pool.begin().await?;
+    let mut tx = pool.begin_with(WRITE_TRANSACTION).await?;
     check(&mut tx, &data).await?;
     let columns = R::Data::COLUMNS;
     let placeholders = vec!["?"; columns.len()].join(", ");
@@ -120,7 +125,7 @@ pub async fn create<R: Record>(pool: &SqlitePool, data: R::Data) -> Result<R, Ap
 
 /// Replaces a row's data; marks it edited so later migrations leave it alone.
 pub async fn replace<R: Record>(pool: &SqlitePool, id: i64, data: R::Data) -> Result<R, ApiError> {
-    let mut tx = pool.begin().await?;
+    let mut tx = pool.begin_with(WRITE_TRANSACTION).await?;
     fetch::<R>(&mut tx, id).await?;
     check(&mut tx, &data).await?;
     let sets: Vec<String> = R::Data::COLUMNS.iter().map(|c| format!("{c} = ?")).collect();
@@ -176,7 +181,7 @@ fn merge(target: &mut Value, patch: Value) {
 
 /// Deletes a row, refusing with 409 while other rows still reference it.
 pub async fn delete<R: Record>(pool: &SqlitePool, id: i64) -> Result<(), ApiError> {
-    let mut tx = pool.begin().await?;
+    let mut tx = pool.begin_with(WRITE_TRANSACTION).await?;
     fetch::<R>(&mut tx, id).await?;
     let mut users = Vec::new();
     for (table, column, what) in R::Data::REFERENCED_BY {
