@@ -61,7 +61,7 @@ fi
 # Answers the README promises.
 check() { # description, jq filter, URL path, method, body
   local got
-  got=$(curl -sS -X "$4" "$DIEPLAN$3" -H 'content-type: application/json' -H 'Prefer: wait=10' ${5:+-d "$5"})
+  got=$(curl -sS -X "$4" "$DIEPLAN$3" -H 'content-type: application/json' -H 'Prefer: wait=60' ${5:+-d "$5"})
   echo "$got" | jq -e "$2" >/dev/null || { echo "check failed: $1: $got"; exit 1; }
   echo "ok: $1"
 }
@@ -74,6 +74,9 @@ check "a bad request is a problem document naming the field" \
 check "a concave arc of R/r 2 is cut at about 1160 mm/min for a constant force" \
   '[.result.blocks.feed_mm_min[] | select(. != null)] | any(. > 1136 and . < 1184)' /v1/feeds POST \
   '{"program": {"gcode": "G21 G90\nS9600 M3\nG0 X0 Y0 Z5\nG1 Z-10 F1000\nG1 X5 F5760\nG3 X5 Y0 I-5 J0\nM30\n"}, "tool_type": "square", "diameter_mm": 10, "stock": {"box": {"x_min": -30, "y_min": -30, "z_min": -10, "x_max": 30, "y_max": 30, "z_max": 0}, "open": [{"circle": {"cx": 0, "cy": 0, "r": 9.5}}]}}'
+check "trochoids make the box with a 12 mm slot safe: nothing above 40 degrees, no gouge, nothing left" \
+  '.result.verification.passed and .result.verification.outside_zcut.max_alpha_deg <= 40 and ([.result.treatments[] | select(.kind == "trochoid")] | length) > 0' \
+  /v1/trochoids POST '{"contour": {"outer": [[0, 0], [80, 0], [80, 24], [120, 24], [120, 36], [80, 36], [80, 60], [0, 60]]}, "z_top": 0, "z_bottom": -10, "tool_type": "square", "diameter_mm": 10}'
 
 # SIGTERM: graceful stop with exit code 0.
 kill -TERM "$PID"

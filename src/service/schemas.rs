@@ -72,3 +72,18 @@ impl utoipa::ToSchema for ShortfallKind {
         Cow::Borrowed("ShortfallKind")
     }
 }
+
+impl utoipa::PartialSchema for crate::core::cycles::CutDirection {
+    fn schema() -> RefOr<Schema> {
+        string_enum(
+            vec!["climb", "conventional"],
+            "Milling direction with an M3 spindle: climb (down cut, the material on the right of travel; default, MODEL.md §1) or conventional (up cut).",
+        )
+    }
+}
+
+impl utoipa::ToSchema for crate::core::cycles::CutDirection {
+    fn name() -> Cow<'static, str> {
+        Cow::Borrowed("CutDirection")
+    }
+}

@@ -13,3 +13,4 @@ mod feeds;
 mod fit;
 mod jobs;
 mod openapi;
+mod trochoids;

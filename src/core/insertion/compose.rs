@@ -8,10 +8,12 @@
 use super::cleared::{trim_path, ClearedZone, Relink, TrimReport, SAME_LEVEL_MM};
 use super::spec::InsertionSpec;
 use super::treatments::{Stretch, TrochoidStretch, ZCutStretch};
+use crate::core::analysis::sampling::move_length;
 use crate::core::cycles::arcs::{at_z, PathBuilder};
 use crate::core::cycles::setup::DEFAULT_PLUNGE_FEED_RATIO;
 use crate::core::cycles::trochoid::Entry;
 use crate::core::cycles::{z_levels, CycleSetup};
+use crate::core::tolerance::LENGTH_EPS_MM;
 use crate::core::toolpath::{Motion, Move, P3};
 use crate::core::CoreError;
 
@@ -203,9 +205,16 @@ pub fn compose(
         per_level.push(level);
         z_from = z;
     }
+    entry.resize(program.len(), false);
+    // Joins and trims can leave moves of no length; a program has none.
+    let kept: Vec<(Move, bool)> = program
+        .into_iter()
+        .zip(entry)
+        .filter(|(m, _)| matches!(m.motion, Motion::Arc { .. }) || move_length(m) > LENGTH_EPS_MM)
+        .collect();
+    let (mut program, entry): (Vec<Move>, Vec<bool>) = kept.into_iter().unzip();
     for (i, m) in program.iter_mut().enumerate() {
         m.line = u32::try_from(i + 1).unwrap_or(u32::MAX);
     }
-    entry.resize(program.len(), false);
     Ok(Composed { moves: program, entry, levels, per_level })
 }

@@ -75,9 +75,31 @@ pub fn base_path(pocket: &Pocket, spec: &InsertionSpec) -> Result<Toolpath, Core
     Ok(program(moves))
 }
 
+/// Checks what can be checked before planning: the spec, and (without a given path) that
+/// the tool fits in the pocket at all.
+pub fn check_plan(pocket: &Pocket, spec: &InsertionSpec, existing: Option<&Toolpath>) -> Result<(), CoreError> {
+    spec.validate()?;
+    if existing.is_none() {
+        let one_level = InsertionSpec {
+            roughing: crate::core::conditions::CuttingConditions {
+                ad_mm: spec.z_top_mm - spec.z_bottom_mm,
+                ..spec.roughing
+            },
+            ..spec.clone()
+        };
+        base_path(pocket, &one_level)?;
+    }
+    Ok(())
+}
+
 /// A tool path of `moves` with the spindle on (clockwise) before the first and off after the
 /// last.
 fn program(mut moves: Vec<crate::core::toolpath::Move>) -> Toolpath {
+    // Joins and trims can leave moves of no length; a program has none (our parser drops them).
+    moves.retain(|m| {
+        matches!(m.motion, crate::core::toolpath::Motion::Arc { .. })
+            || crate::core::analysis::sampling::move_length(m) > crate::core::tolerance::LENGTH_EPS_MM
+    });
     for (i, m) in moves.iter_mut().enumerate() {
         m.line = u32::try_from(i + 1).unwrap_or(u32::MAX);
     }
@@ -192,6 +214,7 @@ pub fn plan_insertion(
                 after,
                 rounds,
                 existing: existing.is_some(),
+                base_moves: base.moves.len(),
             }));
         }
         merge_intervals(&mut intervals, more.intervals);

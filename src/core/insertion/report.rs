@@ -61,6 +61,8 @@ pub struct Treatment {
 pub struct InsertionPlan {
     pub axis: MedialAxis,
     pub classes: Vec<BranchClasses>,
+    /// Moves of the base path (generated or given).
+    pub base_moves: usize,
     /// The base path's engagement before any treatment.
     pub base_max_alpha_deg: f64,
     pub base_overloaded_samples: usize,
@@ -97,6 +99,7 @@ pub(super) struct Parts<'a> {
     pub after: EngagementOutcome,
     pub rounds: usize,
     pub existing: bool,
+    pub base_moves: usize,
 }
 
 fn range(values: impl Iterator<Item = f64>) -> (Option<f64>, Option<f64>) {
@@ -237,6 +240,7 @@ pub(super) fn assemble(p: Parts) -> InsertionPlan {
     InsertionPlan {
         axis: p.axis,
         classes: p.classes,
+        base_moves: p.base_moves,
         base_max_alpha_deg: p.base_check.outside.max_alpha_deg,
         base_overloaded_samples: p.base_check.outside.overloaded,
         critical: p.critical,

@@ -71,3 +71,53 @@ fn a_box_cavity_with_a_12_mm_slot_gets_a_complete_gouge_free_program_within_the_
     show("box", &plan);
     assert!(plan.verification.passed, "{:?}", plan.verification);
 }
+
+#[test]
+fn a_slot_too_narrow_for_trochoids_is_cut_by_z_cut_division_and_reported_so() {
+    // 10.8 mm wide: R/r = 1.08 < 1.1 (class C) for a 10 mm tool.
+    let pocket = box_with_slot(10.8);
+    let plan = plan_insertion(&pocket, &spec(-10.0), None, &NoProgress).unwrap();
+    show("narrow slot", &plan);
+    let zcut: Vec<_> = plan.treatments.iter().filter(|t| t.kind == TreatmentKind::ZCut).collect();
+    let long = zcut.iter().find(|t| (t.s_to_mm.unwrap() - t.s_from_mm.unwrap()).abs() > 20.0);
+    let long = long.expect("the slot is one long z-cut stretch");
+    assert_eq!(long.class, Some(crate::core::medial::RadiusClass::C));
+    assert_eq!(long.passes_per_level, 4, "10 mm in passes of at most 2.5 mm");
+    assert!(long.area_mm2 > 0.9 * 10.0 * 30.0, "{long:?}");
+    assert!(plan.verification.passed, "{:?}", plan.verification);
+}
+
+#[test]
+fn fixed_radius_trochoids_of_seed_004_figure_4_come_down_in_pitch_and_what_they_leave_is_reported() {
+    let pocket = box_with_slot(12.0);
+    let rho = crate::core::cycles::trochoid::default_loop_radius_mm(5.0);
+    let fixed = InsertionSpec { loop_size: LoopSize::Fixed { rho_mm: rho }, ..spec(-10.0) };
+    let plan = plan_insertion(&pocket, &fixed, None, &NoProgress).unwrap();
+    // The long trochoids (the short ones shrink into corners, each loop inside the last).
+    let trochoids: Vec<_> =
+        plan.treatments.iter().filter(|t| t.kind == TreatmentKind::Trochoid && t.loops > 10).collect();
+    assert!(!trochoids.is_empty());
+    for t in &trochoids {
+        assert!(t.loop_radius_max_mm.unwrap() <= rho + 1e-9, "{t:?}");
+        // (ρ + r)/r = 1.2 at Rd 0.5 peaks near 65° (MODEL.md §7): the pitch comes down.
+        assert!(t.pitch_min_mm.unwrap() < 0.3, "{t:?}");
+    }
+    let v = &plan.verification;
+    assert!(v.gouges == 0 && v.uncleared_area_mm2 <= 0.0, "{v:?}");
+    // A 12 mm band through a 60 mm wide box leaves the base path stepping onto its edge:
+    // where that still exceeds the limit it is reported, not hidden.
+    if v.outside_zcut.overloaded > 0 {
+        assert!(!v.passed && v.first_overload.is_some());
+        assert!(plan.warnings.iter().any(|w| w.contains("still exceed")), "{:?}", plan.warnings);
+    }
+}
+
+#[test]
+fn a_ball_end_mill_or_an_unordered_layer_is_refused_naming_the_field() {
+    let ball = EndMill { tool_type: ToolType::Ball, ..tool() };
+    let err = plan_insertion(&box_with_slot(12.0), &InsertionSpec { tool: ball, ..spec(-10.0) }, None, &NoProgress)
+        .unwrap_err();
+    assert!(err.to_string().starts_with("tool:"), "{err}");
+    let err = plan_insertion(&box_with_slot(12.0), &spec(3.0), None, &NoProgress).unwrap_err();
+    assert!(err.to_string().starts_with("z_bottom_mm:"), "{err}");
+}

@@ -257,6 +257,49 @@ fn arc_centre(center: JsonCenter, from: P3, plane: Plane) -> Result<P3, Refusal>
     Ok(centre)
 }
 
+/// The JSON form of `path` (the inverse of [`toolpath_from_json`]): every move with its end
+/// coordinates, arcs with their centres, and `f` wherever the feed changes. The spindle speed
+/// and tool are the first move's (JSON programs have one of each).
+pub fn toolpath_to_json(path: &Toolpath) -> JsonProgram {
+    let first = path.moves.first();
+    let mut feed: Option<f64> = None;
+    let moves = path
+        .moves
+        .iter()
+        .map(|m| {
+            let (x, y, z) = (Some(m.end.x), Some(m.end.y), Some(m.end.z));
+            let f = match (m.motion, m.feed_mm_min) {
+                (Motion::Rapid, _) | (_, None) => None,
+                (_, Some(value)) if feed.is_some_and(|f| approx_eq(f, value, 0.0)) => None,
+                (_, Some(value)) => {
+                    feed = Some(value);
+                    Some(value)
+                }
+            };
+            match m.motion {
+                Motion::Rapid => JsonMove::Rapid { x, y, z },
+                Motion::Linear => JsonMove::Linear { x, y, z, f },
+                Motion::Arc { center, clockwise, plane, turns } => JsonMove::Arc {
+                    x,
+                    y,
+                    z,
+                    center: JsonCenter { x: Some(center.x), y: Some(center.y), z: Some(center.z) },
+                    clockwise,
+                    plane: (plane != Plane::Xy).then_some(plane),
+                    turns: (turns > 0).then_some(turns),
+                    f,
+                },
+            }
+        })
+        .collect();
+    JsonProgram {
+        start: first.map(|m| m.start),
+        spindle_rpm: first.and_then(|m| m.spindle_rpm),
+        tool: first.and_then(|m| m.tool),
+        moves,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -296,6 +339,15 @@ mod tests {
         assert_eq!(from_json.moves.len(), 6);
         assert_eq!(from_json.moves[3].line, 5);
         assert_eq!(without_lines(from_json), without_lines(from_gcode));
+    }
+
+    #[test]
+    fn a_toolpath_written_as_json_reads_back_the_same() {
+        let text = "G21 G90 G17\nS8000 M3\nG0 X10 Y0 Z5\nG1 Z-1 F300\nG3 X0 Y10 I-10 J0\nG2 X0 Y10 Z-3 I0 J-10 P2 F150\nG18 G3 X10 Z-3 I5 K0\nG0 Z5\nM30\n";
+        let path = parse_gcode(text, &ParseOptions::default()).unwrap();
+        let json = toolpath_to_json(&path);
+        let back = toolpath_from_json(&serde_json::from_str(&serde_json::to_string(&json).unwrap()).unwrap()).unwrap();
+        assert_eq!(without_lines(back).moves, without_lines(path).moves);
     }
 
     #[test]

@@ -35,7 +35,7 @@ mod writer;
 pub use arcs::{arc_radius_tolerance_mm, ARC_RADIUS_TOLERANCE_MM, ARC_RADIUS_TOLERANCE_RATIO};
 pub use canned::{G83_PECK_CLEARANCE_MM, MAX_PECKS_PER_HOLE};
 pub use error::{NcError, NcErrors, MAX_NC_ERRORS, MAX_NC_WARNINGS};
-pub use json::{toolpath_from_json, JsonCenter, JsonMove, JsonProgram};
+pub use json::{toolpath_from_json, toolpath_to_json, JsonCenter, JsonMove, JsonProgram};
 pub use parse::parse_gcode;
 pub use writer::{
     write_program, Dialect, LineNumbers, WriterOptions, DEFAULT_DECIMALS, DEFAULT_FEED_DECIMALS, MAX_DECIMALS,

@@ -90,6 +90,7 @@ pub struct BlocksDto {
 /// The written program in numbers (the text is at the job's `program` link).
 #[derive(Debug, Clone, Copy, Serialize, ToSchema)]
 pub struct ProgramInfoDto {
+    /// Moves of the path the job started from.
     pub moves_in: usize,
     pub moves_out: usize,
     pub lines: usize,

@@ -6,6 +6,7 @@ use super::conditions::{self, ConditionsRequest};
 use super::costing::{self, CostingRequest};
 use super::feeds::{self, FeedsRequest};
 use super::model::JobKind;
+use super::trochoids::{self, TrochoidsRequest};
 use crate::core::progress::Progress;
 use crate::core::CoreError;
 use crate::service::error::{ApiError, FieldError};
@@ -22,6 +23,7 @@ pub enum JobInput {
     Analysis(Box<AnalysisRequest>),
     Feeds(Box<FeedsRequest>),
     Costing(Box<CostingRequest>),
+    Trochoids(Box<TrochoidsRequest>),
 }
 
 /// What a finished job hands back.
@@ -76,6 +78,10 @@ pub async fn prepare(
                 let request: CostingRequest = from_value(input)?;
                 to_json(&costing::prepare(pool, request).await?)
             }
+            JobKind::Trochoids => {
+                let request: TrochoidsRequest = from_value(input)?;
+                to_json(&trochoids::prepare(pool, request).await?)
+            }
         }
     }
     .await;
@@ -113,6 +119,13 @@ pub fn run(kind: JobKind, input: &str, prepared: &str, progress: &dyn Progress) 
             let request = serde_json::from_str(input).map_err(unreadable)?;
             let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
             serde_json::to_value(costing::run(request, prepared, progress)?).map_err(unreadable)?
+        }
+        JobKind::Trochoids => {
+            let request = serde_json::from_str(input).map_err(unreadable)?;
+            let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
+            let (result, text) = trochoids::run(request, prepared, progress)?;
+            program = Some(text);
+            serde_json::to_value(result).map_err(unreadable)?
         }
     };
     progress.report(1.0);

@@ -15,3 +15,5 @@ pub mod output;
 pub mod queue;
 pub mod routes;
 pub mod store;
+pub mod trochoids;
+pub mod trochoids_result;

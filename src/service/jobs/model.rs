@@ -53,6 +53,9 @@ pub enum JobKind {
     Feeds,
     /// Time, tool-life consumption and cost of an NC program (`POST /v1/costing`).
     Costing,
+    /// Trochoid cycles and z-cut division inserted where a pocket's contour-parallel path
+    /// overloads the tool (`POST /v1/trochoids`).
+    Trochoids,
 }
 
 impl JobKind {
@@ -62,11 +65,12 @@ impl JobKind {
             JobKind::Analysis => "analysis",
             JobKind::Feeds => "feeds",
             JobKind::Costing => "costing",
+            JobKind::Trochoids => "trochoids",
         }
     }
 
     pub fn parse(text: &str) -> Option<JobKind> {
-        [JobKind::Conditions, JobKind::Analysis, JobKind::Feeds, JobKind::Costing]
+        [JobKind::Conditions, JobKind::Analysis, JobKind::Feeds, JobKind::Costing, JobKind::Trochoids]
             .into_iter()
             .find(|k| k.as_str() == text)
     }

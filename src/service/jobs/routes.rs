@@ -7,6 +7,7 @@ use super::feeds::FeedsRequest;
 use super::kinds::{self, JobInput};
 use super::model::{Job, JobKind, JobStatus, JobSummary};
 use super::store;
+use super::trochoids::TrochoidsRequest;
 use crate::service::error::{ApiError, Problem};
 use crate::service::extract::{ApiJson, ApiPath, ApiQuery};
 use crate::service::resources::{Page, DEFAULT_PAGE_LIMIT, MAX_PAGE_LIMIT};
@@ -290,6 +291,32 @@ pub async fn get_program(State(state): State<AppState>, ApiPath(id): ApiPath<Str
     }
 }
 
+/// Inserts trochoid cycles where a pocket's path overloads the tool (job kind `trochoids`).
+///
+/// Takes a pocket contour (or DXF) and optionally a path to modify; without one, the
+/// contour-parallel roughing path is generated (Rd and Ad of the rough side-cutting
+/// conditions). The path is simulated; its samples above the engagement limit are mapped onto
+/// the medial axis; each critical stretch gets trochoids (classes A and B, the pitch reduced
+/// where the limit needs it, entered by a helix) or z-cut division (class C, seed 004 §2.3);
+/// the path is cut where the trochoids cleared and re-linked; and the result is simulated
+/// again. The finished job's `result` is a `TrochoidsResult` (the axis with its classes, the
+/// treatments with the area each removes, the checks, the path as JSON moves); the NC
+/// program is at `GET /v1/jobs/{id}/program`.
+#[utoipa::path(post, path = "/v1/trochoids", tag = "jobs", operation_id = "insertTrochoids", request_body = TrochoidsRequest,
+    params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
+    responses(
+        (status = 201, description = "Finished within the preferred wait; result is a TrochoidsResult", body = Job),
+        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
+        (status = 422, description = "A refused field, NC line or contour vertex", body = Problem, content_type = "application/problem+json")))]
+pub async fn create_trochoids(
+    State(state): State<AppState>,
+    headers: HeaderMap,
+    ApiJson(input): ApiJson<serde_json::Value>,
+) -> Result<Response, ApiError> {
+    submit(&state, JobKind::Trochoids, input, "", &headers).await
+}
+
 /// The job routes.
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
@@ -300,6 +327,7 @@ pub fn router() -> OpenApiRouter<AppState> {
         .routes(routes!(create_analysis))
         .routes(routes!(create_feeds))
         .routes(routes!(create_costing))
+        .routes(routes!(create_trochoids))
 }
 
 #[cfg(test)]

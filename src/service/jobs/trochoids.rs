@@ -1,0 +1,319 @@
+//! The `trochoids` job (seed 004 §2; MODEL.md §7–8): a pocket contour (and optionally a path
+//! to modify) in, the medial axis with its radius-ratio classes, the path with trochoid
+//! cycles and z-cut division inserted where the engagement exceeds the limit, its G-code, and
+//! the report of which region got which treatment out.
+
+use super::analysis::{resolve, AnalysisPrepared, PathJobRefs, Resolved};
+use super::inputs::{read_program, ContourInput, ProgramInput};
+use super::output::OutputOptions;
+use super::trochoids_result::TrochoidsResult;
+use crate::core::conditions::CuttingConditions;
+use crate::core::cycles::trochoid::default_loop_radius_mm;
+use crate::core::cycles::CutDirection;
+use crate::core::geometry::{loops_from_dxf, pocket_from_loops, Loop, Pocket, Vertex};
+use crate::core::insertion::{check_plan, plan_insertion, InsertionSpec, LoopSize};
+use crate::core::medial::{CLASS_A_RATIO_MAX, CLASS_A_RATIO_MIN};
+use crate::core::nc::write_program;
+use crate::core::operation::Operation;
+use crate::core::progress::Progress;
+use crate::core::CoreError;
+use crate::service::error::{ApiError, FieldError, Validator};
+use crate::service::lookup;
+use serde::{Deserialize, Serialize};
+use sqlx::SqlitePool;
+use utoipa::ToSchema;
+
+/// Height of the safe plane above the top of the layer when none is given, mm (**assumed**).
+pub const DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM: f64 = 5.0;
+
+/// Cutting conditions given in a request.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ConditionsInput {
+    /// Spindle speed S, min⁻¹.
+    pub spindle_rpm: f64,
+    /// Feed per tooth fz, mm.
+    pub fz_mm: f64,
+    /// Radial depth of cut Rd, mm.
+    pub rd_mm: f64,
+    /// Axial depth of cut Ad, mm.
+    pub ad_mm: f64,
+}
+
+impl From<ConditionsInput> for CuttingConditions {
+    fn from(c: ConditionsInput) -> Self {
+        CuttingConditions { spindle_rpm: c.spindle_rpm, fz_mm: c.fz_mm, rd_mm: c.rd_mm, ad_mm: c.ad_mm }
+    }
+}
+
+/// A pocket to rough with trochoids inserted where the tool would be overloaded. Name the
+/// tool by `tool_id` or by `tool_type` and `diameter_mm` (a flat end mill).
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({
+    "contour": {"outer": [[0, 0], [80, 0], [80, 24], [120, 24], [120, 36], [80, 36], [80, 60], [0, 60]]},
+    "z_top": 0, "z_bottom": -10,
+    "tool_type": "square", "diameter_mm": 10
+}))]
+pub struct TrochoidsRequest {
+    /// The pocket: outer loop and islands (give `contour` or `dxf`).
+    pub contour: Option<ContourInput>,
+    /// The pocket as DXF text: the outermost loop is the pocket, loops inside it islands.
+    pub dxf: Option<String>,
+    /// Top and bottom of the material to remove, mm.
+    pub z_top: f64,
+    pub z_bottom: f64,
+    /// A path to modify instead of the generated contour-parallel path.
+    pub program: Option<ProgramInput>,
+    pub tool_id: Option<i64>,
+    pub tool_type: Option<crate::core::tool::ToolType>,
+    pub diameter_mm: Option<f64>,
+    pub material_id: Option<i64>,
+    /// Material name (default SKD61).
+    pub material: Option<String>,
+    pub machine_id: Option<i64>,
+    /// Rough side cutting (the generated path's step-over Rd and layer depth Ad); default
+    /// the tool's `rough_side_cutting` conditions, else its standard side-cutting ones.
+    pub roughing: Option<ConditionsInput>,
+    /// Trochoidal grooving (S, fz, and Rd: the largest pitch); default the tool's
+    /// `trochoidal_grooving` conditions, else the roughing ones.
+    pub grooving: Option<ConditionsInput>,
+    /// Stock left on walls and islands, mm (default 0).
+    pub allowance_mm: Option<f64>,
+    /// Height for moves over the material, mm (default z_top + 5).
+    pub safe_z: Option<f64>,
+    /// Engagement limit, deg (default 40).
+    pub alpha_limit_deg: Option<f64>,
+    /// Lower bound of class A's R/r, 2–3 (default 2).
+    pub class_a_ratio: Option<f64>,
+    /// `variable` (default: ρ = R − r − allowance, at most (a − 1)·r; seed 004 Figure 5) or
+    /// `fixed` (seed 004 Figure 4: ρ = `loop_radius_mm`, default (1.2 − 1)·r, smaller where
+    /// the clearance does not leave room).
+    pub loop_size: Option<LoopSizeInput>,
+    /// The fixed loop radius ρ, mm (with `loop_size: fixed`).
+    pub loop_radius_mm: Option<f64>,
+    /// Largest trochoid pitch, mm (default the grooving Rd); smaller where the limit needs.
+    pub pitch_mm: Option<f64>,
+    /// Axial depth of the z-cut division passes, mm (default 2.5).
+    pub zcut_ad_mm: Option<f64>,
+    /// Depth per turn of the trochoids' helical entries, mm (default a 3° ramp).
+    pub ramp_pitch_mm: Option<f64>,
+    /// `climb` (default) or `conventional`.
+    pub direction: Option<CutDirection>,
+    /// Distance between simulation samples, mm (default min(0.05, D/100)).
+    pub sample_spacing_mm: Option<f64>,
+    /// How to write the program (dialect, numbering, title…).
+    #[serde(default)]
+    pub output: OutputOptions,
+}
+
+/// How large the trochoid loops are.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum LoopSizeInput {
+    Variable,
+    Fixed,
+}
+
+/// What the request resolved to.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct TrochoidsPrepared {
+    #[serde(flatten)]
+    pub base: AnalysisPrepared,
+    pub roughing: CuttingConditions,
+    /// Where the roughing conditions come from (a standard-conditions row, or the request).
+    pub roughing_source: String,
+    pub grooving: CuttingConditions,
+    pub grooving_source: String,
+}
+
+fn validate(request: &TrochoidsRequest) -> Result<(), ApiError> {
+    let mut v = Validator::new();
+    v.finite("z_top", request.z_top);
+    v.finite("z_bottom", request.z_bottom);
+    v.check(request.z_bottom < request.z_top, "z_bottom", "must be below z_top");
+    v.check(request.contour.is_some() != request.dxf.is_some(), "contour", "give exactly one of contour and dxf");
+    for (field, value) in [
+        ("loop_radius_mm", request.loop_radius_mm),
+        ("pitch_mm", request.pitch_mm),
+        ("zcut_ad_mm", request.zcut_ad_mm),
+        ("ramp_pitch_mm", request.ramp_pitch_mm),
+    ] {
+        if let Some(x) = value {
+            v.positive(field, x);
+        }
+    }
+    if let Some(a) = request.allowance_mm {
+        v.non_negative("allowance_mm", a);
+    }
+    v.check(
+        request.loop_radius_mm.is_none() || request.loop_size == Some(LoopSizeInput::Fixed),
+        "loop_radius_mm",
+        "only with loop_size: fixed",
+    );
+    if let Some(z) = request.safe_z {
+        v.finite("safe_z", z);
+        v.check(z > request.z_top, "safe_z", "must be above z_top");
+    }
+    if let Some(a) = request.alpha_limit_deg {
+        v.within("alpha_limit_deg", a, 5.0, 179.0);
+    }
+    if let Some(a) = request.class_a_ratio {
+        v.within("class_a_ratio", a, CLASS_A_RATIO_MIN, CLASS_A_RATIO_MAX);
+    }
+    if let Some(s) = request.sample_spacing_mm {
+        v.within("sample_spacing_mm", s, 1e-3, 1.0);
+    }
+    for (name, c) in [("roughing", request.roughing), ("grooving", request.grooving)] {
+        if let Some(c) = c {
+            for (field, x) in
+                [("spindle_rpm", c.spindle_rpm), ("fz_mm", c.fz_mm), ("rd_mm", c.rd_mm), ("ad_mm", c.ad_mm)]
+            {
+                v.positive(&format!("{name}.{field}"), x);
+            }
+        }
+    }
+    request.output.validate(&mut v);
+    v.finish()
+}
+
+fn vertices(field: &str, raw: &[Vec<f64>]) -> Result<Loop, ApiError> {
+    let vertices = raw
+        .iter()
+        .enumerate()
+        .map(|(i, v)| match v.as_slice() {
+            [x, y] if x.is_finite() && y.is_finite() => Ok(Vertex { x: *x, y: *y, bulge: 0.0 }),
+            [x, y, b] if x.is_finite() && y.is_finite() && b.is_finite() => Ok(Vertex { x: *x, y: *y, bulge: *b }),
+            _ => Err(ApiError::field(format!("{field}[{i}]"), "a vertex is [x, y] or [x, y, bulge] of finite numbers")),
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(Loop::new(vertices))
+}
+
+fn under(prefix: &str, err: CoreError) -> ApiError {
+    match ApiError::from(err) {
+        ApiError::Validation(errors) => ApiError::Validation(
+            errors
+                .into_iter()
+                .map(|e| FieldError { field: format!("{prefix}.{}", e.field), reason: e.reason })
+                .collect(),
+        ),
+        other => other,
+    }
+}
+
+/// Reads the pocket; errors name `contour.outer[i]`, `contour.islands[k][i]` or `dxf`.
+fn read_pocket(request: &TrochoidsRequest) -> Result<Pocket, ApiError> {
+    match (&request.contour, &request.dxf) {
+        (Some(c), None) => {
+            let outer = vertices("contour.outer", &c.outer)?;
+            let islands = c
+                .islands
+                .iter()
+                .enumerate()
+                .map(|(i, island)| vertices(&format!("contour.islands[{i}]"), island))
+                .collect::<Result<Vec<_>, _>>()?;
+            Pocket::new(outer, islands).map_err(|e| under("contour", e))
+        }
+        (None, Some(text)) => {
+            let loops = loops_from_dxf(text).map_err(|e| under("dxf", e))?;
+            pocket_from_loops(loops).map_err(|e| under("dxf", e))
+        }
+        _ => Err(ApiError::field("contour", "give exactly one of contour and dxf")),
+    }
+}
+
+/// Checks the request and resolves the tool, material, machine and conditions.
+pub async fn prepare(pool: &SqlitePool, request: TrochoidsRequest) -> Result<TrochoidsPrepared, ApiError> {
+    validate(&request)?;
+    let refs = PathJobRefs {
+        tool_id: request.tool_id,
+        tool_type: request.tool_type,
+        diameter_mm: request.diameter_mm,
+        material_id: request.material_id,
+        material: request.material.as_deref(),
+        machine_id: request.machine_id,
+        spindle_rpm: None,
+    };
+    let Resolved { prepared: base, standard, .. } = resolve(pool, &refs).await?;
+    let (tool_id, material_id) = (base.tool.id, base.material.id);
+    let row = |op: Operation| async move { lookup::standard_conditions(pool, tool_id, material_id, op).await };
+    let rough_row = row(Operation::RoughSideCutting).await?;
+    let (roughing, roughing_source) = match (request.roughing, rough_row, &standard) {
+        (Some(c), _, _) => (c.into(), "request".to_string()),
+        (None, Some(r), _) => (r.data.conditions(), format!("standard conditions {} (rough_side_cutting)", r.id)),
+        (None, None, Some(s)) => (s.data.conditions(), format!("standard conditions {} (standard_side_cutting)", s.id)),
+        (None, None, None) => {
+            return Err(ApiError::field(
+                "roughing",
+                format!(
+                    "no rough or standard side-cutting conditions for tool {tool_id} in {}: give roughing",
+                    base.material.name
+                ),
+            ))
+        }
+    };
+    let (grooving, grooving_source) = match (request.grooving, row(Operation::TrochoidalGrooving).await?) {
+        (Some(c), _) => (c.into(), "request".to_string()),
+        (None, Some(r)) => (r.data.conditions(), format!("standard conditions {} (trochoidal_grooving)", r.id)),
+        (None, None) => (roughing, roughing_source.clone()),
+    };
+    let prepared = TrochoidsPrepared { base, roughing, roughing_source, grooving, grooving_source };
+    let checked = prepared.clone();
+    tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
+        let (pocket, spec, path) = build(&request, &checked)?;
+        check_plan(&pocket, &spec, path.as_ref())?;
+        Ok(())
+    })
+    .await
+    .map_err(|e| ApiError::Internal(e.to_string()))??;
+    Ok(prepared)
+}
+
+type Built = (Pocket, InsertionSpec, Option<crate::core::toolpath::Toolpath>);
+
+fn build(request: &TrochoidsRequest, prepared: &TrochoidsPrepared) -> Result<Built, ApiError> {
+    let pocket = read_pocket(request)?;
+    let path = request.program.as_ref().map(read_program).transpose()?;
+    let tool: crate::core::tool::EndMill = prepared.base.tool.geometry.into();
+    let mut spec = InsertionSpec::new(tool, prepared.roughing, prepared.grooving, request.z_top, request.z_bottom);
+    spec.safe_z_mm = request.safe_z.unwrap_or(request.z_top + DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM);
+    spec.rapid_mm_min = prepared.base.rapid_mm_min;
+    if let Some(a) = request.allowance_mm {
+        spec.allowance_mm = a;
+    }
+    if let Some(a) = request.alpha_limit_deg {
+        spec.alpha_limit_deg = a;
+    }
+    if let Some(a) = request.class_a_ratio {
+        spec.class_a_ratio = a;
+    }
+    if request.loop_size == Some(LoopSizeInput::Fixed) {
+        let rho_mm = request.loop_radius_mm.unwrap_or_else(|| default_loop_radius_mm(tool.radius_mm()));
+        spec.loop_size = LoopSize::Fixed { rho_mm };
+    }
+    spec.pitch_mm = request.pitch_mm;
+    if let Some(ad) = request.zcut_ad_mm {
+        spec.zcut_ad_mm = ad;
+    }
+    spec.ramp_pitch_mm = request.ramp_pitch_mm;
+    if let Some(d) = request.direction {
+        spec.direction = d;
+    }
+    spec.sample_spacing_mm = request.sample_spacing_mm;
+    Ok((pocket, spec, path))
+}
+
+/// Plans the insertion and writes the program.
+pub fn run(
+    request: TrochoidsRequest,
+    prepared: TrochoidsPrepared,
+    progress: &dyn Progress,
+) -> Result<(TrochoidsResult, String), CoreError> {
+    let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
+    let (pocket, spec, path) = build(&request, &prepared).map_err(reread)?;
+    let plan = plan_insertion(&pocket, &spec, path.as_ref(), progress)?;
+    let options = request.output.to_writer(&prepared.base);
+    let program = write_program(&plan.toolpath, &options);
+    Ok((TrochoidsResult::new(prepared, path.is_some(), &program, plan), program))
+}
