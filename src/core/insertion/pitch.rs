@@ -130,6 +130,21 @@ mod tests {
         assert!(approx_eq(pitch_for_limit(5.0, |_| 5.0, 5.0, 40.0, 0.5).unwrap(), 0.5, 0.0));
     }
 
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(48))]
+        #[test]
+        fn the_pitch_found_keeps_the_loop_under_the_limit_and_is_the_largest_that_does(
+            rho in 0.5f64..5.0, limit in 25.0f64..70.0, max_p in 0.1f64..1.0
+        ) {
+            if let Some(p) = pitch_for_limit(rho, |_| rho, 5.0, limit, max_p) {
+                proptest::prop_assert!(p <= max_p && loop_engagement_deg(rho, rho, p, 5.0) <= limit);
+                if p < max_p {
+                    proptest::prop_assert!(loop_engagement_deg(rho, rho, (p * 1.01).min(max_p), 5.0) > limit - 0.5);
+                }
+            }
+        }
+    }
+
     #[test]
     fn a_loop_far_too_small_for_the_limit_has_no_pitch() {
         assert_eq!(pitch_for_limit(0.001, |_| 0.001, 5.0, 5.0, 0.5), None);
