@@ -42,6 +42,16 @@ impl PathBuilder {
         PathBuilder { moves: Vec::new(), at: start, spindle_rpm: setup.conditions.spindle_rpm, tool: setup.tool }
     }
 
+    /// Moves written so far.
+    pub fn len(&self) -> usize {
+        self.moves.len()
+    }
+
+    /// `true` before the first move.
+    pub fn is_empty(&self) -> bool {
+        self.moves.is_empty()
+    }
+
     /// Where the tool is.
     pub fn position(&self) -> P3 {
         self.at

@@ -6,9 +6,11 @@
 //! safe height.
 
 use super::cleared::{trim_path, ClearedZone, Relink, TrimReport, SAME_LEVEL_MM};
+use super::opening::OpeningStretch;
 use super::spec::InsertionSpec;
 use super::treatments::{Stretch, TrochoidStretch, ZCutStretch};
 use crate::core::analysis::sampling::move_length;
+use crate::core::cycles::arcs::helix_turns;
 use crate::core::cycles::arcs::{at_z, PathBuilder};
 use crate::core::cycles::setup::DEFAULT_PLUNGE_FEED_RATIO;
 use crate::core::cycles::trochoid::Entry;
@@ -61,6 +63,29 @@ pub fn trochoid_moves(
     let helix = moves.iter().position(|m| matches!(m.motion, Motion::Arc { .. }) && m.end.z < m.start.z);
     let entry = helix.map_or(0, |h| (h + 1 + FIRST_LOOP_MOVES).min(moves.len()));
     Ok((moves, entry))
+}
+
+/// The moves of an opening at `z_mm`: a helix on its first circle, a full circle there at the
+/// bottom, the spiral out and the last circle; and how many make the approach hole (up to the
+/// full circle after the helix).
+pub fn opening_moves(
+    o: &OpeningStretch,
+    spec: &InsertionSpec,
+    z_from_mm: f64,
+    z_mm: f64,
+) -> Result<(Vec<Move>, usize), CoreError> {
+    let setup = grooving_setup(spec, z_from_mm);
+    let clockwise = spec.direction.outside_material_clockwise();
+    let feed = setup.feed_mm_min();
+    let mut b = PathBuilder::starting_at(at_z(o.start(), spec.safe_z_mm), &setup);
+    b.rapid_z(setup.retract_z_mm());
+    let turns = helix_turns("ramp_pitch_mm", setup.retract_z_mm() - z_mm, spec.ramp_pitch_mm(o.radii_mm[0]))?;
+    b.helix_down(o.centre, z_mm, turns, clockwise, feed);
+    b.full_circle(o.centre, clockwise, feed);
+    let entry = b.len();
+    o.append_spiral(&mut b, clockwise, feed);
+    b.rapid_z(spec.safe_z_mm);
+    Ok((b.finish(), entry))
 }
 
 /// The moves of a z-cut stretch from `z_from_mm` down to `z_mm`: a pass along the axis at
@@ -179,6 +204,7 @@ pub fn compose(
             let (moves, entry_moves) = match s {
                 Stretch::Trochoid(t) => trochoid_moves(t, spec, z_from, z)?,
                 Stretch::ZCut(c) => (zcut_moves(c, spec, z_from, z)?, 0),
+                Stretch::Opening(o) => opening_moves(o, spec, z_from, z)?,
             };
             append_over(&mut program, &moves, spec.safe_z_mm);
             entry.resize(program.len(), false);

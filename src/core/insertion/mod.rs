@@ -10,6 +10,7 @@
 mod cleared;
 mod compose;
 mod coverage;
+mod opening;
 pub mod pitch;
 mod report;
 mod spec;
@@ -32,7 +33,9 @@ use crate::core::conditions::feed_mm_min;
 use crate::core::cycles::setup::DEFAULT_PLUNGE_FEED_RATIO;
 use crate::core::cycles::z_levels;
 use crate::core::geometry::Pocket;
-use crate::core::medial::{classify, critical_branches, medial_axis, Boundary, CriticalInterval, MedialOptions};
+use crate::core::medial::{
+    classify, critical_branches, medial_axis, Boundary, CriticalInterval, MedialOptions, NodeKind,
+};
 use crate::core::pocketing::{contour_parallel, PocketingSpec};
 use crate::core::progress::Progress;
 use crate::core::toolpath::{Event, EventKind, Toolpath, Units};
@@ -45,6 +48,11 @@ pub const MAX_ROUNDS: usize = 3;
 
 /// Overloaded samples within this many tool radii of a branch count on it.
 pub const AXIS_DISTANCE_RADII: f64 = 1.0;
+
+/// In the later rounds, overloaded samples within this many tool radii of a branch count on
+/// it: they are where the base path steps onto the edge of a trochoid band, which lies up to
+/// `ρ + r ≤ a·r` from the axis.
+pub const REMAP_DISTANCE_RADII: f64 = 2.0;
 
 /// Overloaded samples closer than this many tool radii along a branch form one interval,
 /// which is widened by the same amount at both ends.
@@ -169,35 +177,55 @@ pub fn plan_insertion(
     let r = spec.r_mm();
     let empty = Zone::new(r);
     let before = verify::check_engagement(&base, &analysis, &empty, &[], progress)?;
-    let map = |overloaded: &[(crate::core::geometry::Point, f64)]| {
-        critical_branches(
-            &axis,
-            overloaded,
-            AXIS_DISTANCE_RADII * r,
-            INTERVAL_MERGE_RADII * r,
-            INTERVAL_MERGE_RADII * r,
-        )
+    let map = |overloaded: &[(crate::core::geometry::Point, f64)], radii: f64| {
+        critical_branches(&axis, overloaded, radii * r, INTERVAL_MERGE_RADII * r, INTERVAL_MERGE_RADII * r)
     };
-    let found = map(&before.overloaded);
+    let found = map(&before.overloaded, AXIS_DISTANCE_RADII);
     let mut intervals = Vec::new();
     merge_intervals(&mut intervals, found.intervals.clone());
+    // Round regions (a lone axis point) the base path overloads are opened from their centre.
+    let openings: Vec<Stretch> = axis
+        .nodes
+        .iter()
+        .filter(|n| matches!(n.kind, NodeKind::Isolated))
+        .filter(|n| {
+            let reach = n.point.clearance_mm - r;
+            before.overloaded.iter().any(|(p, _)| p.distance_mm(n.point.point) <= reach)
+        })
+        .filter_map(|n| opening::plan_opening(n.point.point, n.point.clearance_mm, spec))
+        .map(Stretch::Opening)
+        .collect();
+    // Stretches whose loops may use all the room the clearance leaves (see `uncapped`).
+    let mut uncapped: Vec<CriticalInterval> = Vec::new();
+    let wide = uncapped_spec(spec);
     let mut rounds = 0;
     loop {
         rounds += 1;
-        let mut stretches = Vec::new();
+        let mut stretches = openings.clone();
         for c in &intervals {
-            stretches.extend(treatments::treat_interval(&axis.branches[c.branch], c, &boundary, pocket, spec)?);
+            let overlaps =
+                |u: &CriticalInterval| u.branch == c.branch && u.s_start_mm <= c.s_end_mm && c.s_start_mm <= u.s_end_mm;
+            let spec_here = if uncapped.iter().any(overlaps) { &wide } else { spec };
+            stretches.extend(treatments::treat_interval(&axis.branches[c.branch], c, &boundary, pocket, spec_here)?);
         }
         let (air, zcut) = zones(&stretches, r);
         let composed = compose::compose(&base.moves, &stretches, &air, spec)?;
         let (levels, per_level) = (composed.levels, composed.per_level);
         let path = program(composed.moves);
         let after = verify::check_engagement(&path, &analysis, &zcut, &composed.entry, progress)?;
-        let more = map(&after.overloaded);
-        let grows = more.intervals.iter().any(|m| {
-            !intervals.iter().any(|c| c.branch == m.branch && c.s_start_mm <= m.s_start_mm && m.s_end_mm <= c.s_end_mm)
-        });
-        if after.outside.overloaded == 0 || rounds >= MAX_ROUNDS || !grows {
+        let more = map(&after.overloaded, REMAP_DISTANCE_RADII);
+        let inside = |m: &CriticalInterval, set: &[CriticalInterval]| {
+            set.iter().any(|c| c.branch == m.branch && c.s_start_mm <= m.s_start_mm && m.s_end_mm <= c.s_end_mm)
+        };
+        let grows = more.intervals.iter().any(|m| !inside(m, &intervals));
+        // Overloads left inside treated stretches come from the edge of a trochoid band the
+        // base path then steps onto: widen those trochoids to the walls.
+        let widen: Vec<CriticalInterval> = if matches!(spec.loop_size, LoopSize::Variable) {
+            more.intervals.iter().filter(|m| inside(m, &intervals) && !inside(m, &uncapped)).cloned().collect()
+        } else {
+            Vec::new()
+        };
+        if after.outside.overloaded == 0 || rounds >= MAX_ROUNDS || (!grows && widen.is_empty()) {
             return Ok(report::assemble(report::Parts {
                 pocket,
                 boundary: &boundary,
@@ -217,8 +245,22 @@ pub fn plan_insertion(
                 base_moves: base.moves.len(),
             }));
         }
+        for m in widen {
+            if let Some(c) = intervals
+                .iter()
+                .find(|c| c.branch == m.branch && c.s_start_mm <= m.s_start_mm && m.s_end_mm <= c.s_end_mm)
+            {
+                uncapped.push(c.clone());
+            }
+        }
         merge_intervals(&mut intervals, more.intervals);
     }
+}
+
+/// The spec with no cap on the variable loop radius: loops fill the clearance to the walls
+/// (`ρ = R − r − allowance − gap`), which leaves no band edge inside the pocket.
+fn uncapped_spec(spec: &InsertionSpec) -> InsertionSpec {
+    InsertionSpec { class_a_ratio: f64::INFINITY, ..spec.clone() }
 }
 
 /// The air zone of the trochoids (loop centres, radius ρ) and the z-cut zone (the inscribed
@@ -232,6 +274,7 @@ fn zones(stretches: &[Stretch], r_mm: f64) -> (Zone, Zone) {
                     air.add(*c, *rho);
                 }
             }
+            Stretch::Opening(o) => air.add(o.centre, o.final_radius_mm()),
             Stretch::ZCut(z) => {
                 for (w, c) in z.path.windows(2).zip(z.clearance_mm.windows(2)) {
                     let n = (w[0].distance_mm(w[1]) / cleared::AIR_TEST_STEP_MM).ceil().max(1.0) as usize;

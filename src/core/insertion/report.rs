@@ -27,6 +27,9 @@ pub enum TreatmentKind {
     Trochoid,
     /// z-cut division: the stretch cut in passes of the reduced axial depth.
     ZCut,
+    /// A round region opened from its centre: helical entry, then a spiral out to the walls
+    /// in limit-keeping steps (approach hole and spiral hole expansion, seed 004 Table 1).
+    Opening,
 }
 
 /// One treatment and its figures over all levels.
@@ -185,6 +188,27 @@ pub(super) fn assemble(p: Parts) -> InsertionPlan {
                 rapid_length_mm: figures.rapid_length_mm,
                 time_min: figures.time_min,
             },
+            Stretch::Opening(o) => {
+                let steps: Vec<f64> = o.radii_mm.windows(2).map(|w| w[1] - w[0]).collect();
+                let (step_lo, step_hi) = range(steps.iter().copied());
+                Treatment {
+                    kind: TreatmentKind::Opening,
+                    branch: None,
+                    s_from_mm: None,
+                    s_to_mm: None,
+                    class: None,
+                    loops: steps.len(),
+                    pitch_min_mm: step_lo,
+                    pitch_max_mm: step_hi,
+                    loop_radius_min_mm: o.radii_mm.first().copied(),
+                    loop_radius_max_mm: Some(o.final_radius_mm()),
+                    passes_per_level: 0,
+                    area_mm2: coverage.area_of(owner),
+                    feed_length_mm: figures.feed_length_mm,
+                    rapid_length_mm: figures.rapid_length_mm,
+                    time_min: figures.time_min,
+                }
+            }
         };
         treatments.push(t);
     }

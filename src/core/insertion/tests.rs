@@ -121,3 +121,26 @@ fn a_ball_end_mill_or_an_unordered_layer_is_refused_naming_the_field() {
     let err = plan_insertion(&box_with_slot(12.0), &spec(3.0), None, &NoProgress).unwrap_err();
     assert!(err.to_string().starts_with("z_bottom_mm:"), "{err}");
 }
+
+#[test]
+fn a_pocket_with_an_island_is_cleared_round_it_within_the_limit_widening_the_trochoids_where_needed() {
+    let island = Loop::rectangle(35.0, 30.0, 65.0, 50.0).reversed();
+    let ring = Pocket::new(Loop::rectangle(0.0, 0.0, 100.0, 80.0), vec![island]).unwrap();
+    let plan = plan_insertion(&ring, &spec(-10.0), None, &NoProgress).unwrap();
+    show("ring", &plan);
+    // The first round's capped trochoids leave band edges the base path steps onto; the
+    // second widens those trochoids to the walls.
+    assert_eq!(plan.rounds, 2);
+    assert!(plan.verification.passed, "{:?}", plan.verification);
+}
+
+#[test]
+fn a_circular_pocket_is_opened_from_its_centre_by_a_helix_and_a_limit_keeping_spiral() {
+    let circle = Pocket::new(Loop::circle(0.0, 0.0, 30.0), vec![]).unwrap();
+    let plan = plan_insertion(&circle, &spec(-10.0), None, &NoProgress).unwrap();
+    show("circle", &plan);
+    let opening = plan.treatments.iter().find(|t| t.kind == TreatmentKind::Opening).expect("an opening");
+    // Steps grow from about 0.2 mm near the centre (machined radius close to r) to Rd.
+    assert!(opening.pitch_min_mm.unwrap() < 0.3 && opening.pitch_max_mm.unwrap() <= 0.5 + 1e-12, "{opening:?}");
+    assert!(plan.verification.passed, "{:?}", plan.verification);
+}

@@ -54,6 +54,7 @@ pub struct ZCutStretch {
 pub enum Stretch {
     Trochoid(TrochoidStretch),
     ZCut(ZCutStretch),
+    Opening(super::opening::OpeningStretch),
 }
 
 /// The part of a branch between two arc lengths, walked from `from` to `to` (either order).

@@ -84,7 +84,9 @@ pub struct CriticalDto {
 /// What one region got (seed 004 §2.2–2.3) and what it removes.
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct TreatmentDto {
-    /// `kept` (the contour-parallel path), `trochoid` or `z_cut`.
+    /// `kept` (the contour-parallel path), `trochoid`, `z_cut`, or `opening` (a round region
+    /// opened from its centre: helical entry and a spiral out; `loops` are its turns and
+    /// `pitch_*` its growth per turn).
     #[schema(value_type = String)]
     pub kind: TreatmentKind,
     pub branch: Option<usize>,
