@@ -116,7 +116,13 @@ impl TestApp {
 
     /// Polls a job until it is finished.
     pub async fn wait_for_job(&self, id: &str) -> Value {
-        for _ in 0..200 {
+        self.wait_for_job_within(id, 10).await
+    }
+
+    /// Polls a job until it is finished, for at most about `seconds` (long jobs on a loaded
+    /// machine).
+    pub async fn wait_for_job_within(&self, id: &str, seconds: u64) -> Value {
+        for _ in 0..seconds * 20 {
             let a = self.get(&format!("/v1/jobs/{id}")).await;
             let status = a.body["status"].as_str().unwrap_or("").to_string();
             if ["succeeded", "failed", "cancelled"].contains(&status.as_str()) {
