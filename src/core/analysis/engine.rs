@@ -5,11 +5,12 @@
 use super::chunk::Chunk;
 use super::probe::{AngleTable, Contact, ProbeSite};
 use super::sampling::{for_each_sample, move_curvatures, Sample};
+use super::scan_memory::{Line, ScanMemory};
 use super::slices::{self, Slice};
 use crate::core::engagement::max_chip_thickness_mm;
 use crate::core::force_model::ForceModel;
 use crate::core::progress::Progress;
-use crate::core::toolpath::Toolpath;
+use crate::core::toolpath::{Motion, Toolpath};
 use crate::core::CoreError;
 
 /// The raster is brought up to date every this many samples …
@@ -100,6 +101,7 @@ pub fn simulate(
     let r = cutter.radius_mm;
     let mut chunk = Chunk::new(0, cell_mm);
     let mut contacts = vec![Contact::default(); slices.len()];
+    let mut memories = vec![ScanMemory::default(); slices.len()];
     let mut s_mm = 0.0;
     let mut n = 0usize;
     let mut failure: Option<CoreError> = None;
@@ -135,10 +137,15 @@ pub fn simulate(
         if cut > 0 && !plunge {
             // All slices share one grid.
             let grid = slices[0].raster.grid_position(p.0, p.1);
-            site.set(&table, p, grid, sample.heading, chunk.recent(), &chunk.corridor());
+            let m = &path.moves[sample.move_index];
+            let line = matches!(m.motion, Motion::Linear | Motion::Rapid).then(|| {
+                let to_end = ((m.end.x - p.0).powi(2) + (m.end.y - p.1).powi(2)).sqrt();
+                Line { id: sample.move_index, dir: sample.heading, ahead_cells: to_end / cell_mm }
+            });
+            site.set(&table, p, grid, sample.heading, chunk.recent(), &chunk.corridor(), line);
             for (k, s) in slices.iter().take(cut).enumerate() {
                 contacts[k] = if s.raster.any_material_near(p.0, p.1, r) {
-                    table.contact(&s.raster, &site)
+                    table.contact(&s.raster, &site, Some(&mut memories[k]))
                 } else {
                     Contact::default()
                 };

@@ -9,6 +9,7 @@ pub mod recent;
 pub mod region;
 pub mod report;
 pub mod sampling;
+pub mod scan_memory;
 pub mod slices;
 
 use crate::core::error::require_positive;

@@ -8,6 +8,7 @@
 //! probing every coarse point.
 
 use super::recent::{intruders, Corridor};
+use super::scan_memory::{Line, ScanMemory, LATERAL_TOLERANCE_CELLS};
 use crate::core::stock::{Certified, Raster};
 use std::f64::consts::PI;
 
@@ -19,7 +20,14 @@ pub const COARSE_STEP: usize = 40;
 /// Probe steps across the leading half.
 const HALF_TURN: usize = PROBE_STEPS_PER_TURN / 2;
 /// Coarse intervals across the leading half.
-const COARSE_POINTS: usize = HALF_TURN / COARSE_STEP;
+pub const COARSE_POINTS: usize = HALF_TURN / COARSE_STEP;
+/// A coarse point not in a uniform tile neighbourhood looks this far ahead along its
+/// line for uniform cells, cells.
+const AHEAD_CELLS: f64 = 16.0;
+/// After a look ahead finds none, the next waits for this much travel, cells.
+const RETRY_CELLS: f64 = 2.0;
+/// No look ahead for less than this, cells.
+const MIN_LOOK_CELLS: f64 = 4.0;
 /// Certified radii are shortened by this, cells (rounding of the probe positions).
 const CERTIFY_MARGIN_CELLS: f64 = 1e-6;
 
@@ -33,6 +41,11 @@ pub struct AngleTable {
     offsets: Vec<(f64, f64)>,
     /// Per certification level: coarse points after a certified one that share its state.
     skips: Vec<usize>,
+    /// Distance between coarse points n apart, cells.
+    chord_cells: Vec<f64>,
+    /// The coarse points probed first (bit m for point m): every one more than a level-1
+    /// certificate reaches, and the last.
+    anchors: u128,
 }
 
 /// The engaged part of the leading half.
@@ -55,6 +68,8 @@ pub struct ProbeSite {
     grid_center: (f64, f64),
     /// Probe index of the start of the leading half (−90° from the feed direction).
     first: usize,
+    /// The straight stretch of path the tool is on, if any.
+    line: Option<Line>,
     /// Tool centres swept since the raster was last updated whose disc can reach the
     /// leading half: a probe within the radius of one of them is not material.
     intruders: Vec<(f64, f64)>,
@@ -63,7 +78,9 @@ pub struct ProbeSite {
 impl ProbeSite {
     /// Places the tool of `table` at `center` (`grid_center` on the rasters' grid, see
     /// [`Raster::grid_position`]) moving along the unit vector `heading`; `recent` are the
-    /// centres swept since the raster was last updated, laid out along `corridor`.
+    /// centres swept since the raster was last updated, laid out along `corridor`; `line`
+    /// is the straight stretch of path the tool is on, if any.
+    #[allow(clippy::too_many_arguments)]
     pub fn set(
         &mut self,
         table: &AngleTable,
@@ -72,8 +89,10 @@ impl ProbeSite {
         heading: (f64, f64),
         recent: &[(f64, f64)],
         corridor: &Corridor,
+        line: Option<Line>,
     ) {
         let radius = table.radius_mm;
+        self.line = line;
         let step = 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
         let h = ((heading.1.atan2(heading.0) / step).round() as i64).rem_euclid(PROBE_STEPS_PER_TURN as i64);
         let quarter = (PROBE_STEPS_PER_TURN / 4) as i64;
@@ -98,7 +117,7 @@ impl AngleTable {
             .collect();
         let coarse_rad = COARSE_STEP as f64 * 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
         // Coarse points n steps apart are a chord 2r·sin(n·step/2) apart.
-        let skips = Certified::levels()
+        let skips: Vec<usize> = Certified::levels()
             .map(|level| {
                 let reach_mm = (level.cells() - CERTIFY_MARGIN_CELLS) * cell_mm;
                 (0..COARSE_POINTS)
@@ -108,7 +127,10 @@ impl AngleTable {
             })
             .collect();
         let offsets = dirs.iter().map(|&(c, s)| (radius_mm * c / cell_mm, radius_mm * s / cell_mm)).collect();
-        AngleTable { radius_mm, dirs, offsets, skips }
+        let chord_cells =
+            (0..=COARSE_POINTS).map(|n| 2.0 * radius_mm * (n as f64 * coarse_rad / 2.0).sin() / cell_mm).collect();
+        let anchors = (0..=COARSE_POINTS).step_by(skips[0] + 1).fold(1u128 << COARSE_POINTS, |s, m| s | 1 << m);
+        AngleTable { radius_mm, dirs, offsets, skips, chord_cells, anchors }
     }
 
     /// Coarse points after a probe certified at `level` that share its state.
@@ -169,71 +191,106 @@ impl AngleTable {
         hi
     }
 
-    /// The material state of every coarse point: first every `stride`-th one, then the
-    /// points between two of them that neither certifies. The probes of each pass are
-    /// independent of each other, so they overlap in the processor.
-    fn coarse_states(&self, raster: &Raster, site: &ProbeSite) -> [bool; COARSE_POINTS + 1] {
-        let mut state = [false; COARSE_POINTS + 1];
-        let mut reach = [0usize; COARSE_POINTS + 1];
-        let stride = self.skips[0] + 1;
-        let anchors = (0..COARSE_POINTS).step_by(stride).chain(std::iter::once(COARSE_POINTS));
-        for m in anchors.clone() {
-            let (material, level) = self.certified_material(raster, site, m * COARSE_STEP);
-            state[m] = material;
-            reach[m] = self.skip(level);
-        }
-        let mut left = 0;
-        for right in anchors.skip(1) {
-            for j in left + 1..right {
-                state[j] = if j - left <= reach[left] {
-                    state[left]
-                } else if right - j <= reach[right] {
-                    state[right]
-                } else {
-                    self.material(raster, site, j * COARSE_STEP)
-                };
+    /// The material state of every coarse point (bit m for point m): those `memory` still
+    /// holds, then the anchors, then the rest that no certified probe decided.
+    /// The probes of each pass are independent of each other, so they overlap in the
+    /// processor.
+    fn coarse_states(&self, raster: &Raster, site: &ProbeSite, memory: Option<&mut ScanMemory>) -> u128 {
+        // Memory applies along a line when no recent disc reaches the leading half.
+        let mut memory = match (memory, site.line) {
+            (Some(mem), Some(line)) if site.intruders.is_empty() => {
+                let travel = mem.travel(raster.version(), site.first, line, site.grid_center);
+                Some((mem, travel))
             }
-            left = right;
+            _ => None,
+        };
+        let (mut known, mut state) = match memory.as_mut() {
+            Some((mem, travel)) => mem.recall(*travel),
+            None => (0, 0),
+        };
+        let mut unknown = !known & points(0, COARSE_POINTS);
+        let look_ahead = site.line.map_or(0.0, |l| l.ahead_cells.min(AHEAD_CELLS));
+        for pass in [unknown & self.anchors, unknown] {
+            let mut todo = pass;
+            while todo != 0 {
+                let m = todo.trailing_zeros() as usize;
+                todo &= todo - 1;
+                if known & (1 << m) != 0 {
+                    continue;
+                }
+                let (material, level) = self.certified_material(raster, site, m * COARSE_STEP);
+                let reach = self.skip(level);
+                let (lo, hi) = (m.saturating_sub(reach), (m + reach).min(COARSE_POINTS));
+                let decided = points(lo, hi) & !known;
+                known |= decided;
+                state = if material { state | decided } else { state & !decided };
+                let Some((mem, travel)) = memory.as_mut() else {
+                    continue;
+                };
+                if level != Certified::No {
+                    for k in lo..=hi {
+                        mem.hold_within(k, *travel, material, level.cells() - self.chord_cells[k.abs_diff(m)]);
+                    }
+                } else if look_ahead >= MIN_LOOK_CELLS && mem.should_look(m, *travel) {
+                    let g = self.grid_point(site, m * COARSE_STEP);
+                    let d = mem.dir();
+                    let ahead = (g.0 + d.0 * look_ahead, g.1 + d.1 * look_ahead);
+                    if raster.uniform_along(g, ahead, LATERAL_TOLERANCE_CELLS) == Some(material) {
+                        mem.hold_ahead(m, *travel, material, look_ahead);
+                    } else {
+                        mem.not_found(m, *travel, RETRY_CELLS);
+                    }
+                }
+            }
+            unknown = !known & points(0, COARSE_POINTS);
         }
+        debug_assert!(unknown == 0);
         state
     }
 
-    /// Measures the engagement of the leading half at `site`.
-    pub fn contact(&self, raster: &Raster, site: &ProbeSite) -> Contact {
+    /// Measures the engagement of the leading half at `site`; `memory` (one per raster)
+    /// carries coarse states from sample to sample along a straight stretch of path.
+    pub fn contact(&self, raster: &Raster, site: &ProbeSite, memory: Option<&mut ScanMemory>) -> Contact {
         let step = 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
-        let state = self.coarse_states(raster, site);
-        let mut engaged = 0usize;
-        let mut entry: Option<usize> = None;
-        let mut exit = 0usize;
-        for m in 0..COARSE_POINTS {
-            let (prev, now) = (state[m], state[m + 1]);
+        let state = self.coarse_states(raster, site, memory);
+        // Coarse interval m runs from point m to point m + 1.
+        let intervals = points(0, COARSE_POINTS - 1);
+        let both = state & (state >> 1) & intervals;
+        let mut engaged = both.count_ones() as usize * COARSE_STEP;
+        let (mut entry, mut exit) = match both {
+            0 => (usize::MAX, 0),
+            _ => (both.trailing_zeros() as usize * COARSE_STEP, (128 - both.leading_zeros() as usize) * COARSE_STEP),
+        };
+        let mut changes = (state ^ (state >> 1)) & intervals;
+        while changes != 0 {
+            let m = changes.trailing_zeros() as usize;
+            changes &= changes - 1;
+            let prev = state & (1 << m) != 0;
             let (a, b) = (m * COARSE_STEP, (m + 1) * COARSE_STEP);
-            if prev == now {
-                if now {
-                    engaged += b - a;
-                    entry.get_or_insert(a);
-                    exit = b;
-                }
-                continue;
-            }
             let at = self.boundary(raster, site, a, b, prev);
             // A run narrower than one coarse step at an edge of the leading half is a wall
             // the tool circle touches tangentially (a pass along cut ground), not engagement.
-            let tangent_wall = (prev && a == 0) || (now && b == HALF_TURN);
+            let tangent_wall = (prev && a == 0) || (!prev && b == HALF_TURN);
             let run = if prev { (a, at) } else { (at, b) };
             if !tangent_wall {
                 engaged += run.1 - run.0;
-                entry.get_or_insert(run.0);
-                exit = run.1;
+                entry = entry.min(run.0);
+                exit = exit.max(run.1);
             }
         }
         let to_rad = |k: usize| k as f64 * step - PI / 2.0;
+        let engaged_somewhere = entry != usize::MAX;
         Contact {
             alpha_rad: engaged as f64 * step,
-            entry_rad: entry.map_or(0.0, to_rad),
-            exit_rad: if entry.is_some() { to_rad(exit) } else { 0.0 },
+            entry_rad: if engaged_somewhere { to_rad(entry) } else { 0.0 },
+            exit_rad: if engaged_somewhere { to_rad(exit) } else { 0.0 },
         }
     }
+}
+
+/// Coarse points lo..=hi as bits.
+fn points(lo: usize, hi: usize) -> u128 {
+    (u128::MAX >> (127 - hi)) & (u128::MAX << lo)
 }
 
 #[cfg(test)]
@@ -258,14 +315,14 @@ mod tests {
 
     fn site(table: &AngleTable, center: (f64, f64), heading: (f64, f64), recent: &[(f64, f64)]) -> ProbeSite {
         let mut site = ProbeSite::default();
-        site.set(table, center, block().grid_position(center.0, center.1), heading, recent, &Corridor::UNKNOWN);
+        site.set(table, center, block().grid_position(center.0, center.1), heading, recent, &Corridor::UNKNOWN, None);
         site
     }
 
     #[test]
     fn a_tool_buried_in_material_engages_its_whole_leading_half() {
         let table = AngleTable::new(5.0, 0.02);
-        let c = table.contact(&block(), &site(&table, (0.0, 0.0), (1.0, 0.0), &[]));
+        let c = table.contact(&block(), &site(&table, (0.0, 0.0), (1.0, 0.0), &[]), None);
         assert!((c.alpha_rad - PI).abs() < 1e-9);
         assert!((c.entry_rad + PI / 2.0).abs() < 1e-9 && (c.exit_rad - PI / 2.0).abs() < 1e-9);
     }
@@ -275,7 +332,7 @@ mod tests {
         let table = AngleTable::new(5.0, 0.02);
         // A disc about (1, 0) covers the circle where cos θ > 0.1: what stays engaged is
         // 2 × (90° − acos 0.1).
-        let c = table.contact(&block(), &site(&table, (0.0, 0.0), (1.0, 0.0), &[(1.0, 0.0)]));
+        let c = table.contact(&block(), &site(&table, (0.0, 0.0), (1.0, 0.0), &[(1.0, 0.0)]), None);
         let expected = 2.0 * (PI / 2.0 - 0.1f64.acos());
         assert!((c.alpha_rad - expected).abs() < 0.2f64.to_radians(), "{} vs {expected}", c.alpha_rad);
     }
@@ -283,7 +340,7 @@ mod tests {
     #[test]
     fn a_tool_in_the_air_engages_nothing() {
         let table = AngleTable::new(5.0, 0.02);
-        let c = table.contact(&block(), &site(&table, (100.0, 0.0), (0.0, 1.0), &[]));
+        let c = table.contact(&block(), &site(&table, (100.0, 0.0), (0.0, 1.0), &[]), None);
         assert!(c.alpha_rad.abs() < 1e-12);
     }
 }

@@ -1,9 +1,11 @@
 //! The probe's shortcuts (certified coarse points, recent centres filtered to those that
-//! can reach the leading half) give exactly the contact of the plain scan that probes
-//! every coarse point and checks every recent centre.
+//! can reach the leading half, coarse states remembered along a line) give exactly the
+//! contact of the plain scan that probes every coarse point and checks every recent
+//! centre.
 
 use super::probe::{AngleTable, Contact, ProbeSite, COARSE_STEP, PROBE_STEPS_PER_TURN};
 use super::recent::Corridor;
+use super::scan_memory::{Line, ScanMemory};
 use crate::core::stock::{Raster, Rect};
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -15,6 +17,15 @@ const SIDE: f64 = 60.0;
 const SAME_RAD: f64 = 1e-12;
 /// Half the length of a rib, mm.
 const RIB_HALF_MM: f64 = 8.0;
+/// Sample spacing along a line, mm.
+const SPACING: f64 = 0.05;
+
+/// `true` when two contacts count the same probe steps.
+fn same(got: &Contact, want: &Contact) -> bool {
+    // Both count whole probe steps: equal up to rounding of the conversion.
+    let close = |a: f64, b: f64| (a - b).abs() < SAME_RAD;
+    close(got.alpha_rad, want.alpha_rad) && close(got.entry_rad, want.entry_rad) && close(got.exit_rad, want.exit_rad)
+}
 
 /// The scan without shortcuts (the probe as it was before them).
 fn plain_contact(raster: &Raster, center: (f64, f64), heading: (f64, f64), recent: &[(f64, f64)]) -> Contact {
@@ -135,16 +146,42 @@ proptest! {
                 (1..=16).map(|k| (center.0 - 0.05 * k as f64 * heading.0, center.1 - 0.05 * k as f64 * heading.1)).collect();
             recent.extend(offsets.iter().map(|o| (center.0 + o.0, center.1 + o.1)));
             for recent in [&recent[..16], &recent[..]] {
-                site.set(&table, center, raster.grid_position(center.0, center.1), heading, recent, &Corridor::UNKNOWN);
-                let got = table.contact(&raster, &site);
+                site.set(&table, center, raster.grid_position(center.0, center.1), heading, recent, &Corridor::UNKNOWN, None);
+                let got = table.contact(&raster, &site, None);
                 let want = plain_contact(&raster, center, heading, recent);
-                // Both count whole probe steps: equal up to rounding of the conversion.
-                let same = |a: f64, b: f64| (a - b).abs() < SAME_RAD;
-                prop_assert!(
-                    same(got.alpha_rad, want.alpha_rad) && same(got.entry_rad, want.entry_rad) && same(got.exit_rad, want.exit_rad),
-                    "at {:?} heading {:?}: {:?} vs {:?}", center, heading, got, want
-                );
+                prop_assert!(same(&got, &want), "at {:?} heading {:?}: {:?} vs {:?}", center, heading, got, want);
             }
+        }
+    }
+
+    #[test]
+    fn remembered_states_along_a_line_give_the_contact_of_the_plain_scan(
+        discs in prop::collection::vec((0.0..SIDE, 0.0..SIDE, 0.5..12.0f64), 0..6),
+        ribs in prop::collection::vec((point(), 0.0..PI, 0.05..0.6f64, 0.5..4.0f64), 0..4),
+        start in point(),
+        angle in prop_oneof![Just(0.0), Just(PI / 2.0), 0.0..2.0 * PI],
+        cuts in prop::collection::vec((50usize..400, point(), 0.3..3.0f64), 0..3),
+    ) {
+        let mut raster = stock(&discs, &[], &ribs);
+        let table = AngleTable::new(RADIUS, CELL);
+        let mut site = ProbeSite::default();
+        let mut memory = ScanMemory::default();
+        let heading = (angle.cos(), angle.sin());
+        let steps = 400;
+        for n in 0..steps {
+            // Material removed now and then changes what the memory may rely on.
+            for &(at, (x, y), radius) in &cuts {
+                if at == n {
+                    raster.clear_capsule((x, y), (x, y), radius);
+                }
+            }
+            let d = SPACING * n as f64;
+            let center = (start.0 + d * heading.0, start.1 + d * heading.1);
+            let line = Line { id: 0, dir: heading, ahead_cells: SPACING * (steps - n) as f64 / CELL };
+            site.set(&table, center, raster.grid_position(center.0, center.1), heading, &[], &Corridor::UNKNOWN, Some(line));
+            let got = table.contact(&raster, &site, Some(&mut memory));
+            let want = plain_contact(&raster, center, heading, &[]);
+            prop_assert!(same(&got, &want), "sample {} at {:?}: {:?} vs {:?}", n, center, got, want);
         }
     }
 }

@@ -4,6 +4,7 @@
 //! a probe interpolates bilinearly, which places a smooth boundary to a small fraction of
 //! a cell. Memory grows with the stock area (one byte per cell), not with the path.
 
+mod along;
 mod capsule;
 mod tiles;
 
@@ -62,6 +63,8 @@ pub struct Raster {
     tiles: Tiles,
     /// The last capsule applied cleared its end disc (see [`Raster::clear_capsule_after`]).
     end_disc_cleared: bool,
+    /// Counts the writes: what was read from the raster holds while it is unchanged.
+    version: u64,
 }
 
 impl Raster {
@@ -85,6 +88,7 @@ impl Raster {
             bx: nx.div_ceil(BLOCK_CELLS),
             tiles: Tiles::new(nx, ny),
             end_disc_cleared: false,
+            version: 0,
         }
     }
 
@@ -131,6 +135,12 @@ impl Raster {
             self.tiles.update(i, j, v > 0);
         }
         self.f[k] = v;
+        self.version += 1;
+    }
+
+    /// Changes whenever a cell changes.
+    pub fn version(&self) -> u64 {
+        self.version
     }
 
     /// `false` when no cell within `reach_mm` of `(x, y)` holds material.

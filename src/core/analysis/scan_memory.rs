@@ -1,0 +1,141 @@
+//! What the probe of one slice remembers while the tool moves along a straight line over
+//! an unchanged raster with the same leading half: each coarse point then slides along
+//! a line of its own, and a state found to hold over a stretch of that line (a uniform
+//! tile neighbourhood, or uniform cells along it) needs no probe until the stretch ends.
+
+use super::probe::COARSE_POINTS;
+
+/// Positions may stray this far from the remembered line, cells (rounding).
+pub const LATERAL_TOLERANCE_CELLS: f64 = 1e-6;
+/// When a remembered state expires, those that would within this much more travel are
+/// dropped too, cells: the remembered states are then reviewed only every so often.
+const EXPIRY_SLACK_CELLS: f64 = 2.0;
+
+/// The straight stretch of path a sample lies on: an identifier, its unit direction and
+/// how much of it lies ahead of the sample, in raster cells.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Line {
+    pub id: usize,
+    pub dir: (f64, f64),
+    pub ahead_cells: f64,
+}
+
+/// Coarse states remembered along a line.
+#[derive(Debug, Clone)]
+pub struct ScanMemory {
+    /// Raster version, first probe index of the leading half, line.
+    key: Option<(u64, usize, usize)>,
+    /// The tool centre on the raster's grid where the memory started, cells.
+    origin: (f64, f64),
+    dir: (f64, f64),
+    /// Travel along `dir` per cell of displacement along either axis.
+    travel_per_cell: f64,
+    /// Coarse points (bit m for point m) whose state is remembered, and those states.
+    held: u128,
+    state: u128,
+    /// Per coarse point: the travel (cells from `origin`) up to which its state holds,
+    /// and the travel before which no uniform stretch is looked for again.
+    until: [f64; COARSE_POINTS + 1],
+    retry: [f64; COARSE_POINTS + 1],
+    /// No remembered state expires before this travel.
+    first_expiry: f64,
+}
+
+impl Default for ScanMemory {
+    fn default() -> Self {
+        ScanMemory {
+            key: None,
+            origin: (0.0, 0.0),
+            dir: (1.0, 0.0),
+            travel_per_cell: 1.0,
+            held: 0,
+            state: 0,
+            until: [f64::NEG_INFINITY; COARSE_POINTS + 1],
+            retry: [f64::NEG_INFINITY; COARSE_POINTS + 1],
+            first_expiry: f64::INFINITY,
+        }
+    }
+}
+
+impl ScanMemory {
+    /// The travel of the tool centre `grid_center` along `line` since the memory started,
+    /// forgetting everything first when the raster `version`, the leading half (`first`)
+    /// or the line changed or the centre left the line.
+    pub fn travel(&mut self, version: u64, first: usize, line: Line, grid_center: (f64, f64)) -> f64 {
+        let key = Some((version, first, line.id));
+        let rel = (grid_center.0 - self.origin.0, grid_center.1 - self.origin.1);
+        let lateral = (rel.0 * self.dir.1 - rel.1 * self.dir.0).abs();
+        if self.key != key || lateral > LATERAL_TOLERANCE_CELLS {
+            self.key = key;
+            self.origin = grid_center;
+            self.dir = line.dir;
+            self.travel_per_cell = 1.0 / line.dir.0.abs().max(line.dir.1.abs());
+            self.held = 0;
+            self.retry.fill(f64::NEG_INFINITY);
+            self.first_expiry = f64::INFINITY;
+            return 0.0;
+        }
+        rel.0 * self.dir.0 + rel.1 * self.dir.1
+    }
+
+    /// The direction of the remembered line.
+    pub fn dir(&self) -> (f64, f64) {
+        self.dir
+    }
+
+    /// The coarse points whose state still holds at `travel`, and the states.
+    pub fn recall(&mut self, travel: f64) -> (u128, u128) {
+        if travel > self.first_expiry {
+            self.first_expiry = f64::INFINITY;
+            let horizon = travel + EXPIRY_SLACK_CELLS;
+            let mut held = self.held;
+            while held != 0 {
+                let m = held.trailing_zeros() as usize;
+                held &= held - 1;
+                if horizon > self.until[m] {
+                    self.held &= !(1 << m);
+                } else {
+                    self.first_expiry = self.first_expiry.min(self.until[m]);
+                }
+            }
+        }
+        (self.held, self.state)
+    }
+
+    /// Coarse point `m` has `state` from `travel` up to `until`.
+    fn hold(&mut self, m: usize, state: bool, until: f64) {
+        let bit = 1u128 << m;
+        if self.held & bit == 0 || until > self.until[m] {
+            self.until[m] = until;
+        }
+        self.held |= bit;
+        self.state = if state { self.state | bit } else { self.state & !bit };
+        self.first_expiry = self.first_expiry.min(self.until[m]);
+    }
+
+    /// Coarse point `m` has `state` over every position within `cells` (along either
+    /// axis) of where it is at `travel`.
+    pub fn hold_within(&mut self, m: usize, travel: f64, state: bool, cells: f64) {
+        let reach = (cells - LATERAL_TOLERANCE_CELLS) * self.travel_per_cell;
+        if reach > 0.0 {
+            self.hold(m, state, travel + reach);
+        }
+    }
+
+    /// Coarse point `m` has `state` from `travel` over the next `length` cells of travel.
+    pub fn hold_ahead(&mut self, m: usize, travel: f64, state: bool, length: f64) {
+        self.hold(m, state, travel + length - LATERAL_TOLERANCE_CELLS);
+    }
+
+    /// `true` when a uniform stretch ahead of coarse point `m` is worth looking for at
+    /// `travel`.
+    pub fn should_look(&self, m: usize, travel: f64) -> bool {
+        travel >= self.retry[m]
+    }
+
+    /// No uniform stretch was found ahead of coarse point `m` at `travel`: the next look
+    /// waits for `wait` cells of travel.
+    pub fn not_found(&mut self, m: usize, travel: f64, wait: f64) {
+        self.retry[m] = travel + wait;
+    }
+}
