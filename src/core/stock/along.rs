@@ -4,6 +4,9 @@
 
 use super::Raster;
 
+/// A segment no wider than this along x reads the same columns in every row, cells.
+const NARROW_CELLS: f64 = 1.0;
+
 impl Raster {
     /// `Some(material)` when every probe within `margin` cells of the segment from grid
     /// position `g0` to `g1` (see [`Raster::grid_position`]) reads only cells inside the
@@ -14,14 +17,28 @@ impl Raster {
         if !(x_lo >= 0.0 && y_lo >= 0.0 && x_hi + 1.0 < self.nx as f64 && y_hi + 1.0 < self.ny as f64) {
             return None;
         }
+        let (dx, dy) = (g1.0 - g0.0, g1.1 - g0.1);
+        let (mut all_in, mut all_out) = (true, true);
+        let rows = (y_lo as usize)..=(y_hi as usize + 1);
+        if x_hi - x_lo <= NARROW_CELLS {
+            // Every row reads the same few columns.
+            let (c0, c1) = (x_lo as usize, x_hi as usize + 1);
+            for j in rows {
+                let row = &self.f[j * self.nx + c0..=j * self.nx + c1];
+                all_in &= row.iter().all(|&v| v > 0);
+                all_out &= row.iter().all(|&v| v <= 0);
+                if !(all_in || all_out) {
+                    return None;
+                }
+            }
+            return Some(all_in);
+        }
         // x along the segment as a function of y (the whole x range when it runs along
         // the rows).
-        let (dx, dy) = (g1.0 - g0.0, g1.1 - g0.1);
-        let slope = if dy.abs() > f64::EPSILON { dx / dy } else { 0.0 };
         let steep = dy.abs() > f64::EPSILON;
-        let (mut all_in, mut all_out) = (true, true);
+        let slope = if steep { dx / dy } else { 0.0 };
         // Cell row j is read by the points with y in [j − 1, j + 1).
-        for j in (y_lo as usize)..=(y_hi as usize + 1) {
+        for j in rows {
             let (ya, yb) = ((j as f64 - 1.0).max(y_lo), (j as f64 + 1.0).min(y_hi));
             if ya > yb {
                 continue;
