@@ -26,6 +26,8 @@ pub const COARSE_POINTS: usize = HALF_TURN / COARSE_STEP;
 const AHEAD_CELLS: f64 = 16.0;
 /// After a look ahead finds none, the next waits for this much travel, cells.
 const RETRY_CELLS: f64 = 2.0;
+/// Bisection intervals wider than this probe two levels at a time, probe steps.
+const SPECULATE_ABOVE: usize = 3;
 /// No look ahead for less than this, cells.
 const MIN_LOOK_CELLS: f64 = 4.0;
 /// Certified radii are shortened by this, cells (rounding of the probe positions).
@@ -177,16 +179,29 @@ impl AngleTable {
         (!self.swept(site, k), Certified::No)
     }
 
-    /// First probe index in (a, b] whose state differs from index `a`'s.
+    /// First probe index in (a, b] whose state differs from index `a`'s, by bisection.
+    /// Each round probes the midpoint and both midpoints of the next round at once (they
+    /// do not depend on each other), so two halvings cost one probe's latency.
     fn boundary(&self, raster: &Raster, site: &ProbeSite, a: usize, b: usize, state_a: bool) -> usize {
         let (mut lo, mut hi) = (a, b);
         while hi - lo > 1 {
             let mid = (lo + hi) / 2;
-            if self.material(raster, site, mid) == state_a {
-                lo = mid;
-            } else {
-                hi = mid;
+            if hi - lo <= SPECULATE_ABOVE {
+                if self.material(raster, site, mid) == state_a {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+                continue;
             }
+            let (below, above) = ((lo + mid) / 2, (mid + hi) / 2);
+            let at = [mid, below, above].map(|k| self.material(raster, site, k) == state_a);
+            (lo, hi) = match at {
+                [true, _, true] => (above, hi),
+                [true, _, false] => (mid, above),
+                [false, true, _] => (below, mid),
+                [false, false, _] => (lo, below),
+            };
         }
         hi
     }
