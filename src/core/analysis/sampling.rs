@@ -160,6 +160,16 @@ fn curvature_at(ends: (PointCurvature, PointCurvature), t: f64) -> PointCurvatur
     }
 }
 
+/// The unit vector along `d`, or (0, 0) when it has no length.
+fn unit_heading(d: (f64, f64)) -> (f64, f64) {
+    let dl = d.0.hypot(d.1);
+    if dl > MIN_XY_MM {
+        (d.0 / dl, d.1 / dl)
+    } else {
+        (0.0, 0.0)
+    }
+}
+
 /// Calls `visit` for every sample of the moves, in order: each move is divided into equal
 /// steps no longer than `spacing_mm`; a sample sits at the end of each step.
 pub fn for_each_sample(
@@ -172,11 +182,12 @@ pub fn for_each_sample(
         let len = move_length(m);
         let steps = ((len / spacing_mm).ceil() as usize).max(1);
         let step_mm = len / steps as f64;
+        // A straight move has one heading.
+        let straight = matches!(m.motion, Motion::Rapid | Motion::Linear).then(|| unit_heading(point_on(m, 1.0).1));
         for k in 1..=steps {
             let t = k as f64 / steps as f64;
             let (p, d) = point_on(m, t);
-            let dl = d.0.hypot(d.1);
-            let heading = if dl > MIN_XY_MM { (d.0 / dl, d.1 / dl) } else { (0.0, 0.0) };
+            let heading = straight.unwrap_or_else(|| unit_heading(d));
             let sample = Sample {
                 p,
                 heading,
