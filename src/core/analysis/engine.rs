@@ -3,6 +3,7 @@
 //! the arc length, the chip thickness at the programmed feed and the force are found.
 
 use super::chunk::Chunk;
+use super::lines::straight_runs;
 use super::probe::{AngleTable, Contact, ProbeSite};
 use super::sampling::{for_each_sample, move_curvatures, Sample};
 use super::scan_memory::{Line, ScanMemory};
@@ -10,7 +11,7 @@ use super::slices::{self, Slice};
 use crate::core::engagement::max_chip_thickness_mm;
 use crate::core::force_model::ForceModel;
 use crate::core::progress::Progress;
-use crate::core::toolpath::{Motion, Toolpath};
+use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 
 /// The raster is brought up to date every this many samples …
@@ -102,6 +103,7 @@ pub fn simulate(
     let mut chunk = Chunk::new(0, cell_mm);
     let mut contacts = vec![Contact::default(); slices.len()];
     let mut memories = vec![ScanMemory::default(); slices.len()];
+    let runs = straight_runs(path);
     let mut s_mm = 0.0;
     let mut n = 0usize;
     let mut failure: Option<CoreError> = None;
@@ -130,21 +132,20 @@ pub fn simulate(
             ad_mm: 0.0,
             t_m_um: 0.0,
             force_n: force_model.map(|_| 0.0),
-            plunge: plunge && slices.iter().take(cut).any(|s| s.raster.any_material_near(p.0, p.1, r)),
+            plunge: plunge && slices.iter_mut().take(cut).any(|s| s.any_material_near(p.0, p.1, r)),
             force_extrapolated: false,
             cutting_point_ratio: 1.0,
         };
         if cut > 0 && !plunge {
             // All slices share one grid.
             let grid = slices[0].raster.grid_position(p.0, p.1);
-            let m = &path.moves[sample.move_index];
-            let line = matches!(m.motion, Motion::Linear | Motion::Rapid).then(|| {
-                let to_end = ((m.end.x - p.0).powi(2) + (m.end.y - p.1).powi(2)).sqrt();
-                Line { id: sample.move_index, dir: sample.heading, ahead_cells: to_end / cell_mm }
+            let line = runs[sample.move_index].map(|run| {
+                let to_end = ((run.end.0 - p.0).powi(2) + (run.end.1 - p.1).powi(2)).sqrt();
+                Line { id: run.id, dir: sample.heading, ahead_cells: to_end / cell_mm }
             });
             site.set(&table, p, grid, sample.heading, chunk.recent(), &chunk.corridor(), line);
-            for (k, s) in slices.iter().take(cut).enumerate() {
-                contacts[k] = if s.raster.any_material_near(p.0, p.1, r) {
+            for (k, s) in slices.iter_mut().take(cut).enumerate() {
+                contacts[k] = if s.any_material_near(p.0, p.1, r) {
                     table.contact(&s.raster, &site, Some(&mut memories[k]))
                 } else {
                     Contact::default()

@@ -4,6 +4,7 @@
 
 pub mod chunk;
 pub mod engine;
+pub mod lines;
 pub mod probe;
 pub mod recent;
 pub mod region;

@@ -23,9 +23,9 @@ const HALF_TURN: usize = PROBE_STEPS_PER_TURN / 2;
 pub const COARSE_POINTS: usize = HALF_TURN / COARSE_STEP;
 /// A coarse point not in a uniform tile neighbourhood looks this far ahead along its
 /// line for uniform cells, cells.
-const AHEAD_CELLS: f64 = 16.0;
+const AHEAD_CELLS: f64 = 32.0;
 /// After a look ahead finds none, the next waits for this much travel, cells.
-const RETRY_CELLS: f64 = 2.0;
+const RETRY_CELLS: f64 = 4.0;
 /// Bisection intervals wider than this probe two levels at a time, probe steps.
 const SPECULATE_ABOVE: usize = 3;
 /// No look ahead for less than this, cells.
