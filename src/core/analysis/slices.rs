@@ -2,7 +2,7 @@
 //! boundaries follow the z levels the program cuts at, so a 2.5-D program is simulated
 //! exactly and a 3-D one in steps.
 
-use crate::core::stock::{Raster, Rect};
+use crate::core::stock::{BlockRange, Raster, Rect};
 use crate::core::toolpath::{Motion, Toolpath};
 
 /// z levels closer than this are one level, mm.
@@ -17,6 +17,31 @@ pub struct Slice {
     pub z_bottom: f64,
     pub z_top: f64,
     pub raster: Raster,
+    /// Blocks last found to hold no material: material is only ever removed during a
+    /// simulation, so they stay empty.
+    empty: Option<BlockRange>,
+}
+
+impl Slice {
+    pub fn new(z_top: f64, z_bottom: f64, raster: Raster) -> Slice {
+        Slice { z_bottom, z_top, raster, empty: None }
+    }
+
+    /// As [`Raster::any_material_near`], remembering an empty answer: while the tool
+    /// stays over the same empty blocks, no block is read again.
+    pub fn any_material_near(&mut self, x: f64, y: f64, reach_mm: f64) -> bool {
+        let Some(blocks) = self.raster.blocks_near(x, y, reach_mm) else {
+            return false;
+        };
+        if self.empty.is_some_and(|e| e.contains(&blocks)) {
+            return false;
+        }
+        let any = self.raster.any_material_in(blocks);
+        if !any {
+            self.empty = Some(blocks);
+        }
+        any
+    }
 }
 
 /// The slice boundaries for `path` in a layer from `z_bottom` to `z_top`, top first.
@@ -56,7 +81,7 @@ pub fn slice_levels(path: &Toolpath, z_bottom: f64, z_top: f64) -> Vec<f64> {
 pub fn build(levels: &[f64], bounds: Rect, cell_mm: f64, paint: impl Fn(&mut Raster)) -> Vec<Slice> {
     let mut first = Raster::new(bounds, cell_mm);
     paint(&mut first);
-    levels.windows(2).map(|w| Slice { z_top: w[0], z_bottom: w[1], raster: first.clone() }).collect()
+    levels.windows(2).map(|w| Slice::new(w[0], w[1], first.clone())).collect()
 }
 
 /// How many slices (from the top) a tool tip at `z` cuts.

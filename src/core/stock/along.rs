@@ -14,7 +14,11 @@ impl Raster {
     pub fn uniform_along(&self, g0: (f64, f64), g1: (f64, f64), margin: f64) -> Option<bool> {
         let (x_lo, x_hi) = (g0.0.min(g1.0) - margin, g0.0.max(g1.0) + margin);
         let (y_lo, y_hi) = (g0.1.min(g1.1) - margin, g0.1.max(g1.1) + margin);
-        if !(x_lo >= 0.0 && y_lo >= 0.0 && x_hi + 1.0 < self.nx as f64 && y_hi + 1.0 < self.ny as f64) {
+        if !(x_lo >= 0.0
+            && y_lo >= 0.0
+            && x_hi + 1.0 < f64::from(self.nx as u32)
+            && y_hi + 1.0 < f64::from(self.ny as u32))
+        {
             return None;
         }
         let (dx, dy) = (g1.0 - g0.0, g1.1 - g0.1);

@@ -46,6 +46,23 @@ pub fn rect_signed_distance(r: &Rect, x: f64, y: f64) -> f64 {
     }
 }
 
+/// A rectangle of blocks of material counts: first and last column, first and last row.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BlockRange {
+    pub columns: (usize, usize),
+    pub rows: (usize, usize),
+}
+
+impl BlockRange {
+    /// `true` when `other` lies inside `self`.
+    pub fn contains(&self, other: &BlockRange) -> bool {
+        self.columns.0 <= other.columns.0
+            && other.columns.1 <= self.columns.1
+            && self.rows.0 <= other.rows.0
+            && other.rows.1 <= self.rows.1
+    }
+}
+
 /// A clamped signed-distance raster of material over a rectangle.
 #[derive(Debug, Clone)]
 pub struct Raster {
@@ -145,15 +162,26 @@ impl Raster {
 
     /// `false` when no cell within `reach_mm` of `(x, y)` holds material.
     pub fn any_material_near(&self, x: f64, y: f64, reach_mm: f64) -> bool {
+        self.blocks_near(x, y, reach_mm).is_some_and(|b| self.any_material_in(b))
+    }
+
+    /// The blocks of material counts that cover every cell within `reach_mm` of `(x, y)`
+    /// (None: none of the raster).
+    pub fn blocks_near(&self, x: f64, y: f64, reach_mm: f64) -> Option<BlockRange> {
         let index = |v: f64, origin: f64, pad: f64| ((v - origin) * self.inv_cell + pad).max(0.0) as usize;
         let (lo_i, lo_j) = (index(x - reach_mm, self.x0, -1.0), index(y - reach_mm, self.y0, -1.0));
         let hi_i = index(x + reach_mm, self.x0, 1.0).min(self.nx - 1);
         let hi_j = index(y + reach_mm, self.y0, 1.0).min(self.ny - 1);
-        if lo_i > hi_i || lo_j > hi_j {
-            return false;
-        }
-        (lo_j / BLOCK_CELLS..=hi_j / BLOCK_CELLS)
-            .any(|bj| (lo_i / BLOCK_CELLS..=hi_i / BLOCK_CELLS).any(|bi| self.blocks[bj * self.bx + bi] > 0))
+        (lo_i <= hi_i && lo_j <= hi_j).then_some(BlockRange {
+            columns: (lo_i / BLOCK_CELLS, hi_i / BLOCK_CELLS),
+            rows: (lo_j / BLOCK_CELLS, hi_j / BLOCK_CELLS),
+        })
+    }
+
+    /// `true` when a cell of the blocks `b` holds material.
+    pub fn any_material_in(&self, b: BlockRange) -> bool {
+        (b.rows.0..=b.rows.1)
+            .any(|bj| self.blocks[bj * self.bx + b.columns.0..=bj * self.bx + b.columns.1].iter().any(|&n| n > 0))
     }
 
     /// Cells whose centres lie in `[x_lo, x_hi]`, as a half-open index range.
@@ -168,16 +196,18 @@ impl Raster {
     #[inline]
     fn index_range(&self, lo: f64, hi: f64, origin: f64, n: usize) -> (usize, usize) {
         let (v_lo, v_hi) = ((lo - origin) * self.inv_cell - 0.5, (hi - origin) * self.inv_cell - 0.5);
+        // (A raster side fits u32, whose conversion to f64 is one instruction.)
+        let n_f = f64::from(n as u32);
         // Through i64 (one instruction each way; the raster has far fewer cells): the
         // smallest index ≥ v_lo (v_lo > 0 is false for NaN too) …
         let first = if v_lo > 0.0 {
-            let t = v_lo.min(n as f64) as i64;
+            let t = v_lo.min(n_f) as i64;
             (t + i64::from((t as f64) < v_lo)) as usize
         } else {
             0
         };
         // … and one past the largest index ≤ v_hi, at most n.
-        let end = if v_hi >= 0.0 { ((v_hi.min(n as f64) as i64) as usize + 1).min(n) } else { 0 };
+        let end = if v_hi >= 0.0 { ((v_hi.min(n_f) as i64) as usize + 1).min(n) } else { 0 };
         if end <= first {
             return (0, 0);
         }
