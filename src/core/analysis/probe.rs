@@ -26,6 +26,8 @@ pub const COARSE_POINTS: usize = HALF_TURN / COARSE_STEP;
 const AHEAD_CELLS: f64 = 32.0;
 /// After a look ahead finds none, the next waits for this much travel, cells.
 const RETRY_CELLS: f64 = 4.0;
+/// Bisection of a coarse interval takes at most this many steps (2^6 > COARSE_STEP).
+const MAX_BISECTION_STEPS: usize = 6;
 /// Bisection intervals wider than this probe two levels at a time, probe steps.
 const SPECULATE_ABOVE: usize = 3;
 /// No look ahead for less than this, cells.
@@ -180,18 +182,32 @@ impl AngleTable {
     }
 
     /// First probe index in (a, b] whose state differs from index `a`'s, by bisection.
-    /// Each round probes the midpoint and both midpoints of the next round at once (they
-    /// do not depend on each other), so two halvings cost one probe's latency.
-    fn boundary(&self, raster: &Raster, site: &ProbeSite, a: usize, b: usize, state_a: bool) -> usize {
+    /// With a `hint` (where the boundary was at the previous sample), the midpoints the
+    /// bisection visits on its way there are probed first, all at once; without one, each
+    /// round probes the midpoint and both midpoints of the next round at once. Either way
+    /// the probes overlap in the processor, and the same probes decide as in plain
+    /// bisection, so the same boundary is found.
+    fn boundary(&self, raster: &Raster, site: &ProbeSite, (a, b): (usize, usize), state_a: bool, hint: usize) -> usize {
+        let mut ready = [(usize::MAX, false); MAX_BISECTION_STEPS];
+        if a < hint && hint <= b {
+            let (mut lo, mut hi, mut n) = (a, b, 0);
+            while hi - lo > 1 && n < MAX_BISECTION_STEPS {
+                let mid = (lo + hi) / 2;
+                ready[n].0 = mid;
+                n += 1;
+                (lo, hi) = if mid < hint { (mid, hi) } else { (lo, mid) };
+            }
+            for slot in &mut ready[..n] {
+                slot.1 = self.material(raster, site, slot.0);
+            }
+        }
         let (mut lo, mut hi) = (a, b);
         while hi - lo > 1 {
             let mid = (lo + hi) / 2;
-            if hi - lo <= SPECULATE_ABOVE {
-                if self.material(raster, site, mid) == state_a {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
+            let known = ready.iter().find(|r| r.0 == mid).map(|r| r.1);
+            if known.is_some() || hi - lo <= SPECULATE_ABOVE {
+                let state = known.unwrap_or_else(|| self.material(raster, site, mid));
+                (lo, hi) = if state == state_a { (mid, hi) } else { (lo, mid) };
                 continue;
             }
             let (below, above) = ((lo + mid) / 2, (mid + hi) / 2);
@@ -265,9 +281,9 @@ impl AngleTable {
 
     /// Measures the engagement of the leading half at `site`; `memory` (one per raster)
     /// carries coarse states from sample to sample along a straight stretch of path.
-    pub fn contact(&self, raster: &Raster, site: &ProbeSite, memory: Option<&mut ScanMemory>) -> Contact {
+    pub fn contact(&self, raster: &Raster, site: &ProbeSite, mut memory: Option<&mut ScanMemory>) -> Contact {
         let step = 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
-        let state = self.coarse_states(raster, site, memory);
+        let state = self.coarse_states(raster, site, memory.as_deref_mut());
         // Coarse interval m runs from point m to point m + 1.
         let intervals = points(0, COARSE_POINTS - 1);
         let both = state & (state >> 1) & intervals;
@@ -282,7 +298,11 @@ impl AngleTable {
             changes &= changes - 1;
             let prev = state & (1 << m) != 0;
             let (a, b) = (m * COARSE_STEP, (m + 1) * COARSE_STEP);
-            let at = self.boundary(raster, site, a, b, prev);
+            let hint = memory.as_ref().map_or(0, |mem| a + mem.boundary_hint(m));
+            let at = self.boundary(raster, site, (a, b), prev, hint);
+            if let Some(mem) = memory.as_deref_mut() {
+                mem.set_boundary_hint(m, at - a);
+            }
             // A run narrower than one coarse step at an edge of the leading half is a wall
             // the tool circle touches tangentially (a pass along cut ground), not engagement.
             let tangent_wall = (prev && a == 0) || (!prev && b == HALF_TURN);

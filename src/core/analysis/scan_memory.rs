@@ -39,6 +39,9 @@ pub struct ScanMemory {
     retry: [f64; COARSE_POINTS + 1],
     /// No remembered state expires before this travel.
     first_expiry: f64,
+    /// Per coarse interval, where the last boundary found in it lay, probe steps into it
+    /// (0: none); a hint for the next bisection, whatever the line or raster.
+    hints: [u8; COARSE_POINTS],
 }
 
 impl Default for ScanMemory {
@@ -53,6 +56,7 @@ impl Default for ScanMemory {
             until: [f64::NEG_INFINITY; COARSE_POINTS + 1],
             retry: [f64::NEG_INFINITY; COARSE_POINTS + 1],
             first_expiry: f64::INFINITY,
+            hints: [0; COARSE_POINTS],
         }
     }
 }
@@ -125,6 +129,16 @@ impl ScanMemory {
     /// Coarse point `m` has `state` from `travel` over the next `length` cells of travel.
     pub fn hold_ahead(&mut self, m: usize, travel: f64, state: bool, length: f64) {
         self.hold(m, state, travel + length - LATERAL_TOLERANCE_CELLS);
+    }
+
+    /// Where the last boundary found in coarse interval `m` lay, probe steps into it.
+    pub fn boundary_hint(&self, m: usize) -> usize {
+        usize::from(self.hints[m])
+    }
+
+    /// A boundary was found `steps` probe steps into coarse interval `m`.
+    pub fn set_boundary_hint(&mut self, m: usize, steps: usize) {
+        self.hints[m] = u8::try_from(steps).unwrap_or(0);
     }
 
     /// `true` when a uniform stretch ahead of coarse point `m` is worth looking for at
