@@ -49,7 +49,7 @@ pub struct Coded {
 impl Coded {
     /// `true` when the point lies inside the experiments' design region (|X| ≤ √2).
     pub fn within_design_region(&self) -> bool {
-        self.x1.hypot(self.x2) <= DESIGN_REGION_CODED_RADIUS + 1e-9
+        (self.x1 * self.x1 + self.x2 * self.x2).sqrt() <= DESIGN_REGION_CODED_RADIUS + 1e-9
     }
 }
 

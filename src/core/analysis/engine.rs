@@ -27,6 +27,8 @@ const MIN_CUTTING_POINT_RATIO: f64 = 0.05;
 const SLOT_ALPHA_RAD: f64 = 0.99 * std::f64::consts::PI;
 /// A sample whose XY heading is shorter than this has none: it plunges straight down.
 const PLUNGE_HEADING: f64 = 0.5;
+/// Engagement angles closer than this are the same (they are whole probe steps), rad.
+const SAME_ALPHA_RAD: f64 = 1e-12;
 /// Samples between progress reports and cancellation checks.
 const PROGRESS_EVERY: usize = 4096;
 
@@ -183,11 +185,19 @@ fn evaluate(
     let rpm = result.sample.spindle_rpm.or(cutter.default_spindle_rpm).unwrap_or(0.0);
     let fz_c_mm = if rpm > 0.0 { result.sample.feed_mm_min / (f64::from(cutter.flutes) * rpm) } else { 0.0 };
     let ratio = cutting_point_ratio(&result.sample, &best, r);
-    let t_m = |c: &Contact| max_chip_thickness_mm(fz_c_mm * ratio, c.alpha_rad) * UM_PER_MM;
+    let t_m_best = max_chip_thickness_mm(fz_c_mm * ratio, best.alpha_rad) * UM_PER_MM;
+    // Slices engaged like the best one (most often all of them) share its chip thickness.
+    let t_m = |c: &Contact| {
+        if (c.alpha_rad - best.alpha_rad).abs() < SAME_ALPHA_RAD {
+            t_m_best
+        } else {
+            max_chip_thickness_mm(fz_c_mm * ratio, c.alpha_rad) * UM_PER_MM
+        }
+    };
     result.contact = best;
     result.cutting_point_ratio = ratio;
     result.arc_length_mm = r * best.alpha_rad;
-    result.t_m_um = t_m(&best);
+    result.t_m_um = t_m_best;
     let mut force = 0.0;
     for (c, s) in contacts.iter().zip(slices) {
         if c.alpha_rad <= 0.0 {
