@@ -259,9 +259,7 @@ impl AngleTable {
                     continue;
                 };
                 if level != Certified::No {
-                    for k in lo..=hi {
-                        mem.hold_within(k, *travel, material, level.cells() - self.chord_cells[k.abs_diff(m)]);
-                    }
+                    mem.hold_disc(m, (lo, hi), *travel, material, level.cells(), &self.chord_cells);
                 } else if look_ahead >= MIN_LOOK_CELLS && mem.should_look(m, *travel) {
                     let g = self.grid_point(site, m * COARSE_STEP);
                     let d = mem.dir();

@@ -33,8 +33,9 @@ pub struct ScanMemory {
     /// Coarse points (bit m for point m) whose state is remembered, and those states.
     held: u128,
     state: u128,
-    /// Per coarse point: the travel (cells from `origin`) up to which its state holds,
-    /// and the travel before which no uniform stretch is looked for again.
+    /// Per coarse point: the travel (cells from `origin`) up to which its state holds
+    /// (also after it is dropped from `held` a little early), and the travel before
+    /// which no uniform stretch is looked for again.
     until: [f64; COARSE_POINTS + 1],
     retry: [f64; COARSE_POINTS + 1],
     /// No remembered state expires before this travel.
@@ -75,6 +76,7 @@ impl ScanMemory {
             self.dir = line.dir;
             self.travel_per_cell = 1.0 / line.dir.0.abs().max(line.dir.1.abs());
             self.held = 0;
+            self.until.fill(f64::NEG_INFINITY);
             self.retry.fill(f64::NEG_INFINITY);
             self.first_expiry = f64::INFINITY;
             return 0.0;
@@ -106,29 +108,44 @@ impl ScanMemory {
         (self.held, self.state)
     }
 
-    /// Coarse point `m` has `state` from `travel` up to `until`.
-    fn hold(&mut self, m: usize, state: bool, until: f64) {
-        let bit = 1u128 << m;
-        if self.held & bit == 0 || until > self.until[m] {
-            self.until[m] = until;
-        }
-        self.held |= bit;
-        self.state = if state { self.state | bit } else { self.state & !bit };
-        self.first_expiry = self.first_expiry.min(self.until[m]);
+    /// The coarse points of `mask` have `state` up to the travels in `until` (set by the
+    /// caller), the earliest of them `earliest`.
+    fn hold(&mut self, mask: u128, state: bool, earliest: f64) {
+        self.held |= mask;
+        self.state = if state { self.state | mask } else { self.state & !mask };
+        self.first_expiry = self.first_expiry.min(earliest);
     }
 
-    /// Coarse point `m` has `state` over every position within `cells` (along either
-    /// axis) of where it is at `travel`.
-    pub fn hold_within(&mut self, m: usize, travel: f64, state: bool, cells: f64) {
-        let reach = (cells - LATERAL_TOLERANCE_CELLS) * self.travel_per_cell;
-        if reach > 0.0 {
-            self.hold(m, state, travel + reach);
+    /// A probe of coarse point `centre` at `travel` found `state` over every position
+    /// within `cells` (along either axis): it holds for the points `lo..=hi` around it as
+    /// long as they stay inside, `chord_cells[n]` being the distance between points n
+    /// apart.
+    pub fn hold_disc(
+        &mut self,
+        centre: usize,
+        (lo, hi): (usize, usize),
+        travel: f64,
+        state: bool,
+        cells: f64,
+        chord_cells: &[f64],
+    ) {
+        let (mut mask, mut earliest) = (0u128, f64::INFINITY);
+        for k in lo..=hi {
+            let reach = (cells - chord_cells[k.abs_diff(centre)] - LATERAL_TOLERANCE_CELLS) * self.travel_per_cell;
+            if reach > 0.0 {
+                // A longer hold of the same state may remain from an earlier probe.
+                self.until[k] = self.until[k].max(travel + reach);
+                earliest = earliest.min(self.until[k]);
+                mask |= 1 << k;
+            }
         }
+        self.hold(mask, state, earliest);
     }
 
     /// Coarse point `m` has `state` from `travel` over the next `length` cells of travel.
     pub fn hold_ahead(&mut self, m: usize, travel: f64, state: bool, length: f64) {
-        self.hold(m, state, travel + length - LATERAL_TOLERANCE_CELLS);
+        self.until[m] = self.until[m].max(travel + length - LATERAL_TOLERANCE_CELLS);
+        self.hold(1 << m, state, self.until[m]);
     }
 
     /// Where the last boundary found in coarse interval `m` lay, probe steps into it.
