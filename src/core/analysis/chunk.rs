@@ -8,8 +8,9 @@ use super::slices::Slice;
 
 /// A chunk holds at most this many steps: straight stretches are applied in capsules
 /// this long (the search for recent centres that reach the leading half stops early on
-/// them, see [`super::recent`]).
-pub const MAX_CHUNK_STEPS: usize = 256;
+/// them, see [`super::recent`]). Long capsules spare the per-row work of each update
+/// and keep the raster, and so what the probes remember, unchanged for longer.
+pub const MAX_CHUNK_STEPS: usize = 4096;
 /// A sample whose heading turns by more than this from the chunk's first heading starts
 /// a new chunk, deg.
 pub const CHUNK_TURN_DEG: f64 = 5.0;
