@@ -181,13 +181,26 @@ impl AngleTable {
         (!self.swept(site, k), Certified::No)
     }
 
-    /// First probe index in (a, b] whose state differs from index `a`'s, by bisection.
+    /// First probe index in (a, b] whose state differs from index `a`'s, by bisection,
+    /// and the probe indices it read.
     /// With a `hint` (where the boundary was at the previous sample), the midpoints the
     /// bisection visits on its way there are probed first, all at once; without one, each
     /// round probes the midpoint and both midpoints of the next round at once. Either way
     /// the probes overlap in the processor, and the same probes decide as in plain
     /// bisection, so the same boundary is found.
-    fn boundary(&self, raster: &Raster, site: &ProbeSite, (a, b): (usize, usize), state_a: bool, hint: usize) -> usize {
+    fn boundary(
+        &self,
+        raster: &Raster,
+        site: &ProbeSite,
+        (a, b): (usize, usize),
+        state_a: bool,
+        hint: usize,
+    ) -> (usize, Probed) {
+        let mut probed = Probed::default();
+        let mut probe = |k: usize| {
+            probed.push(k);
+            self.material(raster, site, k)
+        };
         let mut ready = [(usize::MAX, false); MAX_BISECTION_STEPS];
         if a < hint && hint <= b {
             let (mut lo, mut hi, mut n) = (a, b, 0);
@@ -198,7 +211,7 @@ impl AngleTable {
                 (lo, hi) = if mid < hint { (mid, hi) } else { (lo, mid) };
             }
             for slot in &mut ready[..n] {
-                slot.1 = self.material(raster, site, slot.0);
+                slot.1 = probe(slot.0);
             }
         }
         let (mut lo, mut hi) = (a, b);
@@ -206,12 +219,12 @@ impl AngleTable {
             let mid = (lo + hi) / 2;
             let known = ready.iter().find(|r| r.0 == mid).map(|r| r.1);
             if known.is_some() || hi - lo <= SPECULATE_ABOVE {
-                let state = known.unwrap_or_else(|| self.material(raster, site, mid));
+                let state = known.unwrap_or_else(|| probe(mid));
                 (lo, hi) = if state == state_a { (mid, hi) } else { (lo, mid) };
                 continue;
             }
             let (below, above) = ((lo + mid) / 2, (mid + hi) / 2);
-            let at = [mid, below, above].map(|k| self.material(raster, site, k) == state_a);
+            let at = [mid, below, above].map(|k| probe(k) == state_a);
             (lo, hi) = match at {
                 [true, _, true] => (above, hi),
                 [true, _, false] => (mid, above),
@@ -219,22 +232,35 @@ impl AngleTable {
                 [false, false, _] => (lo, below),
             };
         }
-        hi
+        (hi, probed)
+    }
+
+    /// `Some(look_ahead)` when every probe of `probed` at `site` keeps its answer while the
+    /// tool moves `look_ahead` cells further along `dir` (see [`Raster::constant_along`]).
+    fn settled_ahead(
+        &self,
+        raster: &Raster,
+        site: &ProbeSite,
+        probed: &Probed,
+        dir: (f64, f64),
+        look_ahead: f64,
+    ) -> Option<f64> {
+        let indices = probed.indices()?;
+        indices
+            .iter()
+            .all(|&k| {
+                let g = self.grid_point(site, k);
+                let ahead = (g.0 + dir.0 * look_ahead, g.1 + dir.1 * look_ahead);
+                raster.constant_along(g, ahead, LATERAL_TOLERANCE_CELLS).is_some()
+            })
+            .then_some(look_ahead)
     }
 
     /// The material state of every coarse point (bit m for point m): those `memory` still
     /// holds, then the anchors, then the rest that no certified probe decided.
     /// The probes of each pass are independent of each other, so they overlap in the
     /// processor.
-    fn coarse_states(&self, raster: &Raster, site: &ProbeSite, memory: Option<&mut ScanMemory>) -> u128 {
-        // Memory applies along a line when no recent disc reaches the leading half.
-        let mut memory = match (memory, site.line) {
-            (Some(mem), Some(line)) if site.intruders.is_empty() => {
-                let travel = mem.travel(raster.version(), site.first, line, site.grid_center);
-                Some((mem, travel))
-            }
-            _ => None,
-        };
+    fn coarse_states(&self, raster: &Raster, site: &ProbeSite, mut memory: Option<(&mut ScanMemory, f64)>) -> u128 {
         let (mut known, mut state) = match memory.as_mut() {
             Some((mem, travel)) => mem.recall(*travel),
             None => (0, 0),
@@ -281,7 +307,16 @@ impl AngleTable {
     /// carries coarse states from sample to sample along a straight stretch of path.
     pub fn contact(&self, raster: &Raster, site: &ProbeSite, mut memory: Option<&mut ScanMemory>) -> Contact {
         let step = 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
-        let state = self.coarse_states(raster, site, memory.as_deref_mut());
+        // States are remembered along a line when no recent disc reaches the leading half:
+        // the travel along it.
+        let travel = match (memory.as_deref_mut(), site.line) {
+            (Some(mem), Some(line)) if site.intruders.is_empty() => {
+                Some(mem.travel(raster.version(), site.first, line, site.grid_center))
+            }
+            _ => None,
+        };
+        let state = self.coarse_states(raster, site, memory.as_deref_mut().zip(travel));
+        let look_ahead = site.line.map_or(0.0, |l| l.ahead_cells.min(AHEAD_CELLS));
         // Coarse interval m runs from point m to point m + 1.
         let intervals = points(0, COARSE_POINTS - 1);
         let both = state & (state >> 1) & intervals;
@@ -296,11 +331,22 @@ impl AngleTable {
             changes &= changes - 1;
             let prev = state & (1 << m) != 0;
             let (a, b) = (m * COARSE_STEP, (m + 1) * COARSE_STEP);
-            let hint = memory.as_ref().map_or(0, |mem| a + mem.boundary_hint(m));
-            let at = self.boundary(raster, site, (a, b), prev, hint);
-            if let Some(mem) = memory.as_deref_mut() {
-                mem.set_boundary_hint(m, at - a);
-            }
+            let settled = memory.as_ref().zip(travel).and_then(|(mem, t)| mem.settled_boundary(m, t, prev));
+            let at = match settled {
+                Some(steps) => a + steps,
+                None => {
+                    let hint = memory.as_ref().map_or(0, |mem| a + mem.boundary_hint(m));
+                    let (at, probed) = self.boundary(raster, site, (a, b), prev, hint);
+                    if let Some(mem) = memory.as_deref_mut() {
+                        mem.set_boundary_hint(m, at - a);
+                        if let Some(t) = travel.filter(|&t| look_ahead >= MIN_LOOK_CELLS && mem.should_settle(m, t)) {
+                            let length = self.settled_ahead(raster, site, &probed, mem.dir(), look_ahead);
+                            mem.settle(m, t, prev, length, RETRY_CELLS);
+                        }
+                    }
+                    at
+                }
+            };
             // A run narrower than one coarse step at an edge of the leading half is a wall
             // the tool circle touches tangentially (a pass along cut ground), not engagement.
             let tangent_wall = (prev && a == 0) || (!prev && b == HALF_TURN);
@@ -318,6 +364,34 @@ impl AngleTable {
             entry_rad: if engaged_somewhere { to_rad(entry) } else { 0.0 },
             exit_rad: if engaged_somewhere { to_rad(exit) } else { 0.0 },
         }
+    }
+}
+
+/// Most probes one bisection may record (its rounds read at most 14).
+const MAX_BISECTION_PROBES: usize = 16;
+
+/// The probe indices one bisection read.
+#[derive(Default)]
+struct Probed {
+    indices: [usize; MAX_BISECTION_PROBES],
+    len: usize,
+    overflow: bool,
+}
+
+impl Probed {
+    fn push(&mut self, k: usize) {
+        match self.indices.get_mut(self.len) {
+            Some(slot) => {
+                *slot = k;
+                self.len += 1;
+            }
+            None => self.overflow = true,
+        }
+    }
+
+    /// The indices read, unless there were too many to record.
+    fn indices(&self) -> Option<&[usize]> {
+        (!self.overflow).then(|| &self.indices[..self.len])
     }
 }
 

@@ -158,11 +158,20 @@ proptest! {
     fn remembered_states_along_a_line_give_the_contact_of_the_plain_scan(
         discs in prop::collection::vec((0.0..SIDE, 0.0..SIDE, 0.5..12.0f64), 0..6),
         ribs in prop::collection::vec((point(), 0.0..PI, 0.05..0.6f64, 0.5..4.0f64), 0..4),
+        walls in prop::collection::vec((0.0..SIDE, any::<bool>(), 0.3..6.0f64), 0..3),
         start in point(),
-        angle in prop_oneof![Just(0.0), Just(PI / 2.0), 0.0..2.0 * PI],
+        angle in prop_oneof![Just(0.0), Just(PI / 2.0), Just(PI), 0.0..2.0 * PI],
         cuts in prop::collection::vec((50usize..400, point(), 0.3..3.0f64), 0..3),
     ) {
-        let mut raster = stock(&discs, &[], &ribs);
+        // Slots along the axes across the whole block: walls along the rows and columns,
+        // where the bisections of a tool moving along them are settled.
+        let slots: Vec<Slot> = walls
+            .iter()
+            .map(|&(at, along_x, radius)| {
+                if along_x { ((-1.0, at), (SIDE + 1.0, at), radius) } else { ((at, -1.0), (at, SIDE + 1.0), radius) }
+            })
+            .collect();
+        let mut raster = stock(&discs, &slots, &ribs);
         let table = AngleTable::new(RADIUS, CELL);
         let mut site = ProbeSite::default();
         let mut memory = ScanMemory::default();

@@ -43,6 +43,13 @@ pub struct ScanMemory {
     /// Per coarse interval, where the last boundary found in it lay, probe steps into it
     /// (0: none); a hint for the next bisection, whatever the line or raster.
     hints: [u8; COARSE_POINTS],
+    /// Per coarse interval: the travel up to which every probe of the bisection that
+    /// found its hint gives the same answer (so the bisection finds the same boundary
+    /// again), and the travel before which that is not looked for again.
+    settled: [f64; COARSE_POINTS],
+    settle_retry: [f64; COARSE_POINTS],
+    /// Per coarse interval (bit m): the state of its first point when it was settled.
+    settled_from: u128,
 }
 
 impl Default for ScanMemory {
@@ -58,6 +65,9 @@ impl Default for ScanMemory {
             retry: [f64::NEG_INFINITY; COARSE_POINTS + 1],
             first_expiry: f64::INFINITY,
             hints: [0; COARSE_POINTS],
+            settled: [f64::NEG_INFINITY; COARSE_POINTS],
+            settle_retry: [f64::NEG_INFINITY; COARSE_POINTS],
+            settled_from: 0,
         }
     }
 }
@@ -78,6 +88,8 @@ impl ScanMemory {
             self.held = 0;
             self.until.fill(f64::NEG_INFINITY);
             self.retry.fill(f64::NEG_INFINITY);
+            self.settled.fill(f64::NEG_INFINITY);
+            self.settle_retry.fill(f64::NEG_INFINITY);
             self.first_expiry = f64::INFINITY;
             return 0.0;
         }
@@ -153,9 +165,37 @@ impl ScanMemory {
         usize::from(self.hints[m])
     }
 
-    /// A boundary was found `steps` probe steps into coarse interval `m`.
+    /// A boundary was found `steps` probe steps into coarse interval `m` (by a bisection:
+    /// the interval is no longer settled).
     pub fn set_boundary_hint(&mut self, m: usize, steps: usize) {
         self.hints[m] = u8::try_from(steps).unwrap_or(0);
+        self.settled[m] = f64::NEG_INFINITY;
+    }
+
+    /// The boundary in coarse interval `m` (probe steps into it) when the bisection from
+    /// a first point of state `from` is known to find it again at `travel`.
+    pub fn settled_boundary(&self, m: usize, travel: f64, from: bool) -> Option<usize> {
+        let same_from = (self.settled_from >> m) & 1 == u128::from(from);
+        (travel <= self.settled[m] && same_from).then(|| self.boundary_hint(m))
+    }
+
+    /// `true` when it is worth checking at `travel` whether the probes of the bisection in
+    /// coarse interval `m` keep their answers ahead.
+    pub fn should_settle(&self, m: usize, travel: f64) -> bool {
+        travel >= self.settle_retry[m]
+    }
+
+    /// The probes of the bisection in coarse interval `m` from a first point of state
+    /// `from`, at `travel`, keep their answers over the next `length` cells of travel
+    /// (`Some`), or not (`None`: the next check waits for `wait` cells of travel).
+    pub fn settle(&mut self, m: usize, travel: f64, from: bool, length: Option<f64>, wait: f64) {
+        match length {
+            Some(length) => {
+                self.settled[m] = travel + length - LATERAL_TOLERANCE_CELLS;
+                self.settled_from = (self.settled_from & !(1 << m)) | (u128::from(from) << m);
+            }
+            None => self.settle_retry[m] = travel + wait,
+        }
     }
 
     /// `true` when a uniform stretch ahead of coarse point `m` is worth looking for at

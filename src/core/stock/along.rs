@@ -1,11 +1,19 @@
 //! The state of every probe along a segment at once: a probe reads only the 2 × 2 cells
 //! around its point ([`Raster::is_material_at`]), so when all the cells read along a
-//! segment hold material (or none does), every probe on it gives the same answer.
+//! segment hold material (or none does), every probe on it gives the same answer; and
+//! along a row (or column), when the two rows it reads hold the same value in every
+//! column it passes, every probe on it reads the same values.
 
-use super::Raster;
+use super::{Raster, DECISIVE};
 
 /// A segment no wider than this along x reads the same columns in every row, cells.
 const NARROW_CELLS: f64 = 1.0;
+/// [`Raster::constant_along`] widens the segment by this across (rounding of the probe
+/// positions), cells.
+const ACROSS_ROUNDING_CELLS: f64 = 1e-9;
+/// An interpolated value this close to zero is not decided by
+/// [`Raster::constant_along`] (rounding of the interpolation), stored units.
+const INTERPOLATION_ROUNDING: f64 = 1e-9;
 
 impl Raster {
     /// `Some(material)` when every probe within `margin` cells of the segment from grid
@@ -64,6 +72,75 @@ impl Raster {
         }
         Some(all_in)
     }
+
+    /// `Some(material)` when every probe within `margin` cells of the segment from grid
+    /// position `g0` to `g1`, which runs along a row or a column, gives the answer
+    /// `material`, because the two rows (columns) it reads hold one value each all along
+    /// it: the probe then reads the same values wherever it is along the segment (near a
+    /// boundary too, where [`Raster::uniform_along`] decides nothing).
+    pub fn constant_along(&self, g0: (f64, f64), g1: (f64, f64), margin: f64) -> Option<bool> {
+        let lo = |a: f64, b: f64| a.min(b) - margin;
+        let hi = |a: f64, b: f64| a.max(b) + margin;
+        let along_x = (g1.1 - g0.1).abs() <= (g1.0 - g0.0).abs();
+        // Along x, the probe reads rows j, j + 1 over columns; along y, the reverse.
+        let (along, across) = if along_x { ((g0.0, g1.0), (g0.1, g1.1)) } else { ((g0.1, g1.1), (g0.0, g1.0)) };
+        let (n_along, n_across) = if along_x { (self.nx, self.ny) } else { (self.ny, self.nx) };
+        let (a_lo, a_hi) = (lo(along.0, along.1), hi(along.0, along.1));
+        let (c_lo, c_hi) =
+            (lo(across.0, across.1) - ACROSS_ROUNDING_CELLS, hi(across.0, across.1) + ACROSS_ROUNDING_CELLS);
+        if !(a_lo >= 0.0
+            && c_lo >= 0.0
+            && a_hi + 1.0 < f64::from(n_along as u32)
+            && c_hi + 1.0 < f64::from(n_across as u32))
+        {
+            return None;
+        }
+        // The two lines read across: both ends of the range must read the same two.
+        let line = c_lo as usize;
+        if c_hi as usize != line {
+            return None;
+        }
+        let (t_lo, t_hi) = (c_lo - line as f64, c_hi - line as f64);
+        let (first, last) = (a_lo as usize, a_hi as usize + 1);
+        let at = |k: usize, l: usize| if along_x { self.f[l * self.nx + k] } else { self.f[k * self.nx + l] };
+        let (v0, v1) = (at(first, line), at(first, line + 1));
+        if (first + 1..=last).any(|k| at(k, line) != v0 || at(k, line + 1) != v1) {
+            return None;
+        }
+        decide_between(v0, v1, (t_lo, t_hi))
+    }
+}
+
+/// The answer of every probe that reads the value `v0` on one line and `v1` on the next,
+/// at a fraction of the way between them within `t` (as [`Raster::is_material_at`]
+/// decides it), when all give the same.
+fn decide_between(v0: i8, v1: i8, (t_lo, t_hi): (f64, f64)) -> Option<bool> {
+    if v0 > 0 && v1 > 0 {
+        return Some(true);
+    }
+    if v0 <= 0 && v1 <= 0 {
+        return Some(false);
+    }
+    // The nearest line decides alone when it is far from the boundary.
+    let nearest = if t_hi <= 0.5 {
+        v0
+    } else if t_lo > 0.5 {
+        v1
+    } else {
+        return None;
+    };
+    if nearest.unsigned_abs() >= DECISIVE {
+        return Some(nearest > 0);
+    }
+    let (a, b) = (f64::from(v0), f64::from(v1));
+    let (p, q) = (a + (b - a) * t_lo, a + (b - a) * t_hi);
+    if p > INTERPOLATION_ROUNDING && q > INTERPOLATION_ROUNDING {
+        Some(true)
+    } else if p < -INTERPOLATION_ROUNDING && q < -INTERPOLATION_ROUNDING {
+        Some(false)
+    } else {
+        None
+    }
 }
 
 #[cfg(test)]
@@ -94,6 +171,38 @@ mod tests {
                     let t = f64::from(k) / 400.0;
                     for off in [(0.0, 0.0), (margin, 0.0), (-margin, 0.0), (0.0, margin), (0.0, -margin)] {
                         let at = (g0.0 + d.0 * t + off.0, g0.1 + d.1 * t + off.1);
+                        prop_assert_eq!(r.is_material_at(at), state, "at {:?}", at);
+                    }
+                }
+            }
+        }
+
+        #[test]
+        fn a_constant_row_or_column_gives_every_probe_along_it_the_same_answer(
+            holes in prop::collection::vec((1.0..19.0f64, 1.0..19.0f64, 0.05..1.5f64), 1..6),
+            slots in prop::collection::vec((1.0..19.0f64, 0.3..3.0f64, any::<bool>()), 1..4),
+            g0 in (20.0..180.0f64, 20.0..180.0f64),
+            length in -60.0..60.0f64,
+            along_x in any::<bool>(),
+        ) {
+            let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 20.0, y_max: 20.0 };
+            let mut r = Raster::new(rect, 0.1);
+            r.paint(true, |y, out| if (0.0..20.0).contains(&y) { out.push((0.0, 20.0)) }, |x, y| rect_signed_distance(&rect, x, y));
+            // Slots along the axes leave walls that are constant along them.
+            for (at, half, horizontal) in slots {
+                let (a, b) = if horizontal { ((-5.0, at), (25.0, at)) } else { ((at, -5.0), (at, 25.0)) };
+                r.clear_capsule(a, b, half);
+            }
+            for (x, y, radius) in holes {
+                r.clear_capsule((x, y), (x, y), radius);
+            }
+            let g1 = if along_x { (g0.0 + length, g0.1) } else { (g0.0, g0.1 + length) };
+            let margin = 1e-6;
+            if let Some(state) = r.constant_along(g0, g1, margin) {
+                for k in 0..=400 {
+                    let t = f64::from(k) / 400.0;
+                    for off in [(0.0, 0.0), (margin, 0.0), (-margin, 0.0), (0.0, margin), (0.0, -margin)] {
+                        let at = (g0.0 + (g1.0 - g0.0) * t + off.0, g0.1 + (g1.1 - g0.1) * t + off.1);
                         prop_assert_eq!(r.is_material_at(at), state, "at {:?}", at);
                     }
                 }
