@@ -23,7 +23,7 @@ const HALF_TURN: usize = PROBE_STEPS_PER_TURN / 2;
 pub const COARSE_POINTS: usize = HALF_TURN / COARSE_STEP;
 /// A coarse point not in a uniform tile neighbourhood looks this far ahead along its
 /// line for uniform cells, cells.
-const AHEAD_CELLS: f64 = 32.0;
+const AHEAD_CELLS: f64 = 128.0;
 /// After a look ahead finds none, the next waits for this much travel, cells.
 const RETRY_CELLS: f64 = 4.0;
 /// Bisection of a coarse interval takes at most this many steps (2^6 > COARSE_STEP).
