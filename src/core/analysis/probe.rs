@@ -24,6 +24,8 @@ pub const COARSE_POINTS: usize = HALF_TURN / COARSE_STEP;
 /// A coarse point not in a uniform tile neighbourhood looks this far ahead along its
 /// line for uniform cells, cells.
 const AHEAD_CELLS: f64 = 128.0;
+/// A look ahead that fails is tried again this many times shorter.
+const SHORTER_LOOK: f64 = 4.0;
 /// After a look ahead finds none, the next waits for this much travel, cells.
 const RETRY_CELLS: f64 = 4.0;
 /// Bisection of a coarse interval takes at most this many steps (2^6 > COARSE_STEP).
@@ -235,8 +237,9 @@ impl AngleTable {
         (hi, probed)
     }
 
-    /// `Some(look_ahead)` when every probe of `probed` at `site` keeps its answer while the
-    /// tool moves `look_ahead` cells further along `dir` (see [`Raster::constant_along`]).
+    /// How far (`look_ahead` or, failing that, a shorter look) every probe of `probed`
+    /// at `site` keeps its answer while the tool moves along `dir`, cells (see
+    /// [`Raster::constant_along`]).
     fn settled_ahead(
         &self,
         raster: &Raster,
@@ -246,14 +249,13 @@ impl AngleTable {
         look_ahead: f64,
     ) -> Option<f64> {
         let indices = probed.indices()?;
-        indices
-            .iter()
-            .all(|&k| {
+        longest_hold(look_ahead, |length| {
+            indices.iter().all(|&k| {
                 let g = self.grid_point(site, k);
-                let ahead = (g.0 + dir.0 * look_ahead, g.1 + dir.1 * look_ahead);
+                let ahead = (g.0 + dir.0 * length, g.1 + dir.1 * length);
                 raster.constant_along(g, ahead, LATERAL_TOLERANCE_CELLS).is_some()
             })
-            .then_some(look_ahead)
+        })
     }
 
     /// The material state of every coarse point (bit m for point m): those `memory` still
@@ -289,11 +291,16 @@ impl AngleTable {
                 } else if look_ahead >= MIN_LOOK_CELLS && mem.should_look(m, *travel) {
                     let g = self.grid_point(site, m * COARSE_STEP);
                     let d = mem.dir();
-                    let ahead = (g.0 + d.0 * look_ahead, g.1 + d.1 * look_ahead);
-                    if raster.uniform_along(g, ahead, LATERAL_TOLERANCE_CELLS) == Some(material) {
-                        mem.hold_ahead(m, *travel, material, look_ahead);
-                    } else {
-                        mem.not_found(m, *travel, RETRY_CELLS);
+                    let holds = |length: f64| {
+                        let ahead = (g.0 + d.0 * length, g.1 + d.1 * length);
+                        raster
+                            .uniform_along(g, ahead, LATERAL_TOLERANCE_CELLS)
+                            .or_else(|| raster.constant_along(g, ahead, LATERAL_TOLERANCE_CELLS))
+                            == Some(material)
+                    };
+                    match longest_hold(look_ahead, holds) {
+                        Some(length) => mem.hold_ahead(m, *travel, material, length),
+                        None => mem.not_found(m, *travel, RETRY_CELLS),
                     }
                 }
             }
@@ -393,6 +400,19 @@ impl Probed {
     fn indices(&self) -> Option<&[usize]> {
         (!self.overflow).then(|| &self.indices[..self.len])
     }
+}
+
+/// The longest of `look_ahead`, then ever shorter looks (down to [`MIN_LOOK_CELLS`]),
+/// over which `holds`: a state that changes ahead is still remembered up to there.
+fn longest_hold(look_ahead: f64, holds: impl Fn(f64) -> bool) -> Option<f64> {
+    let mut length = look_ahead;
+    while length >= MIN_LOOK_CELLS {
+        if holds(length) {
+            return Some(length);
+        }
+        length /= SHORTER_LOOK;
+    }
+    None
 }
 
 /// Coarse points lo..=hi as bits.
