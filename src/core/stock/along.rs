@@ -56,8 +56,13 @@ impl Raster {
                 continue;
             }
             let (xa, xb) = if steep {
-                let (p, q) = (g0.0 + (ya - g0.1) * slope, g0.0 + (yb - g0.1) * slope);
-                ((p.min(q) - margin).max(x_lo), (p.max(q) + margin).min(x_hi))
+                // Probes within the margin of the segment at these y lie within the margin
+                // of its points within the margin of these y.
+                let (s_lo, s_hi) = (g0.1.min(g1.1), g0.1.max(g1.1));
+                let (ys, ye) = ((ya - margin).clamp(s_lo, s_hi), (yb + margin).clamp(s_lo, s_hi));
+                let (p, q) = (g0.0 + (ys - g0.1) * slope, g0.0 + (ye - g0.1) * slope);
+                let xa = (p.min(q) - margin).max(x_lo);
+                (xa, (p.max(q) + margin).min(x_hi).max(xa))
             } else {
                 (x_lo, x_hi)
             };
