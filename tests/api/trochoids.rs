@@ -135,6 +135,8 @@ async fn bad_trochoid_requests_are_refused_naming_the_field() {
         (with("roughing", json!({"spindle_rpm": 4800, "fz_mm": 0.1, "rd_mm": -1, "ad_mm": 10})), "roughing.rd_mm"),
         (with("diameter_mm", json!(-3)), "diameter_mm"),
         (with("loop_radius_mm", json!(1)), "loop_radius_mm"),
+        // 3 m × 3 m at 0.05 mm is far more than one analysis may take.
+        (with("contour", json!({"outer": [[0, 0], [3000, 0], [3000, 3000], [0, 3000]]})), "sample_spacing_mm"),
     ];
     for (body, field) in cases {
         let a = app.post("/v1/trochoids", body).await;

@@ -43,6 +43,10 @@ use crate::core::CoreError;
 use cleared::ClearedZone as Zone;
 use treatments::Stretch;
 
+/// How much longer than its base path a plan may be, for the size check at submission (the
+/// test pockets' plans are 1.7–2.7 times as long: trochoid air cuts).
+pub const PLANNED_PATH_GROWTH: f64 = 4.0;
+
 /// Most rounds of treatment.
 pub const MAX_ROUNDS: usize = 3;
 
@@ -87,15 +91,26 @@ pub fn base_path(pocket: &Pocket, spec: &InsertionSpec) -> Result<Toolpath, Core
 /// the tool fits in the pocket at all.
 pub fn check_plan(pocket: &Pocket, spec: &InsertionSpec, existing: Option<&Toolpath>) -> Result<(), CoreError> {
     spec.validate()?;
-    if existing.is_none() {
-        let one_level = InsertionSpec {
-            roughing: crate::core::conditions::CuttingConditions {
-                ad_mm: spec.z_top_mm - spec.z_bottom_mm,
-                ..spec.roughing
-            },
-            ..spec.clone()
-        };
-        base_path(pocket, &one_level)?;
+    let generated;
+    let base = match existing {
+        Some(path) => path,
+        None => {
+            generated = base_path(pocket, spec)?;
+            &generated
+        }
+    };
+    let analysis = analysis_spec(pocket, spec);
+    crate::core::analysis::check(base, &analysis)?;
+    let (spacing, samples) = crate::core::analysis::sample_count(base, &analysis);
+    let limit = crate::core::analysis::MAX_SAMPLES / PLANNED_PATH_GROWTH;
+    if samples > limit {
+        return Err(CoreError::invalid(
+            "contour",
+            format!(
+                "the base path takes {samples:.0} samples at {spacing} mm and its plan about {PLANNED_PATH_GROWTH} times as many, more than the {} one analysis may take: plan a smaller pocket or a coarser sample_spacing_mm",
+                crate::core::analysis::MAX_SAMPLES
+            ),
+        ));
     }
     Ok(())
 }
