@@ -154,7 +154,8 @@ pub struct Stock {
     pub z_bottom: f64,
 }
 
-fn vertices(field: &str, raw: &[Vec<f64>]) -> Result<Loop, ApiError> {
+/// A loop of `[x, y]` or `[x, y, bulge]` vertices; errors name `field[i]`.
+pub(crate) fn vertices(field: &str, raw: &[Vec<f64>]) -> Result<Loop, ApiError> {
     let vertices = raw
         .iter()
         .enumerate()
@@ -168,7 +169,7 @@ fn vertices(field: &str, raw: &[Vec<f64>]) -> Result<Loop, ApiError> {
 }
 
 /// Prefixes a core error's field with `prefix`.
-fn under(prefix: &str, err: crate::core::CoreError) -> ApiError {
+pub(crate) fn under(prefix: &str, err: crate::core::CoreError) -> ApiError {
     match ApiError::from(err) {
         ApiError::Validation(errors) => ApiError::Validation(
             errors

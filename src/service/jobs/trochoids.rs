@@ -4,20 +4,20 @@
 //! the report of which region got which treatment out.
 
 use super::analysis::{resolve, AnalysisPrepared, PathJobRefs, Resolved};
-use super::inputs::{read_program, ContourInput, ProgramInput};
+use super::inputs::{read_program, under, vertices, ContourInput, ProgramInput};
 use super::output::OutputOptions;
 use super::trochoids_result::TrochoidsResult;
 use crate::core::conditions::CuttingConditions;
 use crate::core::cycles::trochoid::default_loop_radius_mm;
 use crate::core::cycles::CutDirection;
-use crate::core::geometry::{loops_from_dxf, pocket_from_loops, Loop, Pocket, Vertex};
+use crate::core::geometry::{loops_from_dxf, pocket_from_loops, Pocket};
 use crate::core::insertion::{check_plan, plan_insertion, InsertionSpec, LoopSize};
 use crate::core::medial::{CLASS_A_RATIO_MAX, CLASS_A_RATIO_MIN};
 use crate::core::nc::write_program;
 use crate::core::operation::Operation;
 use crate::core::progress::Progress;
 use crate::core::CoreError;
-use crate::service::error::{ApiError, FieldError, Validator};
+use crate::service::error::{ApiError, Validator};
 use crate::service::lookup;
 use serde::{Deserialize, Serialize};
 use sqlx::SqlitePool;
@@ -175,31 +175,6 @@ fn validate(request: &TrochoidsRequest) -> Result<(), ApiError> {
     }
     request.output.validate(&mut v);
     v.finish()
-}
-
-fn vertices(field: &str, raw: &[Vec<f64>]) -> Result<Loop, ApiError> {
-    let vertices = raw
-        .iter()
-        .enumerate()
-        .map(|(i, v)| match v.as_slice() {
-            [x, y] if x.is_finite() && y.is_finite() => Ok(Vertex { x: *x, y: *y, bulge: 0.0 }),
-            [x, y, b] if x.is_finite() && y.is_finite() && b.is_finite() => Ok(Vertex { x: *x, y: *y, bulge: *b }),
-            _ => Err(ApiError::field(format!("{field}[{i}]"), "a vertex is [x, y] or [x, y, bulge] of finite numbers")),
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    Ok(Loop::new(vertices))
-}
-
-fn under(prefix: &str, err: CoreError) -> ApiError {
-    match ApiError::from(err) {
-        ApiError::Validation(errors) => ApiError::Validation(
-            errors
-                .into_iter()
-                .map(|e| FieldError { field: format!("{prefix}.{}", e.field), reason: e.reason })
-                .collect(),
-        ),
-        other => other,
-    }
 }
 
 /// Reads the pocket; errors name `contour.outer[i]`, `contour.islands[k][i]` or `dxf`.
