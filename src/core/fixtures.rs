@@ -15,3 +15,38 @@ pub fn seed_001_ten_mm() -> ForceModel {
         ad_ref_mm: 10.0,
     }
 }
+
+/// The 10 mm tool's life of seed 003 with the assumed tables of MODEL.md §9.
+pub fn ten_mm_life() -> crate::core::tool_life::ToolLifeModel {
+    crate::core::tool_life::ToolLifeModel {
+        life_m: 320.0,
+        gamma_table: vec![(0.0, 1.0), (40.0, 1.0), (50.0, 2.0), (60.0, 4.0), (90.0, 8.0), (180.0, 12.0)],
+        force_exponent: 2.4,
+        standard_arc_length_mm: crate::core::engagement::engagement(
+            crate::core::engagement::Contour::Straight,
+            5.0,
+            0.5,
+        )
+        .unwrap()
+        .arc_length_mm,
+        standard_fz_mm: 0.1,
+        standard_force_n: Some(269.1),
+    }
+}
+
+/// A `w × h` box pocket with corners of radius `r` (mm), its lower-left corner at the origin.
+pub fn rounded_box(w: f64, h: f64, r: f64) -> crate::core::geometry::Pocket {
+    use crate::core::geometry::{Loop, Pocket, Vertex};
+    let b = (std::f64::consts::PI / 8.0).tan();
+    let outer = Loop::new(vec![
+        Vertex::new(r, 0.0, 0.0),
+        Vertex::new(w - r, 0.0, b),
+        Vertex::new(w, r, 0.0),
+        Vertex::new(w, h - r, b),
+        Vertex::new(w - r, h, 0.0),
+        Vertex::new(r, h, b),
+        Vertex::new(0.0, h - r, 0.0),
+        Vertex::new(0.0, r, b),
+    ]);
+    Pocket::new(outer, vec![]).unwrap()
+}

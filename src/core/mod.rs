@@ -24,6 +24,8 @@ pub mod medial;
 pub mod nc;
 pub mod operation;
 pub mod pocketing;
+/// Process planning of a cavity: tool choice, layers, feeds, cost, tuning (seed 002 §2.6).
+pub mod process;
 pub mod progress;
 pub mod stock;
 pub mod tolerance;

@@ -28,3 +28,28 @@ impl Progress for NoProgress {
         false
     }
 }
+
+/// A part of a longer computation: reports `from + fraction · span` of the whole to `inner`,
+/// and is cancelled when `inner` is.
+pub struct Stage<'a> {
+    pub inner: &'a dyn Progress,
+    pub from: f64,
+    pub span: f64,
+}
+
+impl<'a> Stage<'a> {
+    /// Stage `index` of `count` equal stages within `[from, from + span]`.
+    pub fn nth(inner: &'a dyn Progress, from: f64, span: f64, index: usize, count: usize) -> Self {
+        let each = span / count.max(1) as f64;
+        Stage { inner, from: from + each * index as f64, span: each }
+    }
+}
+
+impl Progress for Stage<'_> {
+    fn report(&self, fraction: f64) {
+        self.inner.report(self.from + fraction.clamp(0.0, 1.0) * self.span);
+    }
+    fn cancelled(&self) -> bool {
+        self.inner.cancelled()
+    }
+}

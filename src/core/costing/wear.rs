@@ -145,7 +145,6 @@ pub fn path_wear(
 mod tests {
     use super::*;
     use crate::core::analysis::{StockRegion, DEFAULT_ALPHA_LIMIT_DEG};
-    use crate::core::engagement::{engagement, Contour};
     use crate::core::fixtures::seed_001_ten_mm;
     use crate::core::progress::NoProgress;
     use crate::core::stock::Rect;
@@ -153,14 +152,7 @@ mod tests {
     use crate::core::toolpath::{Motion, Move, Plane, Toolpath, Units, P3};
 
     fn model() -> ToolLifeModel {
-        ToolLifeModel {
-            life_m: 320.0,
-            gamma_table: vec![(0.0, 1.0), (40.0, 1.0), (50.0, 2.0), (60.0, 4.0), (90.0, 8.0), (180.0, 12.0)],
-            force_exponent: 2.4,
-            standard_arc_length_mm: engagement(Contour::Straight, 5.0, 0.5).unwrap().arc_length_mm,
-            standard_fz_mm: 0.1,
-            standard_force_n: Some(269.1),
-        }
+        crate::core::fixtures::ten_mm_life()
     }
 
     fn spec(stock: Rect, open: Vec<StockRegion>) -> AnalysisSpec {

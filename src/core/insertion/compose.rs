@@ -176,6 +176,9 @@ pub struct Composed {
     pub moves: Vec<Move>,
     /// Per move: part of an approach hole (helix and the circle after it).
     pub entry: Vec<bool>,
+    /// Per move: the stretch it belongs to (its index), or the number of stretches for the
+    /// base path. The moves over the safe height that lead to a part belong to it.
+    pub owner: Vec<usize>,
     /// The cutting levels, in order.
     pub levels: Vec<f64>,
     pub per_level: Vec<LevelMoves>,
@@ -192,15 +195,17 @@ pub fn compose(
     let parts = split_by_level(base, &levels);
     let mut program = Vec::new();
     let mut entry: Vec<bool> = Vec::new();
+    let mut owner: Vec<usize> = Vec::new();
     let mut per_level = Vec::new();
     let mut z_from = spec.z_top_mm;
     for (k, part) in parts.iter().enumerate() {
         let Some(&z) = levels.get(k) else {
             append_over(&mut program, part, spec.safe_z_mm);
+            owner.resize(program.len(), stretches.len());
             continue;
         };
         let mut level = LevelMoves::default();
-        for s in stretches {
+        for (i, s) in stretches.iter().enumerate() {
             let (moves, entry_moves) = match s {
                 Stretch::Trochoid(t) => trochoid_moves(t, spec, z_from, z)?,
                 Stretch::ZCut(c) => (zcut_moves(c, spec, z_from, z)?, 0),
@@ -208,6 +213,7 @@ pub fn compose(
             };
             append_over(&mut program, &moves, spec.safe_z_mm);
             entry.resize(program.len(), false);
+            owner.resize(program.len(), i);
             let first = program.len() - moves.len();
             entry[first..first + entry_moves].iter_mut().for_each(|e| *e = true);
             level.stretch_moves.push(moves);
@@ -226,21 +232,24 @@ pub fn compose(
         };
         let (trimmed, trim) = trim_path(part, zone, &relink);
         append_over(&mut program, &trimmed, spec.safe_z_mm);
+        owner.resize(program.len(), stretches.len());
         level.base = trimmed;
         level.trim = trim;
         per_level.push(level);
         z_from = z;
     }
     entry.resize(program.len(), false);
+    owner.resize(program.len(), stretches.len());
     // Joins and trims can leave moves of no length; a program has none.
-    let kept: Vec<(Move, bool)> = program
+    let kept: Vec<(Move, (bool, usize))> = program
         .into_iter()
-        .zip(entry)
+        .zip(entry.into_iter().zip(owner))
         .filter(|(m, _)| matches!(m.motion, Motion::Arc { .. }) || move_length(m) > LENGTH_EPS_MM)
         .collect();
-    let (mut program, entry): (Vec<Move>, Vec<bool>) = kept.into_iter().unzip();
+    let (mut program, tags): (Vec<Move>, Vec<(bool, usize)>) = kept.into_iter().unzip();
+    let (entry, owner): (Vec<bool>, Vec<usize>) = tags.into_iter().unzip();
     for (i, m) in program.iter_mut().enumerate() {
         m.line = u32::try_from(i + 1).unwrap_or(u32::MAX);
     }
-    Ok(Composed { moves: program, entry, levels, per_level })
+    Ok(Composed { moves: program, entry, owner, levels, per_level })
 }

@@ -21,7 +21,7 @@ mod verify;
 mod tests;
 
 pub use cleared::{ClearedZone, TrimReport};
-pub use compose::RAMP_START_ABOVE_MM;
+pub use compose::{append_over, RAMP_START_ABOVE_MM};
 pub use report::{InsertionPlan, Treatment, TreatmentKind};
 pub use spec::{
     InsertionSpec, LoopSize, DEFAULT_INSERTION_ALPHA_LIMIT_DEG, DEFAULT_WALL_GAP_MM, PITCH_DESIGN_MARGIN_DEG,
@@ -116,8 +116,8 @@ pub fn check_plan(pocket: &Pocket, spec: &InsertionSpec, existing: Option<&Toolp
 }
 
 /// A tool path of `moves` with the spindle on (clockwise) before the first and off after the
-/// last.
-fn program(mut moves: Vec<crate::core::toolpath::Move>) -> Toolpath {
+/// last, its moves of no length dropped and the others numbered from 1.
+pub fn program(mut moves: Vec<crate::core::toolpath::Move>) -> Toolpath {
     // Joins and trims can leave moves of no length; a program has none (our parser drops them).
     moves.retain(|m| {
         matches!(m.motion, crate::core::toolpath::Motion::Arc { .. })
@@ -227,6 +227,7 @@ pub fn plan_insertion(
         let composed = compose::compose(&base.moves, &stretches, &air, spec)?;
         let (levels, per_level) = (composed.levels, composed.per_level);
         let path = program(composed.moves);
+        debug_assert_eq!(path.moves.len(), composed.owner.len());
         let after = verify::check_engagement(&path, &analysis, &zcut, &composed.entry, progress)?;
         let more = map(&after.overloaded, REMAP_DISTANCE_RADII);
         let inside = |m: &CriticalInterval, set: &[CriticalInterval]| {
@@ -254,6 +255,8 @@ pub fn plan_insertion(
                 per_level,
                 levels,
                 path,
+                move_treatment: composed.owner,
+                move_entry: composed.entry,
                 after,
                 rounds,
                 existing: existing.is_some(),

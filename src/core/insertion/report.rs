@@ -77,6 +77,13 @@ pub struct InsertionPlan {
     /// The cutting levels, top first, mm.
     pub levels_mm: Vec<f64>,
     pub toolpath: Toolpath,
+    /// Per move of the toolpath: the index of the treatment it belongs to (the moves over the
+    /// safe height that lead to a treatment belong to it).
+    #[serde(skip)]
+    pub move_treatment: Vec<usize>,
+    /// Per move: part of an approach hole (a helical entry and the full circle after it).
+    #[serde(skip)]
+    pub move_entry: Vec<bool>,
     /// What was cut out of the base path, over all levels.
     pub trim: TrimReport,
     pub verification: Verification,
@@ -99,6 +106,8 @@ pub(super) struct Parts<'a> {
     pub per_level: Vec<LevelMoves>,
     pub levels: Vec<f64>,
     pub path: Toolpath,
+    pub move_treatment: Vec<usize>,
+    pub move_entry: Vec<bool>,
     pub after: EngagementOutcome,
     pub rounds: usize,
     pub existing: bool,
@@ -272,6 +281,8 @@ pub(super) fn assemble(p: Parts) -> InsertionPlan {
         treatments,
         levels_mm: p.levels,
         toolpath: p.path,
+        move_treatment: p.move_treatment,
+        move_entry: p.move_entry,
         trim,
         verification,
         rounds: p.rounds,

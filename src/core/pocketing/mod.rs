@@ -46,6 +46,7 @@
 
 mod emit;
 mod offsets;
+pub use offsets::unreachable_area_mm2;
 mod order;
 mod seam;
 

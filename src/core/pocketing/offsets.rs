@@ -122,6 +122,18 @@ fn components_of(shape: &Shape<f64>) -> Result<Vec<Component>, CoreError> {
     Ok(components)
 }
 
+/// The area of `pocket` a tool centre kept `reach_mm` from every wall cannot sweep with a
+/// disc of radius `reach_mm`, mm²: the pocket less its morphological opening (offset in by
+/// `reach_mm`, then out by as much). Sharp concave corners, necks narrower than `2·reach_mm`
+/// and concave arcs tighter than `reach_mm` are what it holds.
+pub fn unreachable_area_mm2(pocket: &Pocket, reach_mm: f64) -> f64 {
+    let shape = Shape::from_plines(std::iter::once(&pocket.outer).chain(&pocket.islands).map(to_polyline));
+    let options = ShapeOffsetOptions::default();
+    let opened = shape.parallel_offset(reach_mm, &options).parallel_offset(-reach_mm, &options);
+    let signed: f64 = opened.ccw_plines.iter().chain(&opened.cw_plines).map(|p| p.polyline.area()).sum();
+    (pocket.area() - signed).max(0.0)
+}
+
 /// The loop as a `cavalier_contours` closed polyline, arcs beyond a half circle split in two.
 pub(super) fn to_polyline(lp: &Loop) -> Polyline<f64> {
     let mut pline = Polyline::with_capacity(lp.vertices.len(), true);

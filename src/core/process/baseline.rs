@@ -1,0 +1,182 @@
+//! The conventional baseline the papers compare against (seed 004 §3.3, Table 3; MODEL.md §5
+//! and §11): a ball end mill (R5) roughing the whole cavity in thin contour-parallel layers of
+//! constant axial depth (0.6 mm), at its database conditions, without trochoids or feed
+//! optimisation. Its time, cutting length, tool wear and cost are estimated by the same
+//! models as the proposed plan.
+//!
+//! The stock model is 2.5-D, so the ball is simulated as its cylinder: that overstates its
+//! engagement arc (at 0.6 mm deep a ball of R5 cuts with a radius of 2.4 mm), hence its wear;
+//! the comparison figures of the papers, time and cutting length, do not depend on it.
+
+use super::cavity::{Cavity, CavityLayer};
+use super::evaluate::Figures;
+use super::layer::moved_down;
+use super::spec::ProcessOptions;
+use crate::core::analysis::sampling::move_length;
+use crate::core::analysis::{analyze_with, AnalysisSpec, StockRegion};
+use crate::core::conditions::{feed_mm_min, CuttingConditions};
+use crate::core::costing::cost::{cost, Cost, Rates};
+use crate::core::cycles::setup::DEFAULT_PLUNGE_FEED_RATIO;
+use crate::core::cycles::z_levels;
+use crate::core::insertion::{append_over, program};
+use crate::core::kinematics::{machining_time, MachiningTime, TimeOptions};
+use crate::core::pocketing::{contour_parallel, PocketingSpec};
+use crate::core::progress::{Progress, Stage};
+use crate::core::tolerance::LENGTH_EPS_MM;
+use crate::core::tool::EndMill;
+use crate::core::tool_life::{Consumption, ToolLifeModel, WearCut};
+use crate::core::toolpath::Motion;
+use crate::core::CoreError;
+use serde::Serialize;
+
+/// The baseline's tool and conditions.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BaselineSpec {
+    pub name: String,
+    /// The ball end mill (R5 in the papers).
+    pub tool: EndMill,
+    /// Conventional ball-end roughing: S, fz, Rd (step-over) and Ad (layer depth).
+    pub conditions: CuttingConditions,
+    pub life: ToolLifeModel,
+    pub tool_price: f64,
+}
+
+/// The baseline's figures.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Baseline {
+    pub tool: String,
+    pub diameter_mm: f64,
+    /// Contour-parallel levels over the whole depth.
+    pub levels: usize,
+    pub axial_depth_mm: f64,
+    pub radial_depth_mm: f64,
+    pub feed_mm_min: f64,
+    #[serde(flatten)]
+    pub figures: Figures,
+    pub consumption: Consumption,
+    pub cost: Cost,
+    pub removed_volume_mm3: f64,
+    #[serde(skip)]
+    pub time: MachiningTime,
+}
+
+/// Plans and estimates the baseline for `cavity`.
+pub fn plan_baseline(
+    cavity: &Cavity,
+    spec: &BaselineSpec,
+    options: &ProcessOptions,
+    progress: &dyn Progress,
+) -> Result<Baseline, CoreError> {
+    spec.conditions.validate()?;
+    spec.life.validate()?;
+    let c = spec.conditions;
+    let feed = feed_mm_min(c.fz_mm, spec.tool.flutes, c.spindle_rpm);
+    let mut moves = Vec::new();
+    let (mut worn, mut cutting, mut removed, mut levels) = (0.0, 0.0, 0.0, 0usize);
+    // Consecutive layers of one contour are one span: the thin levels run through them.
+    let mut spans: Vec<CavityLayer> = Vec::new();
+    for l in &cavity.layers {
+        match spans.last_mut() {
+            Some(s) if s.pocket == l.pocket && (s.z_bottom_mm - l.z_top_mm).abs() < LENGTH_EPS_MM => {
+                s.z_bottom_mm = l.z_bottom_mm;
+            }
+            _ => spans.push(l.clone()),
+        }
+    }
+    for (i, layer) in spans.iter().enumerate() {
+        progress.checkpoint()?;
+        let zs = z_levels(layer.z_top_mm, layer.z_bottom_mm, c.ad_mm)?;
+        let Some(&first_z) = zs.first() else { continue };
+        let level = contour_parallel(
+            &layer.pocket,
+            &PocketingSpec {
+                tool_radius_mm: spec.tool.radius_mm(),
+                radial_depth_mm: c.rd_mm,
+                allowance_mm: options.allowance_mm,
+                z_mm: first_z,
+                safe_z_mm: options.safe_z_mm,
+                feed_mm_min: feed,
+                plunge_feed_mm_min: DEFAULT_PLUNGE_FEED_RATIO * feed,
+                spindle_rpm: c.spindle_rpm,
+                climb: true,
+            },
+        )?
+        .toolpath;
+        // Every level of a layer is as thick as the first: simulate the first, count the rest alike.
+        let analysis = AnalysisSpec {
+            tool: spec.tool,
+            stock: vec![StockRegion::Pocket(layer.pocket.clone())],
+            open: Vec::new(),
+            z_top: layer.z_top_mm,
+            z_bottom: first_z,
+            force_model: None,
+            default_spindle_rpm: Some(c.spindle_rpm),
+            rapid_mm_min: options.machine.rapid_mm_min,
+            sample_spacing_mm: options.sample_spacing_mm,
+            cell_mm: None,
+            alpha_limit_deg: options.alpha_limit_deg,
+            series_points: 0,
+        };
+        let (mut level_worn, mut level_cut) = (0.0, 0.0);
+        let stage = Stage::nth(progress, 0.0, 0.9, i, spans.len());
+        let flutes = f64::from(spec.tool.flutes);
+        let summary = analyze_with(&level, &analysis, &stage, |r| {
+            let alpha_deg = r.contact.alpha_rad.to_degrees();
+            if alpha_deg <= 0.0 || r.sample.rapid {
+                return;
+            }
+            let rpm = r.sample.spindle_rpm.unwrap_or(c.spindle_rpm);
+            let fz_p_mm = r.sample.feed_mm_min / (flutes * rpm) * r.cutting_point_ratio;
+            let cut = WearCut { alpha_deg, arc_length_mm: r.arc_length_mm, fz_p_mm, force_n: None };
+            level_worn += spec.life.wear_mm(r.sample.step_mm, &cut);
+            level_cut += r.sample.step_mm;
+        })?
+        .summary;
+        let n = zs.len() as f64;
+        worn += level_worn * n;
+        cutting += level_cut * n;
+        removed += summary.removed_volume_mm3 * n;
+        levels += zs.len();
+        for z in &zs {
+            let moved = moved_down(&level, z - first_z, options.safe_z_mm);
+            append_over(&mut moves, &moved.moves, options.safe_z_mm);
+        }
+    }
+    let program = program(moves);
+    let time = machining_time(&program, &options.machine, &TimeOptions::default())?;
+    let (feed_len, rapid_len) = program.moves.iter().fold((0.0, 0.0), |(f, r), m| {
+        if matches!(m.motion, Motion::Rapid) {
+            (f, r + move_length(m))
+        } else {
+            (f + move_length(m), r)
+        }
+    });
+    let consumption = Consumption::new(worn, spec.life.life_edge_arc_mm(), cutting);
+    let rates = Rates {
+        machine_rate_per_hour: options.machine_rate_per_hour,
+        tool_price: spec.tool_price,
+        currency: options.currency.clone(),
+    };
+    let cost = cost(time.kinematic_min, consumption.ratio, &rates)?;
+    progress.report(1.0);
+    Ok(Baseline {
+        tool: spec.name.clone(),
+        diameter_mm: spec.tool.diameter_mm,
+        levels,
+        axial_depth_mm: c.ad_mm,
+        radial_depth_mm: c.rd_mm,
+        feed_mm_min: feed,
+        figures: Figures {
+            feed_length_mm: feed_len,
+            cutting_length_mm: cutting,
+            rapid_length_mm: rapid_len,
+            nominal_time_min: time.nominal_min,
+            kinematic_time_min: time.kinematic_min,
+            consumption: consumption.ratio,
+        },
+        consumption,
+        cost,
+        removed_volume_mm3: removed,
+        time,
+    })
+}

@@ -1,0 +1,222 @@
+//! What the process planner returns: the table of candidates, the chosen tool's plan per
+//! layer and step, its tuning, the program, and the comparison with the baseline.
+
+use super::baseline::Baseline;
+use super::cavity::{Cavity, LayerRole};
+use super::evaluate::{Evaluation, Figures, LayerFigures};
+use super::layer::LayerPlan;
+use super::spec::ToolCandidate;
+use super::tune::Tuning;
+use crate::core::insertion::{TreatmentKind, Verification};
+use serde::Serialize;
+
+/// Uncleared area below this counts as cleared, mm² per layer (the coverage raster's noise).
+pub const UNCLEARED_TOLERANCE_MM2: f64 = 1.0;
+
+/// What became of a candidate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CandidateStatus {
+    /// Planned and the cheapest: the job's tool.
+    Chosen,
+    /// Planned completely, but dearer.
+    Planned,
+    /// Too large for some of the cavity (not planned).
+    CannotReach,
+    /// Planned, but the plan gouges a wall or leaves material.
+    Incomplete,
+    /// The planner could not plan it (see the reason).
+    Unplannable,
+}
+
+/// One row of the table of candidates.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CandidateReport {
+    pub name: String,
+    pub diameter_mm: f64,
+    pub status: CandidateStatus,
+    pub reason: Option<String>,
+    /// Area of the cavity the tool cannot reach, mm² (over the layers).
+    pub unreachable_area_mm2: f64,
+    /// At the standard force, before tuning.
+    pub figures: Option<Figures>,
+    pub cost: Option<f64>,
+    pub machine_cost: Option<f64>,
+    pub tool_cost: Option<f64>,
+    /// Trochoids, z-cut stretches and openings over all layers.
+    pub trochoids: usize,
+    pub z_cuts: usize,
+    pub openings: usize,
+    /// Largest engagement left outside the z-cut regions, deg.
+    pub max_alpha_deg: Option<f64>,
+}
+
+impl CandidateReport {
+    pub(super) fn new(c: &ToolCandidate, unreachable_area_mm2: f64) -> Self {
+        CandidateReport {
+            name: c.name.clone(),
+            diameter_mm: c.tool.diameter_mm,
+            status: CandidateStatus::Planned,
+            reason: None,
+            unreachable_area_mm2,
+            figures: None,
+            cost: None,
+            machine_cost: None,
+            tool_cost: None,
+            trochoids: 0,
+            z_cuts: 0,
+            openings: 0,
+            max_alpha_deg: None,
+        }
+    }
+
+    /// Counts the treatments and marks the candidate incomplete when a layer's plan gouges
+    /// or leaves material.
+    pub(super) fn check_layers(&mut self, layers: &[LayerPlan]) {
+        let mut max_alpha: f64 = 0.0;
+        for l in layers {
+            let plan = &l.insertion;
+            let count = |k: TreatmentKind| plan.treatments.iter().filter(|t| t.kind == k).count();
+            self.trochoids += count(TreatmentKind::Trochoid);
+            self.z_cuts += count(TreatmentKind::ZCut);
+            self.openings += count(TreatmentKind::Opening);
+            let v: &Verification = &plan.verification;
+            max_alpha = max_alpha.max(v.outside_zcut.max_alpha_deg);
+            if self.status == CandidateStatus::Incomplete {
+                continue;
+            }
+            if v.gouges > 0 {
+                self.status = CandidateStatus::Incomplete;
+                self.reason = Some(format!("layer {}: the path comes closer to a wall than allowed", l.index));
+            } else if v.uncleared_area_mm2 > UNCLEARED_TOLERANCE_MM2 {
+                self.status = CandidateStatus::Incomplete;
+                self.reason = Some(format!(
+                    "layer {}: leaves {:.1} mm² the tool could reach uncut, near {:?}",
+                    l.index, v.uncleared_area_mm2, v.uncleared_at
+                ));
+            }
+        }
+        self.max_alpha_deg = Some(max_alpha);
+    }
+
+    pub(super) fn set_figures(&mut self, e: &Evaluation) {
+        self.figures = Some(e.total);
+        self.cost = Some(e.cost.total);
+        self.machine_cost = Some(e.cost.machine);
+        self.tool_cost = Some(e.cost.tool);
+    }
+}
+
+/// One layer of the chosen plan.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LayerReport {
+    pub index: usize,
+    pub role: LayerRole,
+    pub z_top_mm: f64,
+    pub z_bottom_mm: f64,
+    /// The layer above whose plan this one repeats lower down, if any.
+    pub copy_of: Option<usize>,
+    /// Trochoids, z-cut stretches and openings.
+    pub trochoids: usize,
+    pub z_cuts: usize,
+    pub openings: usize,
+    /// Engagement of the contour-parallel path before and after the treatments, deg.
+    pub base_max_alpha_deg: f64,
+    pub max_alpha_deg: f64,
+    pub verification_passed: bool,
+    pub gouges: usize,
+    pub uncleared_area_mm2: f64,
+    #[serde(flatten)]
+    pub figures: LayerFigures,
+}
+
+/// The proposed plan against the baseline.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Comparison {
+    /// Proposed over baseline.
+    pub kinematic_time_ratio: f64,
+    pub cutting_length_ratio: f64,
+    pub cost_ratio: f64,
+    /// Baseline time less the proposed time, min.
+    pub time_saved_min: f64,
+}
+
+/// The whole result.
+#[derive(Debug, Clone)]
+pub struct ProcessPlan {
+    pub candidates: Vec<CandidateReport>,
+    /// Index of the chosen candidate.
+    pub chosen: usize,
+    pub layers: Vec<LayerReport>,
+    /// The chosen tool's job at the tuned conditions (its program included).
+    pub evaluation: Evaluation,
+    pub tuning: Tuning,
+    pub baseline: Option<Baseline>,
+    pub comparison: Option<Comparison>,
+    pub cavity_volume_mm3: f64,
+    pub min_concave_radius_mm: Option<f64>,
+    pub warnings: Vec<String>,
+}
+
+#[allow(clippy::too_many_arguments)]
+pub(super) fn assemble(
+    cavity: &Cavity,
+    candidates: Vec<CandidateReport>,
+    chosen: usize,
+    layers: &[LayerPlan],
+    evaluation: Evaluation,
+    tuning: Tuning,
+    baseline: Option<Baseline>,
+    mut warnings: Vec<String>,
+) -> ProcessPlan {
+    let layer_reports = layers
+        .iter()
+        .zip(&evaluation.layers)
+        .map(|(l, figures)| {
+            let plan = &l.insertion;
+            let count = |k: TreatmentKind| plan.treatments.iter().filter(|t| t.kind == k).count();
+            let v = &plan.verification;
+            LayerReport {
+                index: l.index,
+                role: l.role,
+                z_top_mm: l.z_top_mm,
+                z_bottom_mm: l.z_bottom_mm,
+                copy_of: l.copy_of,
+                trochoids: count(TreatmentKind::Trochoid),
+                z_cuts: count(TreatmentKind::ZCut),
+                openings: count(TreatmentKind::Opening),
+                base_max_alpha_deg: plan.base_max_alpha_deg,
+                max_alpha_deg: v.outside_zcut.max_alpha_deg,
+                verification_passed: v.passed,
+                gouges: v.gouges,
+                uncleared_area_mm2: v.uncleared_area_mm2,
+                figures: figures.clone(),
+            }
+        })
+        .collect();
+    for l in layers.iter().filter(|l| l.copy_of.is_none()) {
+        warnings.extend(l.insertion.warnings.iter().map(|w| format!("layer {}: {w}", l.index)));
+    }
+    warnings.extend(evaluation.warnings.iter().cloned());
+    let comparison = baseline.as_ref().map(|b| {
+        let ratio = |a: f64, b: f64| if b > 0.0 { a / b } else { 0.0 };
+        Comparison {
+            kinematic_time_ratio: ratio(evaluation.total.kinematic_time_min, b.figures.kinematic_time_min),
+            cutting_length_ratio: ratio(evaluation.total.cutting_length_mm, b.figures.cutting_length_mm),
+            cost_ratio: ratio(evaluation.cost.total, b.cost.total),
+            time_saved_min: b.figures.kinematic_time_min - evaluation.total.kinematic_time_min,
+        }
+    });
+    ProcessPlan {
+        candidates,
+        chosen,
+        layers: layer_reports,
+        evaluation,
+        tuning,
+        baseline,
+        comparison,
+        cavity_volume_mm3: cavity.volume_mm3(),
+        min_concave_radius_mm: cavity.min_concave_radius_mm(),
+        warnings,
+    }
+}
