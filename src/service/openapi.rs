@@ -5,6 +5,7 @@ use crate::service::jobs::analysis_result::AnalysisResult;
 use crate::service::jobs::conditions::ConditionsResult;
 use crate::service::jobs::costing_result::CostingResult;
 use crate::service::jobs::feeds_result::FeedsResult;
+use crate::service::jobs::plans_result::PlanResult;
 use crate::service::jobs::trochoids_result::TrochoidsResult;
 use crate::service::state::AppState;
 use utoipa::OpenApi;
@@ -22,7 +23,7 @@ use utoipa_axum::router::OpenApiRouter;
         (name = "database", description = "The cutting-condition database"),
         (name = "health", description = "Liveness and readiness")
     ),
-    components(schemas(Problem, FieldError, ConditionsResult, AnalysisResult, FeedsResult, CostingResult, TrochoidsResult))
+    components(schemas(Problem, FieldError, ConditionsResult, AnalysisResult, FeedsResult, CostingResult, TrochoidsResult, PlanResult))
 )]
 pub struct ApiDoc;
 

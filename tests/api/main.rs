@@ -13,4 +13,5 @@ mod feeds;
 mod fit;
 mod jobs;
 mod openapi;
+mod plans;
 mod trochoids;

@@ -100,6 +100,37 @@ impl Cavity {
     }
 }
 
+/// What the job is asked to cut: fixed layers, or one contour to a depth, which each
+/// candidate cuts in layers of its own axial depths ([`layers_by_depth`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum CavityInput {
+    Layers(Cavity),
+    Depth { pocket: Pocket, z_top_mm: f64, z_bottom_mm: f64 },
+}
+
+impl CavityInput {
+    /// The layers a tool of rough axial depth `rough_ad_mm` and last-layer depth
+    /// `last_ad_mm` cuts.
+    pub fn layers_for(&self, rough_ad_mm: f64, last_ad_mm: f64) -> Result<Cavity, CoreError> {
+        match self {
+            CavityInput::Layers(c) => Ok(c.clone()),
+            CavityInput::Depth { pocket, z_top_mm, z_bottom_mm } => {
+                layers_by_depth(pocket, *z_top_mm, *z_bottom_mm, rough_ad_mm, last_ad_mm)
+            }
+        }
+    }
+
+    /// The whole cavity as one layer per contour (what the baseline levels run through).
+    pub fn whole(&self) -> Cavity {
+        match self {
+            CavityInput::Layers(c) => c.clone(),
+            CavityInput::Depth { pocket, z_top_mm, z_bottom_mm } => Cavity {
+                layers: vec![CavityLayer { pocket: pocket.clone(), z_top_mm: *z_top_mm, z_bottom_mm: *z_bottom_mm }],
+            },
+        }
+    }
+}
+
 /// One contour cut to a depth: layers of the rough axial depth `rough_ad_mm` (equal, at
 /// most it) and a last layer of `last_ad_mm`, as seed 004 case study I cuts 35 mm as 3 × 10
 /// and 1 × 5. A depth of at most `last_ad_mm` is one (last) layer.

@@ -29,7 +29,7 @@ pub mod tune;
 mod tests;
 
 pub use baseline::{plan_baseline, Baseline, BaselineSpec};
-pub use cavity::{layers_by_depth, min_concave_radius_mm, Cavity, CavityLayer, LayerRole};
+pub use cavity::{layers_by_depth, min_concave_radius_mm, Cavity, CavityInput, CavityLayer, LayerRole};
 pub use evaluate::{Evaluation, Figures, LayerFigures, StepFigures};
 pub use layer::{LayerPlan, Step};
 pub use report::{CandidateReport, CandidateStatus, Comparison, LayerReport, ProcessPlan};
@@ -50,7 +50,12 @@ const CANDIDATES_SHARE: f64 = 0.75;
 const TUNING_SHARE: f64 = 0.15;
 
 /// Checks what can be checked before planning.
-pub fn check_process(cavity: &Cavity, candidates: &[ToolCandidate], options: &ProcessOptions) -> Result<(), CoreError> {
+pub fn check_process(
+    input: &CavityInput,
+    candidates: &[ToolCandidate],
+    options: &ProcessOptions,
+) -> Result<(), CoreError> {
+    let cavity = input.whole();
     cavity.validate()?;
     options.validate()?;
     if candidates.is_empty() {
@@ -58,6 +63,7 @@ pub fn check_process(cavity: &Cavity, candidates: &[ToolCandidate], options: &Pr
     }
     for c in candidates {
         c.validate()?;
+        input.layers_for(c.roughing.ad_mm, c.intermediate.ad_mm)?.validate()?;
     }
     if options.safe_z_mm <= cavity.top_mm() {
         return Err(CoreError::invalid(
@@ -76,13 +82,14 @@ fn unreachable_mm2(cavity: &Cavity, radius_mm: f64, allowance_mm: f64) -> f64 {
 /// Plans `cavity` with each of `candidates`, chooses the cheapest complete one, tunes it, and
 /// (with `baseline`) plans the conventional baseline.
 pub fn plan_process(
-    cavity: &Cavity,
+    input: &CavityInput,
     candidates: &[ToolCandidate],
     options: &ProcessOptions,
     baseline: Option<&BaselineSpec>,
     progress: &dyn Progress,
 ) -> Result<ProcessPlan, CoreError> {
-    check_process(cavity, candidates, options)?;
+    check_process(input, candidates, options)?;
+    let cavity = &input.whole();
     let mut warnings = Vec::new();
     let concave = cavity.min_concave_radius_mm();
     if concave.is_some_and(|r| r <= crate::core::tolerance::LENGTH_EPS_MM) {
@@ -112,7 +119,8 @@ pub fn plan_process(
             continue;
         }
         let plan_stage = Stage { inner: &stage, from: 0.0, span: 0.7 };
-        let layers = match layer::plan_layers(cavity, c, options, &plan_stage) {
+        let layered = input.layers_for(c.roughing.ad_mm, c.intermediate.ad_mm)?;
+        let layers = match layer::plan_layers(&layered, c, options, &plan_stage) {
             Ok(l) => l,
             Err(CoreError::Cancelled) => return Err(CoreError::Cancelled),
             Err(e) => {

@@ -61,9 +61,10 @@ fn ball() -> BaselineSpec {
 
 #[test]
 fn a_small_box_cavity_is_planned_with_the_tool_that_reaches_its_corners_and_compared_with_the_ball_baseline() {
-    let cavity = layers_by_depth(&rounded_box(40.0, 30.0, 6.0), 0.0, -12.0, 10.0, 5.0).unwrap();
+    let input = CavityInput::Depth { pocket: rounded_box(40.0, 30.0, 6.0), z_top_mm: 0.0, z_bottom_mm: -12.0 };
+    let cavity = input.whole();
     let candidates = [ten_mm(10.0), ten_mm(16.0)];
-    let plan = plan_process(&cavity, &candidates, &options(), Some(&ball()), &NoProgress).unwrap();
+    let plan = plan_process(&input, &candidates, &options(), Some(&ball()), &NoProgress).unwrap();
 
     // The 16 mm tool cannot reach the R6 corners; the 10 mm one is chosen.
     assert_eq!(plan.candidates[1].status, CandidateStatus::CannotReach);
@@ -125,7 +126,8 @@ fn a_cavity_no_candidate_can_reach_is_refused_with_every_reason() {
         Vertex::new(40.0, 12.0, 0.0),
         Vertex::new(0.0, 12.0, 1.0),
     ]);
-    let cavity = layers_by_depth(&Pocket::new(slot, vec![]).unwrap(), 0.0, -5.0, 10.0, 5.0).unwrap();
+    let cavity =
+        CavityInput::Layers(layers_by_depth(&Pocket::new(slot, vec![]).unwrap(), 0.0, -5.0, 10.0, 5.0).unwrap());
     let e = plan_process(&cavity, &[ten_mm(16.0)], &options(), None, &NoProgress);
     // Alone, it is the smallest candidate: it is planned, and its plan cannot cut the slot.
     assert!(e.is_err(), "{:?}", e.map(|p| p.candidates));
@@ -133,7 +135,7 @@ fn a_cavity_no_candidate_can_reach_is_refused_with_every_reason() {
 
 #[test]
 fn bad_options_are_refused_naming_the_field() {
-    let cavity = layers_by_depth(&rounded_box(40.0, 30.0, 6.0), 0.0, -12.0, 10.0, 5.0).unwrap();
+    let cavity = CavityInput::Layers(layers_by_depth(&rounded_box(40.0, 30.0, 6.0), 0.0, -12.0, 10.0, 5.0).unwrap());
     let mut o = options();
     o.target_consumption = 1.5;
     let e = check_process(&cavity, &[ten_mm(10.0)], &o).unwrap_err();

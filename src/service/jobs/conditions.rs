@@ -83,6 +83,17 @@ pub struct ToolGeometry {
     pub corner_radius_mm: f64,
 }
 
+impl From<EndMill> for ToolGeometry {
+    fn from(t: EndMill) -> Self {
+        ToolGeometry {
+            tool_type: t.tool_type,
+            diameter_mm: t.diameter_mm,
+            flutes: t.flutes,
+            corner_radius_mm: t.corner_radius_mm,
+        }
+    }
+}
+
 impl From<ToolGeometry> for EndMill {
     fn from(g: ToolGeometry) -> Self {
         EndMill {

@@ -169,19 +169,7 @@ pub async fn prepare(pool: &SqlitePool, request: CostingRequest) -> Result<Costi
         .bind(base.tool.id)
         .fetch_one(pool)
         .await?;
-    let machine = sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = ?")
-        .bind(base.machine.id)
-        .fetch_one(pool)
-        .await?
-        .data;
-    let limits = MachineLimits {
-        rapid_mm_min: machine.rapid_mm_min,
-        max_feed_mm_min: machine.max_feed_mm_min,
-        accel_mm_s2: [machine.accel_x_mm_s2, machine.accel_y_mm_s2, machine.accel_z_mm_s2],
-        jerk_mm_s3: [machine.jerk_x_mm_s3, machine.jerk_y_mm_s3, machine.jerk_z_mm_s3],
-        tool_change_s: machine.tool_change_s,
-    };
-    limits.validate().map_err(|e| ApiError::field("machine_id", format!("machine {}: {e}", base.machine.id)))?;
+    let limits = machine_limits(pool, base.machine.id).await?;
     let prepared = CostingPrepared {
         job_program,
         tool_life_id: life.id,
@@ -209,6 +197,21 @@ pub async fn prepare(pool: &SqlitePool, request: CostingRequest) -> Result<Costi
     .await
     .map_err(|e| ApiError::Internal(e.to_string()))??;
     Ok(prepared)
+}
+
+/// The kinematic limits of machine `id` (which must exist); errors name `machine_id`.
+pub async fn machine_limits(pool: &SqlitePool, id: i64) -> Result<MachineLimits, ApiError> {
+    let machine =
+        sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = ?").bind(id).fetch_one(pool).await?.data;
+    let limits = MachineLimits {
+        rapid_mm_min: machine.rapid_mm_min,
+        max_feed_mm_min: machine.max_feed_mm_min,
+        accel_mm_s2: [machine.accel_x_mm_s2, machine.accel_y_mm_s2, machine.accel_z_mm_s2],
+        jerk_mm_s3: [machine.jerk_x_mm_s3, machine.jerk_y_mm_s3, machine.jerk_z_mm_s3],
+        tool_change_s: machine.tool_change_s,
+    };
+    limits.validate().map_err(|e| ApiError::field("machine_id", format!("machine {id}: {e}")))?;
+    Ok(limits)
 }
 
 impl CostingPrepared {

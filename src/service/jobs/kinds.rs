@@ -6,6 +6,7 @@ use super::conditions::{self, ConditionsRequest};
 use super::costing::{self, CostingRequest};
 use super::feeds::{self, FeedsRequest};
 use super::model::JobKind;
+use super::plans::{self, PlanRequest};
 use super::trochoids::{self, TrochoidsRequest};
 use crate::core::progress::Progress;
 use crate::core::CoreError;
@@ -24,6 +25,7 @@ pub enum JobInput {
     Feeds(Box<FeedsRequest>),
     Costing(Box<CostingRequest>),
     Trochoids(Box<TrochoidsRequest>),
+    Plan(Box<PlanRequest>),
 }
 
 /// What a finished job hands back.
@@ -82,6 +84,10 @@ pub async fn prepare(
                 let request: TrochoidsRequest = from_value(input)?;
                 to_json(&trochoids::prepare(pool, request).await?)
             }
+            JobKind::Plan => {
+                let request: PlanRequest = from_value(input)?;
+                to_json(&plans::prepare(pool, request).await?)
+            }
         }
     }
     .await;
@@ -124,6 +130,13 @@ pub fn run(kind: JobKind, input: &str, prepared: &str, progress: &dyn Progress) 
             let request = serde_json::from_str(input).map_err(unreadable)?;
             let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
             let (result, text) = trochoids::run(request, prepared, progress)?;
+            program = Some(text);
+            serde_json::to_value(result).map_err(unreadable)?
+        }
+        JobKind::Plan => {
+            let request = serde_json::from_str(input).map_err(unreadable)?;
+            let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
+            let (result, text) = plans::run(request, prepared, progress)?;
             program = Some(text);
             serde_json::to_value(result).map_err(unreadable)?
         }

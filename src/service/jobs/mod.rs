@@ -12,6 +12,8 @@ pub mod inputs;
 pub mod kinds;
 pub mod model;
 pub mod output;
+pub mod plans;
+pub mod plans_result;
 pub mod queue;
 pub mod routes;
 pub mod store;

@@ -56,6 +56,9 @@ pub enum JobKind {
     /// Trochoid cycles and z-cut division inserted where a pocket's contour-parallel path
     /// overloads the tool (`POST /v1/trochoids`).
     Trochoids,
+    /// The whole flow for a cavity: tool choice, layers, feeds, cost, tuning, baseline
+    /// (`POST /v1/plans`).
+    Plan,
 }
 
 impl JobKind {
@@ -66,11 +69,12 @@ impl JobKind {
             JobKind::Feeds => "feeds",
             JobKind::Costing => "costing",
             JobKind::Trochoids => "trochoids",
+            JobKind::Plan => "plan",
         }
     }
 
     pub fn parse(text: &str) -> Option<JobKind> {
-        [JobKind::Conditions, JobKind::Analysis, JobKind::Feeds, JobKind::Costing, JobKind::Trochoids]
+        [JobKind::Conditions, JobKind::Analysis, JobKind::Feeds, JobKind::Costing, JobKind::Trochoids, JobKind::Plan]
             .into_iter()
             .find(|k| k.as_str() == text)
     }

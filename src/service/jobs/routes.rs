@@ -6,6 +6,7 @@ use super::costing::CostingRequest;
 use super::feeds::FeedsRequest;
 use super::kinds::{self, JobInput};
 use super::model::{Job, JobKind, JobStatus, JobSummary};
+use super::plans::PlanRequest;
 use super::store;
 use super::trochoids::TrochoidsRequest;
 use crate::service::error::{ApiError, Problem};
@@ -317,6 +318,33 @@ pub async fn create_trochoids(
     submit(&state, JobKind::Trochoids, input, "", &headers).await
 }
 
+/// Plans a cavity from end to end (job kind `plan`; seed 002 Fig. 1 and §2.6, seed 004
+/// Table 1).
+///
+/// For each candidate flat end mill (6–16 mm from the database, or `diameters_mm`) that can
+/// reach the whole cavity, every layer is planned (helical entries, spiral hole expansion,
+/// trochoidal grooving of the critical regions, z-cut division, contour-parallel rough side
+/// cutting; the last layer intermediate-rough), the feeds are optimised for a constant
+/// cutting force, and time (nominal and kinematic), tool life and cost are estimated. The
+/// cheapest complete candidate is chosen and its force target tuned so the job uses about
+/// 90 % of one tool. The conventional ball-end baseline is planned for the comparison. The
+/// finished job's `result` is a `PlanResult`; the NC program is at
+/// `GET /v1/jobs/{id}/program`. Progress is reported while it runs; `DELETE` cancels it.
+#[utoipa::path(post, path = "/v1/plans", tag = "jobs", operation_id = "planCavity", request_body = PlanRequest,
+    params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
+    responses(
+        (status = 201, description = "Finished within the preferred wait; result is a PlanResult", body = Job),
+        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
+        (status = 422, description = "A refused field or contour vertex", body = Problem, content_type = "application/problem+json")))]
+pub async fn create_plan(
+    State(state): State<AppState>,
+    headers: HeaderMap,
+    ApiJson(input): ApiJson<serde_json::Value>,
+) -> Result<Response, ApiError> {
+    submit(&state, JobKind::Plan, input, "", &headers).await
+}
+
 /// The job routes.
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
@@ -328,6 +356,7 @@ pub fn router() -> OpenApiRouter<AppState> {
         .routes(routes!(create_feeds))
         .routes(routes!(create_costing))
         .routes(routes!(create_trochoids))
+        .routes(routes!(create_plan))
 }
 
 #[cfg(test)]

@@ -1,0 +1,519 @@
+//! The `plan` job (seed 002 Fig. 1 and Fig. 7, §2.6; seed 004 Table 1; MODEL.md §8–11): a
+//! cavity in, the cheapest complete roughing program out, with the table of candidate tools,
+//! a breakdown per layer and step, the tuning to about 90 % of one tool, and the comparison
+//! with the conventional ball-end baseline.
+
+use super::analysis::{resolve, PathJobRefs, Resolved};
+use super::conditions::NamedRef;
+use super::costing::machine_limits;
+use super::inputs::{under, vertices, ContourInput};
+use super::output::OutputOptions;
+use super::plans_result::PlanResult;
+use super::trochoids::DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM;
+use crate::core::conditions::{feed_mm_min, standard_centres, CuttingConditions};
+use crate::core::geometry::{loops_from_dxf, pocket_from_loops, Pocket};
+use crate::core::insertion::DEFAULT_INSERTION_ALPHA_LIMIT_DEG;
+use crate::core::kinematics::MachineLimits;
+use crate::core::nc::write_program;
+use crate::core::operation::Operation;
+use crate::core::process::{
+    check_process, plan_process, BaselineSpec, Cavity, CavityInput, CavityLayer, ProcessOptions, ToolCandidate,
+    DEFAULT_MAX_FORCE_FACTOR, DEFAULT_TARGET_CONSUMPTION,
+};
+use crate::core::progress::Progress;
+use crate::core::tool::{EndMill, ToolType};
+use crate::core::tool_life::ToolLifeModel;
+use crate::core::CoreError;
+use crate::service::error::{ApiError, Validator};
+use crate::service::jobs::feeds::MAX_FEED_PER_STANDARD;
+use crate::service::lookup;
+use serde::{Deserialize, Serialize};
+use sqlx::SqlitePool;
+use utoipa::ToSchema;
+
+/// The candidate diameters of seed 002 §2.6 (a), mm.
+pub const CANDIDATE_DIAMETER_RANGE_MM: (f64, f64) = (6.0, 16.0);
+/// The baseline's ball end mill: R5 (seed 004 §3.3), mm.
+pub const BASELINE_BALL_DIAMETER_MM: f64 = 10.0;
+
+/// One layer of the cavity.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LayerInput {
+    pub contour: ContourInput,
+    pub z_top: f64,
+    pub z_bottom: f64,
+}
+
+/// A cavity to rough: `layers` (z range and contour each, top first), or one `contour` (or
+/// `dxf`) from `z_top` to `z_bottom`, which is cut in layers of the rough axial depth and a
+/// last intermediate-rough layer.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({
+    "contour": {"outer": [[8, 0, 0.414214], [90, 0], [90, 62, 0.414214], [82, 70], [0, 70], [0, 8, 0.414214]]},
+    "z_top": 0, "z_bottom": -12, "diameters_mm": [8, 10]
+}))]
+pub struct PlanRequest {
+    pub contour: Option<ContourInput>,
+    pub dxf: Option<String>,
+    pub z_top: Option<f64>,
+    pub z_bottom: Option<f64>,
+    pub layers: Option<Vec<LayerInput>>,
+    /// `square` (default) or `radius`: the flat end mills to choose from.
+    pub tool_type: Option<ToolType>,
+    /// The candidate diameters (default: every tool of the type from 6 to 16 mm).
+    pub diameters_mm: Option<Vec<f64>>,
+    pub material_id: Option<i64>,
+    /// Material name (default SKD61).
+    pub material: Option<String>,
+    pub machine_id: Option<i64>,
+    pub cost_rates_id: Option<i64>,
+    /// Engagement limit of the critical regions, deg (default 40).
+    pub alpha_limit_deg: Option<f64>,
+    /// Stock left on the walls, mm (default 0).
+    pub allowance_mm: Option<f64>,
+    /// Height of the moves over the workpiece, mm (default the top + 5).
+    pub safe_z: Option<f64>,
+    /// Simulation sample spacing, mm (default min(0.05, D/100)).
+    pub sample_spacing_mm: Option<f64>,
+    /// Tune the chosen tool to use `target_consumption` of its life (default true).
+    pub tune: Option<bool>,
+    /// Share of one tool's life to use, 0–1 (default 0.9, seed 002 §2.6).
+    pub target_consumption: Option<f64>,
+    /// Highest tuned force, times the standard force (default 2).
+    pub max_force_factor: Option<f64>,
+    /// Plan the conventional baseline (R5 ball, Ad 0.6) for the comparison (default true).
+    pub baseline: Option<bool>,
+    #[serde(default)]
+    pub output: OutputOptions,
+}
+
+/// One candidate as resolved from the database.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct CandidatePrepared {
+    pub tool_id: i64,
+    pub name: String,
+    pub tool: EndMill,
+    pub roughing: CuttingConditions,
+    pub intermediate: CuttingConditions,
+    pub grooving: CuttingConditions,
+    pub force_model: crate::core::force_model::ForceModel,
+    pub standard_force_n: f64,
+    pub life_m: f64,
+    pub gamma_table: Vec<(f64, f64)>,
+    pub force_exponent: f64,
+    pub standard_arc_length_mm: f64,
+    pub standard_fz_mm: f64,
+    pub min_feed_mm_min: f64,
+    pub max_feed_mm_min: f64,
+    pub tool_price: f64,
+}
+
+/// The baseline tool as resolved.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct BaselinePrepared {
+    pub tool_id: i64,
+    pub name: String,
+    pub tool: EndMill,
+    pub conditions: CuttingConditions,
+    pub life_m: f64,
+    pub gamma_table: Vec<(f64, f64)>,
+    pub force_exponent: f64,
+    pub tool_price: f64,
+}
+
+/// What the request resolved to.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct PlanPrepared {
+    pub material: NamedRef,
+    pub machine: NamedRef,
+    pub limits: MachineLimits,
+    pub cost_rates: NamedRef,
+    pub machine_rate_per_hour: f64,
+    pub currency: String,
+    pub candidates: Vec<CandidatePrepared>,
+    /// Tools of the type in the range the database cannot plan with, and why.
+    pub skipped: Vec<String>,
+    pub baseline: Option<BaselinePrepared>,
+    /// For the program writer (the chosen tool is set at run time).
+    pub writer_base: super::analysis::AnalysisPrepared,
+}
+
+fn validate(r: &PlanRequest) -> Result<(), ApiError> {
+    let mut v = Validator::new();
+    let single = r.contour.is_some() || r.dxf.is_some();
+    v.check(single != r.layers.is_some(), "layers", "give either layers, or contour (or dxf) with z_top and z_bottom");
+    v.check(!(r.contour.is_some() && r.dxf.is_some()), "contour", "give exactly one of contour and dxf");
+    if single {
+        match (r.z_top, r.z_bottom) {
+            (Some(top), Some(bottom)) => {
+                v.finite("z_top", top);
+                v.finite("z_bottom", bottom);
+                v.check(bottom < top, "z_bottom", "must be below z_top");
+            }
+            _ => v.check(false, "z_bottom", "z_top and z_bottom are needed with contour or dxf"),
+        }
+    }
+    if let Some(layers) = &r.layers {
+        v.check(!layers.is_empty(), "layers", "needs at least one layer");
+        for (i, l) in layers.iter().enumerate() {
+            v.finite(&format!("layers[{i}].z_top"), l.z_top);
+            v.finite(&format!("layers[{i}].z_bottom"), l.z_bottom);
+            v.check(l.z_bottom < l.z_top, &format!("layers[{i}].z_bottom"), "must be below its z_top");
+        }
+    }
+    v.check(
+        !matches!(r.tool_type, Some(ToolType::Ball)),
+        "tool_type",
+        "the proposed strategy needs flat end mills: square or radius",
+    );
+    if let Some(ds) = &r.diameters_mm {
+        v.check(!ds.is_empty(), "diameters_mm", "needs at least one diameter");
+        for (i, d) in ds.iter().enumerate() {
+            v.positive(&format!("diameters_mm[{i}]"), *d);
+        }
+    }
+    if let Some(a) = r.alpha_limit_deg {
+        v.within("alpha_limit_deg", a, 5.0, 179.0);
+    }
+    if let Some(a) = r.allowance_mm {
+        v.non_negative("allowance_mm", a);
+    }
+    if let Some(z) = r.safe_z {
+        v.finite("safe_z", z);
+    }
+    if let Some(s) = r.sample_spacing_mm {
+        v.within("sample_spacing_mm", s, 1e-3, 1.0);
+    }
+    if let Some(t) = r.target_consumption {
+        v.within("target_consumption", t, 0.05, 1.0);
+    }
+    if let Some(k) = r.max_force_factor {
+        v.within("max_force_factor", k, 1.0, 4.0);
+    }
+    r.output.validate(&mut v);
+    v.finish()
+}
+
+/// Reads a contour; errors name `field.outer[i]` or `field.islands[k][i]`.
+fn read_contour(field: &str, c: &ContourInput) -> Result<Pocket, ApiError> {
+    let outer = vertices(&format!("{field}.outer"), &c.outer)?;
+    let islands = c
+        .islands
+        .iter()
+        .enumerate()
+        .map(|(i, island)| vertices(&format!("{field}.islands[{i}]"), island))
+        .collect::<Result<Vec<_>, _>>()?;
+    Pocket::new(outer, islands).map_err(|e| under(field, e))
+}
+
+/// The cavity of the request: its layers, or its contour and depth.
+fn read_cavity(r: &PlanRequest) -> Result<CavityInput, ApiError> {
+    if let Some(layers) = &r.layers {
+        let layers = layers
+            .iter()
+            .enumerate()
+            .map(|(i, l)| {
+                Ok(CavityLayer {
+                    pocket: read_contour(&format!("layers[{i}].contour"), &l.contour)?,
+                    z_top_mm: l.z_top,
+                    z_bottom_mm: l.z_bottom,
+                })
+            })
+            .collect::<Result<Vec<_>, ApiError>>()?;
+        return Ok(CavityInput::Layers(Cavity { layers }));
+    }
+    let pocket = match (&r.contour, &r.dxf) {
+        (Some(c), None) => read_contour("contour", c)?,
+        (None, Some(text)) => {
+            let loops = loops_from_dxf(text).map_err(|e| under("dxf", e))?;
+            pocket_from_loops(loops).map_err(|e| under("dxf", e))?
+        }
+        _ => return Err(ApiError::field("contour", "give exactly one of contour and dxf")),
+    };
+    Ok(CavityInput::Depth { pocket, z_top_mm: r.z_top.unwrap_or(0.0), z_bottom_mm: r.z_bottom.unwrap_or(0.0) })
+}
+
+/// Resolves one candidate tool; `Err(reason)` when the database lacks what it needs.
+async fn resolve_candidate(
+    pool: &SqlitePool,
+    tool_id: i64,
+    material_id: i64,
+    machine_id: i64,
+) -> Result<Result<(CandidatePrepared, super::analysis::AnalysisPrepared), String>, ApiError> {
+    let refs = PathJobRefs {
+        tool_id: Some(tool_id),
+        tool_type: None,
+        diameter_mm: None,
+        material_id: Some(material_id),
+        material: None,
+        machine_id: Some(machine_id),
+        spindle_rpm: None,
+    };
+    let Resolved { prepared: base, standard, machine_max_feed_mm_min } = resolve(pool, &refs).await?;
+    let name = base.tool.name.clone();
+    let row = |op: Operation| async move { lookup::standard_conditions(pool, tool_id, material_id, op).await };
+    let (Some(standard), Some(model)) = (standard, base.force_model.as_ref()) else {
+        return Ok(Err(format!("{name}: no standard side-cutting conditions or force model")));
+    };
+    let (Some(rough), Some(inter), Some(groove)) = (
+        row(Operation::RoughSideCutting).await?,
+        row(Operation::IntermediateRoughSideCutting).await?,
+        row(Operation::TrochoidalGrooving).await?,
+    ) else {
+        return Ok(Err(format!(
+            "{name}: needs rough, intermediate-rough and trochoidal-grooving conditions in {}",
+            base.material.name
+        )));
+    };
+    let Some(life) = lookup::tool_life(pool, tool_id, material_id).await? else {
+        return Ok(Err(format!("{name}: no tool-life data in {}", base.material.name)));
+    };
+    let tool: EndMill = base.tool.geometry.into();
+    let s = standard.data;
+    let (t_um, arc_mm) = standard_centres(tool.radius_mm(), s.conditions())?;
+    let standard_force_n = model.model.force_n(t_um, arc_mm, model.model.ad_ref_mm);
+    let standard_feed = feed_mm_min(s.fz_mm, tool.flutes, s.spindle_rpm);
+    let price = sqlx::query_scalar::<_, Option<f64>>("SELECT price FROM tools WHERE id = ?")
+        .bind(tool_id)
+        .fetch_one(pool)
+        .await?;
+    let rates = lookup::cost_rates(pool, None).await?;
+    let candidate = CandidatePrepared {
+        tool_id,
+        name,
+        tool,
+        roughing: rough.data.conditions(),
+        intermediate: inter.data.conditions(),
+        grooving: groove.data.conditions(),
+        force_model: model.model,
+        standard_force_n,
+        life_m: life.data.life_m,
+        gamma_table: life.data.gamma_table.iter().map(|g| (g.0, g.1)).collect(),
+        force_exponent: life.data.force_exponent,
+        standard_arc_length_mm: arc_mm,
+        standard_fz_mm: s.fz_mm,
+        min_feed_mm_min: feed_mm_min(s.fz_min_mm, tool.flutes, s.spindle_rpm),
+        max_feed_mm_min: (MAX_FEED_PER_STANDARD * standard_feed).min(machine_max_feed_mm_min),
+        tool_price: price.unwrap_or(rates.data.default_tool_price),
+    };
+    Ok(Ok((candidate, base)))
+}
+
+/// Checks the request and resolves the candidates, the baseline, the machine and the rates.
+pub async fn prepare(pool: &SqlitePool, request: PlanRequest) -> Result<PlanPrepared, ApiError> {
+    validate(&request)?;
+    let material = lookup::material(pool, request.material_id, request.material.as_deref()).await?;
+    let tool_type = request.tool_type.unwrap_or(ToolType::Square);
+    let tools: Vec<(i64, f64)> = match &request.diameters_mm {
+        Some(ds) => {
+            let mut ids = Vec::new();
+            for (i, d) in ds.iter().enumerate() {
+                let t = lookup::tool(pool, None, Some(tool_type), Some(*d)).await.map_err(|e| match e {
+                    ApiError::Validation(_) => ApiError::field(
+                        format!("diameters_mm[{i}]"),
+                        format!("no single {} end mill of {d} mm in the database", tool_type.as_str()),
+                    ),
+                    other => other,
+                })?;
+                ids.push((t.id, *d));
+            }
+            ids
+        }
+        None => sqlx::query_as::<_, (i64, f64)>(
+            "SELECT id, diameter_mm FROM tools WHERE tool_type = ? AND diameter_mm BETWEEN ? AND ? ORDER BY diameter_mm, id",
+        )
+        .bind(tool_type.as_str())
+        .bind(CANDIDATE_DIAMETER_RANGE_MM.0)
+        .bind(CANDIDATE_DIAMETER_RANGE_MM.1)
+        .fetch_all(pool)
+        .await?,
+    };
+    let machine_id = match request.machine_id {
+        Some(id) => id,
+        None => sqlx::query_scalar::<_, i64>("SELECT id FROM machines ORDER BY id LIMIT 1")
+            .fetch_optional(pool)
+            .await?
+            .ok_or_else(|| ApiError::field("machine_id", "no machine in the database (add one at /v1/machines)"))?,
+    };
+    let (mut candidates, mut skipped, mut writer_base) = (Vec::new(), Vec::new(), None);
+    for (i, (id, _)) in tools.iter().enumerate() {
+        match resolve_candidate(pool, *id, material.id, machine_id).await? {
+            Ok((c, base)) => {
+                writer_base.get_or_insert(base);
+                candidates.push(c);
+            }
+            Err(reason) if request.diameters_mm.is_some() => {
+                return Err(ApiError::field(format!("diameters_mm[{i}]"), reason))
+            }
+            Err(reason) => skipped.push(reason),
+        }
+    }
+    let Some(writer_base) = writer_base else {
+        return Err(ApiError::field(
+            "diameters_mm",
+            format!(
+                "no {} end mill from 6 to 16 mm has the data to plan with in {}",
+                tool_type.as_str(),
+                material.data.name
+            ),
+        ));
+    };
+    let limits = machine_limits(pool, machine_id).await?;
+    let rates = lookup::cost_rates(pool, request.cost_rates_id).await?;
+    let baseline = if request.baseline.unwrap_or(true) {
+        Some(resolve_baseline(pool, material.id, &material.data.name, &rates.data).await?)
+    } else {
+        None
+    };
+    let prepared = PlanPrepared {
+        material: NamedRef { id: material.id, name: material.data.name.clone() },
+        machine: writer_base.machine.clone(),
+        limits,
+        cost_rates: NamedRef { id: rates.id, name: rates.data.name.clone() },
+        machine_rate_per_hour: rates.data.machine_rate_per_hour,
+        currency: rates.data.currency.clone(),
+        candidates,
+        skipped,
+        baseline,
+        writer_base,
+    };
+    let checked = prepared.clone();
+    tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
+        let (cavity, candidates, options) = build(&request, &checked)?;
+        check_process(&cavity, &candidates, &options)?;
+        Ok(())
+    })
+    .await
+    .map_err(|e| ApiError::Internal(e.to_string()))??;
+    Ok(prepared)
+}
+
+async fn resolve_baseline(
+    pool: &SqlitePool,
+    material_id: i64,
+    material: &str,
+    rates: &crate::service::resources::cost_rates::CostRatesData,
+) -> Result<BaselinePrepared, ApiError> {
+    let missing = |what: &str| ApiError::field("baseline", format!("{what}: give baseline: false to plan without it"));
+    let ball = lookup::tool(pool, None, Some(ToolType::Ball), Some(BASELINE_BALL_DIAMETER_MM))
+        .await
+        .map_err(|_| missing("no single R5 ball end mill in the database"))?;
+    let row = lookup::standard_conditions(pool, ball.id, material_id, Operation::ConventionalBallRoughing)
+        .await?
+        .ok_or_else(|| {
+            missing(&format!("no conventional_ball_roughing conditions for {} in {material}", ball.data.name))
+        })?;
+    let life = lookup::tool_life(pool, ball.id, material_id)
+        .await?
+        .ok_or_else(|| missing(&format!("no tool-life data for {} in {material}", ball.data.name)))?;
+    let d = &ball.data;
+    let tool = EndMill {
+        tool_type: d.tool_type,
+        diameter_mm: d.diameter_mm,
+        flutes: d.flutes,
+        corner_radius_mm: d.corner_radius_mm,
+    };
+    Ok(BaselinePrepared {
+        tool_id: ball.id,
+        name: ball.data.name.clone(),
+        tool,
+        conditions: row.data.conditions(),
+        life_m: life.data.life_m,
+        gamma_table: life.data.gamma_table.iter().map(|g| (g.0, g.1)).collect(),
+        force_exponent: life.data.force_exponent,
+        tool_price: ball.data.price.unwrap_or(rates.default_tool_price),
+    })
+}
+
+type Built = (CavityInput, Vec<ToolCandidate>, ProcessOptions);
+
+fn life_model(life_m: f64, gamma: &[(f64, f64)], k: f64, arc_mm: f64, fz_mm: f64, force: Option<f64>) -> ToolLifeModel {
+    ToolLifeModel {
+        life_m,
+        gamma_table: gamma.to_vec(),
+        force_exponent: k,
+        standard_arc_length_mm: arc_mm,
+        standard_fz_mm: fz_mm,
+        standard_force_n: force,
+    }
+}
+
+fn build(r: &PlanRequest, p: &PlanPrepared) -> Result<Built, ApiError> {
+    let cavity = read_cavity(r)?;
+    let candidates = p
+        .candidates
+        .iter()
+        .map(|c| ToolCandidate {
+            name: c.name.clone(),
+            tool: c.tool,
+            roughing: c.roughing,
+            intermediate: c.intermediate,
+            grooving: c.grooving,
+            force_model: c.force_model,
+            standard_force_n: c.standard_force_n,
+            life: life_model(
+                c.life_m,
+                &c.gamma_table,
+                c.force_exponent,
+                c.standard_arc_length_mm,
+                c.standard_fz_mm,
+                Some(c.standard_force_n),
+            ),
+            min_feed_mm_min: c.min_feed_mm_min,
+            max_feed_mm_min: c.max_feed_mm_min,
+            tool_price: c.tool_price,
+        })
+        .collect();
+    let options = ProcessOptions {
+        alpha_limit_deg: r.alpha_limit_deg.unwrap_or(DEFAULT_INSERTION_ALPHA_LIMIT_DEG),
+        allowance_mm: r.allowance_mm.unwrap_or(0.0),
+        safe_z_mm: r.safe_z.unwrap_or(cavity.whole().top_mm() + DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM),
+        sample_spacing_mm: r.sample_spacing_mm,
+        machine: p.limits,
+        machine_rate_per_hour: p.machine_rate_per_hour,
+        currency: p.currency.clone(),
+        target_consumption: r.target_consumption.unwrap_or(DEFAULT_TARGET_CONSUMPTION),
+        tune: r.tune.unwrap_or(true),
+        max_force_factor: r.max_force_factor.unwrap_or(DEFAULT_MAX_FORCE_FACTOR),
+        max_feed_change_per_mm: Some(crate::core::feed::plan::DEFAULT_MAX_FEED_CHANGE_PER_MM),
+    };
+    Ok((cavity, candidates, options))
+}
+
+/// Plans the cavity and writes the chosen tool's program.
+pub fn run(
+    request: PlanRequest,
+    prepared: PlanPrepared,
+    progress: &dyn Progress,
+) -> Result<(PlanResult, String), CoreError> {
+    let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
+    let (cavity, candidates, options) = build(&request, &prepared).map_err(reread)?;
+    // The ball's life (assumed as the straight tool's, MODEL.md §5) counts against its own
+    // conventional roughing cut.
+    let baseline = prepared.baseline.as_ref().map(|b| {
+        let conditions = b.conditions;
+        let arc = crate::core::engagement::engagement(
+            crate::core::engagement::Contour::Straight,
+            b.tool.radius_mm(),
+            conditions.rd_mm.min(b.tool.diameter_mm),
+        )
+        .map_or(b.tool.radius_mm(), |e| e.arc_length_mm);
+        BaselineSpec {
+            name: b.name.clone(),
+            tool: b.tool,
+            conditions,
+            life: life_model(b.life_m, &b.gamma_table, b.force_exponent, arc, conditions.fz_mm, None),
+            tool_price: b.tool_price,
+        }
+    });
+    let plan = plan_process(&cavity, &candidates, &options, baseline.as_ref(), progress)?;
+    let chosen = &prepared.candidates[plan.chosen];
+    let mut writer_base = prepared.writer_base.clone();
+    writer_base.tool.id = chosen.tool_id;
+    writer_base.tool.name = chosen.name.clone();
+    writer_base.tool.geometry = chosen.tool.into();
+    let program = write_program(&plan.evaluation.program, &request.output.to_writer(&writer_base));
+    Ok((PlanResult::new(&prepared, &plan, &program), program))
+}

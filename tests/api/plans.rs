@@ -1,0 +1,118 @@
+//! `POST /v1/plans`: the whole flow for a cavity (seed 002 §2.6, seed 004 case study I):
+//! candidate tools, layers, constant-force feeds, time, tool life, cost, tuning and the
+//! conventional baseline; the program parses, gouges nothing and clears the cavity.
+
+use crate::common::{assert_problem, TestApp};
+use dieplan::core::nc::{parse_gcode, ParseOptions};
+use serde_json::{json, Value};
+
+/// Seed 004 case study I, as a 90 × 70 mm box with corners of radius 8 mm and a 12 mm wide
+/// slot with a round end out of its right wall, 35 mm deep.
+fn case_study_contour() -> Value {
+    json!({"outer": [[8, 0], [82, 0, 0.414214], [90, 8], [90, 29], [114, 29, 1], [114, 41], [90, 41],
+                     [90, 62, 0.414214], [82, 70], [8, 70, 0.414214], [0, 62], [0, 8, 0.414214]]})
+}
+
+/// Most a plan may take here, s (it plans three tools over four layers, on two cores shared
+/// with the rest of the suite).
+const PLAN_DEADLINE_S: u64 = 900;
+
+#[tokio::test]
+async fn the_case_study_cavity_gets_a_complete_plan_with_the_cheapest_tool_and_the_baseline_comparison() {
+    let app = TestApp::start().await;
+    let body = json!({
+        "contour": case_study_contour(), "z_top": 0, "z_bottom": -35,
+        "diameters_mm": [8, 10, 13], "sample_spacing_mm": 0.1
+    });
+    let a = app.post("/v1/plans", body).await;
+    assert!(a.status == 201 || a.status == 202, "{}", a.text);
+    let id = a.body["id"].as_str().unwrap().to_string();
+    let job = app.wait_for_job_within(&id, PLAN_DEADLINE_S).await;
+    assert_eq!(job["status"], "succeeded", "{job}");
+    let r = &job["result"];
+
+    // The 13 mm tool cannot enter the 12 mm slot; one of the others is chosen.
+    let candidates = r["candidates"].as_array().unwrap();
+    assert_eq!(candidates.len(), 3);
+    assert_eq!(candidates[2]["status"], "cannot_reach", "{}", candidates[2]);
+    let chosen: Vec<&Value> = candidates.iter().filter(|c| c["status"] == "chosen").collect();
+    assert_eq!(chosen.len(), 1, "{candidates:?}");
+    let cheapest = candidates.iter().filter_map(|c| c["cost"].as_f64()).fold(f64::INFINITY, f64::min);
+    assert!((chosen[0]["cost"].as_f64().unwrap() - cheapest).abs() < 1e-9);
+    assert_eq!(r["chosen_tool_id"], chosen[0]["tool_id"]);
+
+    // Every layer is checked by the simulation: no gouge, nothing reachable left; the last
+    // layer is intermediate-rough.
+    let layers = r["layers"].as_array().unwrap();
+    assert!(layers.len() >= 4, "{}", layers.len());
+    assert_eq!(layers.last().unwrap()["role"], "intermediate_rough");
+    for l in layers {
+        assert_eq!(l["gouges"], 0, "{l}");
+        assert!(l["uncleared_area_mm2"].as_f64().unwrap() <= 1.0, "{l}");
+        assert!(!l["steps"].as_array().unwrap().is_empty());
+    }
+    // It clears the cavity: the simulated removal is the cavity's volume.
+    let (removed, volume) =
+        (r["totals"]["removed_volume_mm3"].as_f64().unwrap(), r["cavity_volume_mm3"].as_f64().unwrap());
+    assert!((removed - volume).abs() < 0.02 * volume, "{removed} of {volume}");
+    // Time and cost as seed 002 Eq. 4 puts them together.
+    let t = &r["totals"];
+    assert!(t["kinematic_time_min"].as_f64().unwrap() >= t["nominal_time_min"].as_f64().unwrap());
+    let cost = t["machine_cost"].as_f64().unwrap() + t["tool_cost"].as_f64().unwrap();
+    assert!((cost - t["cost"].as_f64().unwrap()).abs() < 1e-9);
+    assert!(["reached", "limited_by_max_force", "closest", "above_target_at_standard_force"]
+        .contains(&r["tuning"]["outcome"].as_str().unwrap()));
+
+    // The conventional baseline: 59 levels of at most 0.6 mm with the R5 ball, and the
+    // proposed plan is faster and cuts a shorter length (seed 004 Table 4).
+    let b = &r["baseline"];
+    assert_eq!(b["levels"], 59);
+    assert!(r["comparison"]["kinematic_time_ratio"].as_f64().unwrap() < 1.0, "{}", r["comparison"]);
+    assert!(r["comparison"]["cutting_length_ratio"].as_f64().unwrap() < 1.0, "{}", r["comparison"]);
+
+    // The program parses.
+    let p = app.get(&format!("/v1/jobs/{id}/program")).await;
+    assert_eq!(p.status, 200);
+    let parsed = parse_gcode(&p.text, &ParseOptions::default()).unwrap_or_else(|e| panic!("{e:?}"));
+    assert!(parsed.moves.len() >= r["program"]["moves_out"].as_u64().unwrap() as usize);
+}
+
+#[tokio::test]
+async fn a_plan_can_be_cancelled_while_it_runs() {
+    let app = TestApp::start().await;
+    let body = json!({"contour": case_study_contour(), "z_top": 0, "z_bottom": -35, "baseline": false});
+    let a = app.post("/v1/plans", body).await;
+    let id = a.body["id"].as_str().unwrap().to_string();
+    let cancelled = app.delete(&format!("/v1/jobs/{id}")).await;
+    assert!(cancelled.status == 200 || cancelled.status == 202, "{}", cancelled.text);
+    let job = app.wait_for_job_within(&id, PLAN_DEADLINE_S).await;
+    assert_eq!(job["status"], "cancelled", "{job}");
+}
+
+#[tokio::test]
+async fn bad_plan_requests_are_refused_naming_the_field() {
+    let app = TestApp::start().await;
+    let cases = [
+        (json!({"z_top": 0, "z_bottom": -10}), "layers"),
+        (json!({"contour": case_study_contour(), "z_top": 0, "z_bottom": 5}), "z_bottom"),
+        (json!({"contour": case_study_contour(), "z_top": 0, "z_bottom": -10, "tool_type": "ball"}), "tool_type"),
+        (
+            json!({"contour": case_study_contour(), "z_top": 0, "z_bottom": -10, "diameters_mm": [11]}),
+            "diameters_mm[0]",
+        ),
+        (
+            json!({"contour": case_study_contour(), "z_top": 0, "z_bottom": -10, "target_consumption": 2}),
+            "target_consumption",
+        ),
+        (json!({"contour": {"outer": [[0, 0], [10, 0]]}, "z_top": 0, "z_bottom": -10}), "contour.outer.vertices[0]"),
+        (
+            json!({"layers": [{"contour": case_study_contour(), "z_top": 0, "z_bottom": -10},
+                           {"contour": case_study_contour(), "z_top": -5, "z_bottom": -20}]}),
+            "layers[1].z_top",
+        ),
+    ];
+    for (body, field) in cases {
+        let a = app.post("/v1/plans", body).await;
+        assert_problem(&a, 422, Some(field));
+    }
+}
