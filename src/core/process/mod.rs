@@ -136,7 +136,16 @@ pub fn plan_process(
             continue;
         }
         let eval_stage = Stage { inner: &stage, from: 0.7, span: 0.3 };
-        let evaluation = evaluate::evaluate(&layers, c, options, 1.0, &eval_stage)?;
+        let evaluation = match evaluate::evaluate(&layers, c, options, 1.0, &eval_stage) {
+            Ok(e) => e,
+            Err(CoreError::Cancelled) => return Err(CoreError::Cancelled),
+            Err(e) => {
+                report.status = CandidateStatus::Unplannable;
+                report.reason = Some(e.to_string());
+                reports.push(report);
+                continue;
+            }
+        };
         report.set_figures(&evaluation);
         reports.push(report);
         planned.push((k, layers, evaluation));
@@ -157,7 +166,6 @@ pub fn plan_process(
             )
         })?;
     let (chosen, layers, standard) = planned.swap_remove(best);
-    drop(planned);
     reports[chosen].status = CandidateStatus::Chosen;
     let tune_stage = Stage { inner: progress, from: CANDIDATES_SHARE, span: TUNING_SHARE };
     let (evaluation, tuning) = tune::tune(&layers, &candidates[chosen], options, standard, &tune_stage)?;

@@ -181,6 +181,31 @@ pub(crate) fn under(prefix: &str, err: crate::core::CoreError) -> ApiError {
     }
 }
 
+/// A pocket from a contour; errors name `{field}.outer[i]`, `{field}.islands[k][i]`, or the
+/// loop and its problem under `field`.
+pub(crate) fn read_contour(field: &str, c: &ContourInput) -> Result<Pocket, ApiError> {
+    let outer = vertices(&format!("{field}.outer"), &c.outer)?;
+    let islands = c
+        .islands
+        .iter()
+        .enumerate()
+        .map(|(i, island)| vertices(&format!("{field}.islands[{i}]"), island))
+        .collect::<Result<Vec<_>, _>>()?;
+    Pocket::new(outer, islands).map_err(|e| under(field, e))
+}
+
+/// A pocket from DXF text sent as `dxf` (under `parent`, if any): the outermost loop, the
+/// loops inside it islands. Errors name `{parent.}dxf…`.
+pub(crate) fn read_dxf(parent: Option<&str>, text: &str) -> Result<Pocket, ApiError> {
+    let field = parent.map_or_else(|| "dxf".to_string(), |p| format!("{p}.dxf"));
+    // The reader's errors already name `dxf`.
+    let loops = loops_from_dxf(text).map_err(|e| match parent {
+        Some(p) => under(p, e),
+        None => ApiError::from(e),
+    })?;
+    pocket_from_loops(loops).map_err(|e| under(&field, e))
+}
+
 fn finite(field: &str, values: &[f64]) -> Result<(), ApiError> {
     if values.iter().all(|v| v.is_finite()) {
         Ok(())
@@ -200,22 +225,8 @@ pub fn read_stock(input: &StockInput) -> Result<Stock, ApiError> {
             let rect = Rect { x_min: b.x_min, y_min: b.y_min, x_max: b.x_max, y_max: b.y_max };
             (vec![StockRegion::Rect(rect)], Some((b.z_max, b.z_min)))
         }
-        (None, Some(c), None) => {
-            let outer = vertices("stock.contour.outer", &c.outer)?;
-            let islands = c
-                .islands
-                .iter()
-                .enumerate()
-                .map(|(i, island)| vertices(&format!("stock.contour.islands[{i}]"), island))
-                .collect::<Result<Vec<_>, _>>()?;
-            let pocket = Pocket::new(outer, islands).map_err(|e| under("stock.contour", e))?;
-            (vec![StockRegion::Pocket(pocket)], None)
-        }
-        (None, None, Some(text)) => {
-            let loops = loops_from_dxf(text).map_err(|e| under("stock", e))?;
-            let pocket = pocket_from_loops(loops).map_err(|e| under("stock.dxf", e))?;
-            (vec![StockRegion::Pocket(pocket)], None)
-        }
+        (None, Some(c), None) => (vec![StockRegion::Pocket(read_contour("stock.contour", c)?)], None),
+        (None, None, Some(text)) => (vec![StockRegion::Pocket(read_dxf(Some("stock"), text)?)], None),
         _ => return Err(ApiError::field("stock", "give exactly one of box, contour and dxf")),
     };
     let z_top = input

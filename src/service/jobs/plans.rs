@@ -6,12 +6,11 @@
 use super::analysis::{resolve, PathJobRefs, Resolved};
 use super::conditions::NamedRef;
 use super::costing::machine_limits;
-use super::inputs::{under, vertices, ContourInput};
+use super::inputs::{read_contour, read_dxf, ContourInput};
 use super::output::OutputOptions;
 use super::plans_result::PlanResult;
 use super::trochoids::DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM;
 use crate::core::conditions::{feed_mm_min, standard_centres, CuttingConditions};
-use crate::core::geometry::{loops_from_dxf, pocket_from_loops, Pocket};
 use crate::core::insertion::DEFAULT_INSERTION_ALPHA_LIMIT_DEG;
 use crate::core::kinematics::MachineLimits;
 use crate::core::nc::write_program;
@@ -196,18 +195,6 @@ fn validate(r: &PlanRequest) -> Result<(), ApiError> {
     v.finish()
 }
 
-/// Reads a contour; errors name `field.outer[i]` or `field.islands[k][i]`.
-fn read_contour(field: &str, c: &ContourInput) -> Result<Pocket, ApiError> {
-    let outer = vertices(&format!("{field}.outer"), &c.outer)?;
-    let islands = c
-        .islands
-        .iter()
-        .enumerate()
-        .map(|(i, island)| vertices(&format!("{field}.islands[{i}]"), island))
-        .collect::<Result<Vec<_>, _>>()?;
-    Pocket::new(outer, islands).map_err(|e| under(field, e))
-}
-
 /// The cavity of the request: its layers, or its contour and depth.
 fn read_cavity(r: &PlanRequest) -> Result<CavityInput, ApiError> {
     if let Some(layers) = &r.layers {
@@ -226,10 +213,7 @@ fn read_cavity(r: &PlanRequest) -> Result<CavityInput, ApiError> {
     }
     let pocket = match (&r.contour, &r.dxf) {
         (Some(c), None) => read_contour("contour", c)?,
-        (None, Some(text)) => {
-            let loops = loops_from_dxf(text).map_err(|e| under("dxf", e))?;
-            pocket_from_loops(loops).map_err(|e| under("dxf", e))?
-        }
+        (None, Some(text)) => read_dxf(None, text)?,
         _ => return Err(ApiError::field("contour", "give exactly one of contour and dxf")),
     };
     Ok(CavityInput::Depth { pocket, z_top_mm: r.z_top.unwrap_or(0.0), z_bottom_mm: r.z_bottom.unwrap_or(0.0) })
@@ -241,6 +225,7 @@ async fn resolve_candidate(
     tool_id: i64,
     material_id: i64,
     machine_id: i64,
+    default_tool_price: f64,
 ) -> Result<Result<(CandidatePrepared, super::analysis::AnalysisPrepared), String>, ApiError> {
     let refs = PathJobRefs {
         tool_id: Some(tool_id),
@@ -279,7 +264,6 @@ async fn resolve_candidate(
         .bind(tool_id)
         .fetch_one(pool)
         .await?;
-    let rates = lookup::cost_rates(pool, None).await?;
     let candidate = CandidatePrepared {
         tool_id,
         name,
@@ -296,7 +280,7 @@ async fn resolve_candidate(
         standard_fz_mm: s.fz_mm,
         min_feed_mm_min: feed_mm_min(s.fz_min_mm, tool.flutes, s.spindle_rpm),
         max_feed_mm_min: (MAX_FEED_PER_STANDARD * standard_feed).min(machine_max_feed_mm_min),
-        tool_price: price.unwrap_or(rates.data.default_tool_price),
+        tool_price: price.unwrap_or(default_tool_price),
     };
     Ok(Ok((candidate, base)))
 }
@@ -337,9 +321,10 @@ pub async fn prepare(pool: &SqlitePool, request: PlanRequest) -> Result<PlanPrep
             .await?
             .ok_or_else(|| ApiError::field("machine_id", "no machine in the database (add one at /v1/machines)"))?,
     };
+    let rates = lookup::cost_rates(pool, request.cost_rates_id).await?;
     let (mut candidates, mut skipped, mut writer_base) = (Vec::new(), Vec::new(), None);
     for (i, (id, _)) in tools.iter().enumerate() {
-        match resolve_candidate(pool, *id, material.id, machine_id).await? {
+        match resolve_candidate(pool, *id, material.id, machine_id, rates.data.default_tool_price).await? {
             Ok((c, base)) => {
                 writer_base.get_or_insert(base);
                 candidates.push(c);
@@ -361,7 +346,6 @@ pub async fn prepare(pool: &SqlitePool, request: PlanRequest) -> Result<PlanPrep
         ));
     };
     let limits = machine_limits(pool, machine_id).await?;
-    let rates = lookup::cost_rates(pool, request.cost_rates_id).await?;
     let baseline = if request.baseline.unwrap_or(true) {
         Some(resolve_baseline(pool, material.id, &material.data.name, &rates.data).await?)
     } else {
@@ -492,22 +476,21 @@ pub fn run(
     let (cavity, candidates, options) = build(&request, &prepared).map_err(reread)?;
     // The ball's life (assumed as the straight tool's, MODEL.md §5) counts against its own
     // conventional roughing cut.
-    let baseline = prepared.baseline.as_ref().map(|b| {
-        let conditions = b.conditions;
-        let arc = crate::core::engagement::engagement(
-            crate::core::engagement::Contour::Straight,
-            b.tool.radius_mm(),
-            conditions.rd_mm.min(b.tool.diameter_mm),
-        )
-        .map_or(b.tool.radius_mm(), |e| e.arc_length_mm);
-        BaselineSpec {
-            name: b.name.clone(),
-            tool: b.tool,
-            conditions,
-            life: life_model(b.life_m, &b.gamma_table, b.force_exponent, arc, conditions.fz_mm, None),
-            tool_price: b.tool_price,
-        }
-    });
+    let baseline = prepared
+        .baseline
+        .as_ref()
+        .map(|b| -> Result<BaselineSpec, CoreError> {
+            let conditions = b.conditions;
+            let (_, arc) = standard_centres(b.tool.radius_mm(), conditions)?;
+            Ok(BaselineSpec {
+                name: b.name.clone(),
+                tool: b.tool,
+                conditions,
+                life: life_model(b.life_m, &b.gamma_table, b.force_exponent, arc, conditions.fz_mm, None),
+                tool_price: b.tool_price,
+            })
+        })
+        .transpose()?;
     let plan = plan_process(&cavity, &candidates, &options, baseline.as_ref(), progress)?;
     let chosen = &prepared.candidates[plan.chosen];
     let mut writer_base = prepared.writer_base.clone();

@@ -4,13 +4,13 @@
 //! the report of which region got which treatment out.
 
 use super::analysis::{resolve, AnalysisPrepared, PathJobRefs, Resolved};
-use super::inputs::{read_program, under, vertices, ContourInput, ProgramInput};
+use super::inputs::{read_contour, read_dxf, read_program, ContourInput, ProgramInput};
 use super::output::OutputOptions;
 use super::trochoids_result::TrochoidsResult;
 use crate::core::conditions::CuttingConditions;
 use crate::core::cycles::trochoid::default_loop_radius_mm;
 use crate::core::cycles::CutDirection;
-use crate::core::geometry::{loops_from_dxf, pocket_from_loops, Pocket};
+use crate::core::geometry::Pocket;
 use crate::core::insertion::{check_plan, plan_insertion, InsertionSpec, LoopSize};
 use crate::core::medial::{CLASS_A_RATIO_MAX, CLASS_A_RATIO_MIN};
 use crate::core::nc::write_program;
@@ -180,20 +180,8 @@ fn validate(request: &TrochoidsRequest) -> Result<(), ApiError> {
 /// Reads the pocket; errors name `contour.outer[i]`, `contour.islands[k][i]` or `dxf`.
 fn read_pocket(request: &TrochoidsRequest) -> Result<Pocket, ApiError> {
     match (&request.contour, &request.dxf) {
-        (Some(c), None) => {
-            let outer = vertices("contour.outer", &c.outer)?;
-            let islands = c
-                .islands
-                .iter()
-                .enumerate()
-                .map(|(i, island)| vertices(&format!("contour.islands[{i}]"), island))
-                .collect::<Result<Vec<_>, _>>()?;
-            Pocket::new(outer, islands).map_err(|e| under("contour", e))
-        }
-        (None, Some(text)) => {
-            let loops = loops_from_dxf(text).map_err(|e| under("dxf", e))?;
-            pocket_from_loops(loops).map_err(|e| under("dxf", e))
-        }
+        (Some(c), None) => read_contour("contour", c),
+        (None, Some(text)) => read_dxf(None, text),
         _ => Err(ApiError::field("contour", "give exactly one of contour and dxf")),
     }
 }
