@@ -8,6 +8,8 @@ pub mod conditions;
 pub mod costing;
 pub mod curvature;
 pub mod cycles;
+/// Drawings and charts of a job as SVG.
+pub mod drawing;
 pub mod engagement;
 pub mod error;
 pub mod feed;

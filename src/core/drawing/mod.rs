@@ -1,0 +1,5 @@
+//! Drawings and charts of a job as SVG: the scene a finished job leaves
+//! ([`scene::Scene`]), how a tool path is traced and simplified into it, and how it is
+//! rendered. Pure: strings out, no I/O.
+
+pub mod scene;
