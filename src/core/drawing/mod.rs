@@ -2,4 +2,7 @@
 //! ([`scene::Scene`]), how a tool path is traced and simplified into it, and how it is
 //! rendered. Pure: strings out, no I/O.
 
+pub mod palette;
 pub mod scene;
+pub mod svg;
+pub mod ticks;
