@@ -2,6 +2,7 @@
 //! ([`scene::Scene`]), how a tool path is traced and simplified into it, and how it is
 //! rendered. Pure: strings out, no I/O.
 
+pub mod downsample;
 pub mod palette;
 pub mod scene;
 pub mod svg;
