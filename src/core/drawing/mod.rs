@@ -7,3 +7,4 @@ pub mod palette;
 pub mod scene;
 pub mod svg;
 pub mod ticks;
+pub mod trace;
