@@ -1,10 +1,20 @@
 //! Drawings and charts of a job as SVG: the scene a finished job leaves
-//! ([`scene::Scene`]), how a tool path is traced and simplified into it, and how it is
-//! rendered. Pure: strings out, no I/O.
+//! ([`scene::Scene`]), how a tool path is traced and simplified into it
+//! ([`trace::trace_path`]), and how it is rendered ([`plan_view::render_drawing`],
+//! [`chart::render_chart`]). Pure: strings out, no I/O.
 
+mod bar_chart;
+pub mod chart;
 pub mod downsample;
+pub mod draw_options;
+pub mod frame;
+pub mod legend;
 pub mod palette;
+pub mod plan_view;
 pub mod scene;
 pub mod svg;
 pub mod ticks;
 pub mod trace;
+
+#[cfg(test)]
+mod golden_tests;

@@ -1,0 +1,415 @@
+//! The plan view of a job as SVG: outlines, one tool path coloured by a quantity, rapids,
+//! the medial axis, critical regions, trochoid spans, a legend, a scale bar and a title.
+//!
+//! Elements carry a `class` (`outline`, `feed`, `rapid`, `medial`, `region`,
+//! `region-label`, `trochoid`, `legend-…`, `scale-bar`, `title`) and `data-` attributes
+//! (bin, class, kind, lines, …) for the web page and the tests.
+
+use super::draw_options::resolve;
+pub use super::draw_options::{DrawError, DrawOptions, DEFAULT_WIDTH_PX, MAX_WIDTH_PX, MIN_WIDTH_PX};
+use super::frame::{Extent, Frame};
+use super::legend::{draw_entries, draw_ramp, draw_scale_bar, Entry, Swatch, LEGEND_FONT};
+use super::palette::{self, bin_color, Rgb, ValueScale};
+use super::scene::{MedialClass, OutlineRole, Quantity, Run, Scene, ScenePath};
+use super::svg::{text_width, Anchor, Attrs, PathData, Svg};
+use super::ticks::value_label;
+use std::collections::BTreeMap;
+
+/// Size unit: fonts and strokes scale with the width relative to this, px.
+const REFERENCE_WIDTH_PX: f64 = 1000.0;
+/// Bounds of the size unit.
+const MIN_UNIT: f64 = 0.6;
+const MAX_UNIT: f64 = 2.5;
+/// Margin around everything, in size units.
+const MARGIN: f64 = 16.0;
+/// Title font and subtitle font, in size units.
+const TITLE_FONT: f64 = 16.0;
+const SUBTITLE_FONT: f64 = 12.0;
+/// Padding of the scene's extent, as a fraction of its larger side.
+const EXTENT_PADDING: f64 = 0.03;
+/// The drawing area is at most this many times as high as it is wide.
+const MAX_ASPECT: f64 = 1.5;
+/// Stroke widths, in size units.
+const OUTLINE_STROKE: f64 = 1.2;
+const FEED_STROKE: f64 = 2.0;
+const RAPID_STROKE: f64 = 0.8;
+const MEDIAL_STROKE: f64 = 1.0;
+/// Width of a region band without a known tool, and its bounds, in size units.
+const REGION_BAND: f64 = 9.0;
+const MIN_REGION_BAND: f64 = 6.0;
+const MAX_REGION_BAND: f64 = 24.0;
+/// Narrowest trochoid band, px.
+const MIN_TROCHOID_BAND_PX: f64 = 3.0;
+/// Regions labelled (those of the highest α).
+const MAX_REGION_LABELS: usize = 12;
+/// Font of region labels, in size units.
+const REGION_FONT: f64 = 11.0;
+/// The colour ramp's share of the inner width.
+const RAMP_FRACTION: f64 = 0.45;
+
+/// Renders the plan view of `scene` as an SVG document.
+pub fn render_drawing(scene: &Scene, options: &DrawOptions) -> Result<String, DrawError> {
+    let resolved = resolve(scene, options)?;
+    let width = f64::from(options.width_px);
+    let k = (width / REFERENCE_WIDTH_PX).clamp(MIN_UNIT, MAX_UNIT);
+    let margin = MARGIN * k;
+    let layer_ok = |l: Option<usize>| resolved.layer.is_none() || l.is_none() || l == resolved.layer;
+    let run_ok = |r: &Run| resolved.layer.is_none() || r.layer == resolved.layer;
+
+    let extent = scene_extent(scene);
+    let title_bottom = margin + (TITLE_FONT + SUBTITLE_FONT * 1.6) * k;
+    let inner = width - 2.0 * margin;
+    let frame = Frame::fit(extent, (margin, title_bottom + margin * 0.5), inner, inner * MAX_ASPECT);
+    let legend_top = title_bottom + margin * 0.5 + frame.height_px + margin;
+    // The document's height is known only once the legend is laid out: the body and
+    // the legend are drawn as fragments first.
+    let layer_name = match resolved.layer {
+        Some(l) => scene.layers[l].name.clone(),
+        None => "all layers".into(),
+    };
+    let path_name = resolved.path.map_or("no path", |p| p.name.as_str());
+    let heading = [scene.title.as_str(), path_name, layer_name.as_str()]
+        .iter()
+        .filter(|s| !s.is_empty())
+        .copied()
+        .collect::<Vec<_>>()
+        .join(" — ");
+    let scale = resolved.path.zip(resolved.color_by).map(|(p, q)| value_scale(scene, p, q));
+
+    let mut body = Svg::fragment();
+    let mut entries: Vec<Entry> = Vec::new();
+    draw_outlines(&mut body, scene, &frame, k);
+    if options.medial {
+        let classes = draw_medial(&mut body, scene, &frame, k, &layer_ok);
+        for class in classes {
+            entries.push(Entry {
+                class: "legend-medial",
+                swatch: Swatch::Line { color: palette::medial_color(class), width: MEDIAL_STROKE * 2.0, dashed: false },
+                label: format!("medial axis, class {}", medial_letter(class)),
+            });
+        }
+    }
+    if options.trochoids && draw_trochoids(&mut body, scene, &frame, &layer_ok) {
+        entries.push(Entry {
+            class: "legend-trochoid",
+            swatch: Swatch::Band { color: palette::TROCHOID, opacity: palette::TROCHOID_OPACITY },
+            label: "trochoid span (2ρ)".into(),
+        });
+    }
+    let regions: Vec<usize> = match resolved.path {
+        Some(p) if options.regions => (0..scene.regions.len())
+            .filter(|&i| scene.regions[i].path == p.name && layer_ok(scene.regions[i].layer))
+            .collect(),
+        _ => Vec::new(),
+    };
+    let band = scene
+        .tool_diameter_mm
+        .map_or(REGION_BAND * k, |d| frame.len_px(d).clamp(MIN_REGION_BAND * k, MAX_REGION_BAND * k));
+    for &i in &regions {
+        let r = &scene.regions[i];
+        body.polyline(
+            r.points.iter().map(|p| frame.px(*p)),
+            Attrs::new()
+                .class("region")
+                .str("data-kind", &r.kind)
+                .show("data-max-alpha", value_label(r.max_alpha_deg))
+                .str("data-lines", &format!("{}-{}", r.start_line, r.end_line))
+                .str("fill", "none")
+                .show("stroke", palette::REGION)
+                .num("stroke-opacity", palette::REGION_OPACITY)
+                .num("stroke-width", band)
+                .str("stroke-linecap", "round")
+                .str("stroke-linejoin", "round"),
+        );
+    }
+    if !regions.is_empty() {
+        entries.push(Entry {
+            class: "legend-region",
+            swatch: Swatch::Band { color: palette::REGION, opacity: palette::REGION_OPACITY },
+            label: "critical region (α above the limit)".into(),
+        });
+    }
+    if let Some(path) = resolved.path {
+        if options.rapids && draw_rapids(&mut body, path, &frame, k, &run_ok) {
+            entries.insert(
+                0,
+                Entry {
+                    class: "legend-rapid",
+                    swatch: Swatch::Line { color: palette::RAPID, width: RAPID_STROKE * 1.5, dashed: true },
+                    label: "rapid".into(),
+                },
+            );
+        }
+        let no_value = draw_feed(&mut body, path, resolved.color_by.zip(scale), &frame, k, &run_ok);
+        if no_value {
+            entries.push(Entry {
+                class: "legend-no-value",
+                swatch: Swatch::Line { color: palette::NO_VALUE, width: FEED_STROKE * 2.0, dashed: false },
+                label: "no value".into(),
+            });
+        }
+    }
+    draw_region_labels(&mut body, scene, &regions, &frame, k, band);
+
+    // Legend: the ramp and the scale bar side by side, the entries below.
+    let mut legend = Svg::fragment();
+    let mut bottom = legend_top;
+    if let (Some(q), Some(scale)) = (resolved.color_by, scale) {
+        bottom = draw_ramp(&mut legend, (margin, legend_top), inner * RAMP_FRACTION, k, &scale, q);
+    }
+    let bar_y = legend_top + LEGEND_FONT * k * 3.0;
+    draw_scale_bar(&mut legend, width - margin, bar_y, frame.scale, inner, k);
+    bottom = bottom.max(bar_y + LEGEND_FONT * k);
+    bottom = draw_entries(&mut legend, &entries, (margin, bottom + margin * 0.5), width - margin, k);
+    let height = bottom + margin;
+
+    let mut svg = Svg::new(width, height, &heading, "dieplan-drawing");
+    svg.rect(0.0, 0.0, width, height, Attrs::new().class("background").str("fill", "#ffffff"));
+    svg.text((margin, margin + TITLE_FONT * k), TITLE_FONT * k, Anchor::Start, &heading, Attrs::new().class("title"));
+    let subtitle = match resolved.color_by {
+        Some(q) => format!("coloured by {}", q.caption()),
+        None => "no values to colour by".into(),
+    };
+    let sub_y = margin + (TITLE_FONT + SUBTITLE_FONT * 1.4) * k;
+    svg.text((margin, sub_y), SUBTITLE_FONT * k, Anchor::Start, &subtitle, Attrs::new().class("subtitle"));
+    svg.insert(&body.finish_fragment());
+    svg.insert(&legend.finish_fragment());
+    Ok(svg.finish())
+}
+
+/// The scene's extent: outlines, paths and the medial axis, padded.
+fn scene_extent(scene: &Scene) -> Extent {
+    let outlines = scene.outlines.iter().flat_map(|o| o.points.iter());
+    let paths = scene.paths.iter().flat_map(|p| p.runs.iter().flat_map(|r| r.points.iter()));
+    let medial = scene.medial.iter().flat_map(|m| m.points.iter());
+    let e = Extent::of_points(outlines.chain(paths).chain(medial));
+    let pad = e.width().max(e.height()) * EXTENT_PADDING;
+    Extent { x_min: e.x_min - pad, y_min: e.y_min - pad, x_max: e.x_max + pad, y_max: e.y_max + pad }
+}
+
+/// The colour scale of quantity `q` over the whole path (all layers: colours compare
+/// across layers), with the α limit when colouring by α.
+fn value_scale(scene: &Scene, path: &ScenePath, q: Quantity) -> ValueScale {
+    let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in path.runs.iter().filter_map(|r| r.values.get(&q)).flatten().flatten() {
+        let v = f64::from(*v);
+        if v.is_finite() {
+            min = min.min(v);
+            max = max.max(v);
+        }
+    }
+    if !min.is_finite() {
+        (min, max) = (0.0, 0.0);
+    }
+    let limit = if q == Quantity::Alpha { scene.alpha_limit_deg } else { None };
+    ValueScale { min, max, limit }
+}
+
+fn draw_outlines(svg: &mut Svg, scene: &Scene, frame: &Frame, k: f64) {
+    const ORDER: [OutlineRole; 4] = [OutlineRole::Stock, OutlineRole::Pocket, OutlineRole::Open, OutlineRole::Island];
+    for role in ORDER {
+        for outline in scene.outlines.iter().filter(|o| o.role == role) {
+            let (stroke, fill) = palette::outline_colors(role);
+            let mut attrs = Attrs::new()
+                .class("outline")
+                .str("data-role", role_name(role))
+                .show("fill", fill)
+                .show("stroke", stroke)
+                .num("stroke-width", OUTLINE_STROKE * k);
+            if role == OutlineRole::Stock {
+                attrs = attrs.str("stroke-dasharray", &format!("{:.1} {:.1}", 6.0 * k, 3.0 * k));
+            }
+            svg.polygon(outline.points.iter().map(|p| frame.px(*p)), attrs);
+        }
+    }
+}
+
+fn role_name(role: OutlineRole) -> &'static str {
+    match role {
+        OutlineRole::Stock => "stock",
+        OutlineRole::Pocket => "pocket",
+        OutlineRole::Island => "island",
+        OutlineRole::Open => "open",
+    }
+}
+
+fn medial_letter(class: MedialClass) -> &'static str {
+    match class {
+        MedialClass::A => "A",
+        MedialClass::B => "B",
+        MedialClass::C => "C",
+    }
+}
+
+/// Draws the medial axis, one element per class; returns the classes drawn.
+fn draw_medial(
+    svg: &mut Svg,
+    scene: &Scene,
+    frame: &Frame,
+    k: f64,
+    layer_ok: &dyn Fn(Option<usize>) -> bool,
+) -> Vec<MedialClass> {
+    let mut drawn = Vec::new();
+    for class in [MedialClass::A, MedialClass::B, MedialClass::C] {
+        let mut d = PathData::new();
+        for edge in scene.medial.iter().filter(|e| e.class == class && layer_ok(e.layer) && e.points.len() >= 2) {
+            subpath(&mut d, edge.points.iter().map(|p| frame.px(*p)));
+        }
+        if !d.is_empty() {
+            svg.path(
+                &d,
+                Attrs::new()
+                    .class("medial")
+                    .str("data-class", medial_letter(class))
+                    .str("fill", "none")
+                    .show("stroke", palette::medial_color(class))
+                    .num("stroke-width", MEDIAL_STROKE * k)
+                    .str("stroke-linejoin", "round"),
+            );
+            drawn.push(class);
+        }
+    }
+    drawn
+}
+
+/// Appends a subpath through `points`.
+fn subpath(d: &mut PathData, points: impl IntoIterator<Item = (f64, f64)>) {
+    for (i, p) in points.into_iter().enumerate() {
+        if i == 0 {
+            d.move_to(p);
+        } else {
+            d.line_to(p);
+        }
+    }
+}
+
+/// Draws the trochoid spans as bands 2ρ wide; returns whether any was drawn.
+fn draw_trochoids(svg: &mut Svg, scene: &Scene, frame: &Frame, layer_ok: &dyn Fn(Option<usize>) -> bool) -> bool {
+    let mut any = false;
+    for mark in scene.trochoids.iter().filter(|m| layer_ok(m.layer) && !m.points.is_empty()) {
+        svg.polyline(
+            mark.points.iter().map(|p| frame.px(*p)),
+            Attrs::new()
+                .class("trochoid")
+                .show("data-loop-radius", value_label(mark.loop_radius_mm))
+                .str("fill", "none")
+                .show("stroke", palette::TROCHOID)
+                .num("stroke-opacity", palette::TROCHOID_OPACITY)
+                .num("stroke-width", frame.len_px(2.0 * mark.loop_radius_mm).max(MIN_TROCHOID_BAND_PX))
+                .str("stroke-linecap", "round")
+                .str("stroke-linejoin", "round"),
+        );
+        any = true;
+    }
+    any
+}
+
+/// Draws the rapid runs as one dashed element; returns whether any was drawn.
+fn draw_rapids(svg: &mut Svg, path: &ScenePath, frame: &Frame, k: f64, run_ok: &dyn Fn(&Run) -> bool) -> bool {
+    let mut d = PathData::new();
+    for run in path.runs.iter().filter(|r| r.rapid && run_ok(r) && r.points.len() >= 2) {
+        subpath(&mut d, run.points.iter().map(|p| frame.px(*p)));
+    }
+    if d.is_empty() {
+        return false;
+    }
+    svg.path(
+        &d,
+        Attrs::new()
+            .class("rapid")
+            .str("fill", "none")
+            .show("stroke", palette::RAPID)
+            .num("stroke-width", RAPID_STROKE * k)
+            .str("stroke-dasharray", &format!("{:.1} {:.1}", 4.0 * k, 3.0 * k)),
+    );
+    true
+}
+
+/// Draws the feed runs: consecutive segments of one colour bin as one subpath, all the
+/// subpaths of a bin in one element (hotter bins on top). Returns whether some segment
+/// had no value.
+fn draw_feed(
+    svg: &mut Svg,
+    path: &ScenePath,
+    coloring: Option<(Quantity, ValueScale)>,
+    frame: &Frame,
+    k: f64,
+    run_ok: &dyn Fn(&Run) -> bool,
+) -> bool {
+    // Bin per segment: `None` = no value; a plain path has one bin.
+    let mut by_bin: BTreeMap<Option<usize>, PathData> = BTreeMap::new();
+    for run in path.runs.iter().filter(|r| !r.rapid && run_ok(r) && r.points.len() >= 2) {
+        let values = coloring.and_then(|(q, _)| run.values.get(&q));
+        let bin_of = |i: usize| match (coloring, values) {
+            (Some((_, scale)), Some(v)) => v.get(i).copied().flatten().map(|x| scale.bin(f64::from(x))),
+            (Some(_), None) => None,
+            (None, _) => Some(0),
+        };
+        let mut start = 0;
+        while start + 1 < run.points.len() {
+            let bin = bin_of(start + 1);
+            let mut end = start + 1;
+            while end + 1 < run.points.len() && bin_of(end + 1) == bin {
+                end += 1;
+            }
+            let d = by_bin.entry(bin).or_default();
+            subpath(d, run.points[start..=end].iter().map(|p| frame.px(*p)));
+            start = end;
+        }
+    }
+    let no_value = coloring.is_some() && by_bin.contains_key(&None);
+    for (bin, d) in &by_bin {
+        let color: Rgb = match (coloring, bin) {
+            (None, _) => palette::PLAIN_FEED,
+            (Some(_), None) => palette::NO_VALUE,
+            (Some(_), Some(b)) => bin_color(*b),
+        };
+        let mut attrs = Attrs::new().class("feed");
+        if let (Some(_), Some(b)) = (coloring, bin) {
+            attrs = attrs.show("data-bin", b);
+        }
+        svg.path(
+            d,
+            attrs
+                .str("fill", "none")
+                .show("stroke", color)
+                .num("stroke-width", FEED_STROKE * k)
+                .str("stroke-linejoin", "round")
+                .str("stroke-linecap", "round"),
+        );
+    }
+    no_value
+}
+
+/// Labels the regions of the highest α: "α 112° · N120–N180" on a light background, beside
+/// the middle of the region.
+fn draw_region_labels(svg: &mut Svg, scene: &Scene, regions: &[usize], frame: &Frame, k: f64, band: f64) {
+    let mut order: Vec<usize> = regions.iter().copied().filter(|&i| !scene.regions[i].points.is_empty()).collect();
+    order.sort_by(|&a, &b| scene.regions[b].max_alpha_deg.total_cmp(&scene.regions[a].max_alpha_deg).then(a.cmp(&b)));
+    let font = REGION_FONT * k;
+    for &i in order.iter().take(MAX_REGION_LABELS) {
+        let r = &scene.regions[i];
+        let (x, y) = frame.px(r.points[r.points.len() / 2]);
+        let text = format!("α {}° · N{}–N{}", value_label(r.max_alpha_deg), r.start_line, r.end_line);
+        let w = text_width(&text, font);
+        let (lx, ly) = (x + band / 2.0 + 2.0 * k, y - band / 2.0 - 2.0 * k);
+        svg.group(Attrs::new().class("region-label").str("data-kind", &r.kind));
+        svg.rect(
+            lx - 2.0 * k,
+            ly - font,
+            w + 4.0 * k,
+            font * 1.3,
+            Attrs::new()
+                .str("fill", "#ffffff")
+                .num("fill-opacity", 0.8)
+                .show("stroke", palette::REGION)
+                .num("stroke-width", 0.6 * k),
+        );
+        svg.text((lx, ly), font, Anchor::Start, &text, Attrs::new().show("fill", palette::REGION));
+        svg.end_group();
+    }
+}
+
+#[cfg(test)]
+#[path = "plan_view_tests.rs"]
+mod tests;
