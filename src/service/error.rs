@@ -142,6 +142,12 @@ impl From<CoreError> for ApiError {
     }
 }
 
+impl From<crate::core::drawing::plan_view::DrawError> for ApiError {
+    fn from(err: crate::core::drawing::plan_view::DrawError) -> Self {
+        ApiError::field(err.field(), err.to_string())
+    }
+}
+
 impl From<sqlx::Error> for ApiError {
     fn from(err: sqlx::Error) -> Self {
         use sqlx::error::ErrorKind;

@@ -33,6 +33,7 @@ pub fn api_router() -> OpenApiRouter<AppState> {
     OpenApiRouter::with_openapi(ApiDoc::openapi())
         .merge(crate::service::health::router())
         .merge(crate::service::jobs::routes::router())
+        .merge(crate::service::jobs::drawings::router())
         .merge(materials::api::router())
         .merge(tools::api::router())
         .merge(standard_conditions::api::router())

@@ -8,6 +8,7 @@ mod conditions;
 mod costing;
 mod curl_examples;
 mod database;
+mod drawings;
 mod errors;
 mod feeds;
 mod fit;

@@ -78,6 +78,20 @@ async fn the_case_study_cavity_gets_a_complete_plan_with_the_cheapest_tool_and_t
     assert_eq!(p.status, 200);
     let parsed = parse_gcode(&p.text, &ParseOptions::default()).unwrap_or_else(|e| panic!("{e:?}"));
     assert!(parsed.moves.len() >= r["program"]["moves_out"].as_u64().unwrap() as usize);
+
+    // The drawing: the program by layer, coloured by feed and wear; the candidates, time and
+    // cost per operation, and the baseline as charts.
+    let views = app.get(&format!("/v1/jobs/{id}/views")).await;
+    assert_eq!(views.status, 200, "{}", views.text);
+    assert_eq!(views.body["layers"].as_array().unwrap().len(), r["layers"].as_array().unwrap().len());
+    let charts: Vec<&str> =
+        views.body["charts"].as_array().unwrap().iter().map(|c| c["id"].as_str().unwrap()).collect();
+    assert_eq!(charts, ["candidates", "time", "cost", "baseline"]);
+    let drawing = app.get(&format!("/v1/jobs/{id}/drawing.svg?color=wear&layer=1")).await;
+    assert_eq!(drawing.status, 200, "{}", drawing.text);
+    let candidates = app.get(&format!("/v1/jobs/{id}/charts/candidates")).await;
+    assert_eq!(candidates.status, 200, "{}", candidates.text);
+    assert!(candidates.text.contains("cannot reach"), "the candidates' fates are noted");
 }
 
 #[tokio::test]

@@ -35,6 +35,17 @@ pub enum RegionKind {
     NarrowRegion,
 }
 
+impl RegionKind {
+    /// The name used in JSON.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            RegionKind::FullSlotting => "full_slotting",
+            RegionKind::InnerCorner => "inner_corner",
+            RegionKind::NarrowRegion => "narrow_region",
+        }
+    }
+}
+
 /// A run of samples with α above the limit.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CriticalRegion {

@@ -5,6 +5,7 @@
 use crate::core::analysis::engine::SampleResult;
 use crate::core::analysis::report::HISTOGRAM_BIN_DEG;
 use crate::core::analysis::{analyze_with, Analysis, AnalysisSpec};
+use crate::core::drawing::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE_BINS};
 use crate::core::progress::Progress;
 use crate::core::tool_life::{Consumption, ToolLifeModel, WearCut};
 use crate::core::CoreError;
@@ -44,6 +45,12 @@ pub struct WearReport {
     /// The lines with the largest shares, largest first.
     pub by_line: Vec<LineWear>,
     pub by_alpha: Vec<AlphaWear>,
+    /// Per move (by index): the share of one tool's life it uses.
+    #[serde(skip)]
+    pub move_consumption: Vec<f64>,
+    /// The samples kept for drawing.
+    #[serde(skip)]
+    pub samples: PathSamples,
 }
 
 /// Accumulates the wear of samples.
@@ -55,6 +62,7 @@ pub struct WearCounter<'a> {
     cutting_mm: f64,
     lines: HashMap<u32, (f64, f64, f64)>,
     bins: Vec<(f64, f64)>,
+    moves: Vec<f64>,
 }
 
 impl<'a> WearCounter<'a> {
@@ -68,6 +76,7 @@ impl<'a> WearCounter<'a> {
             cutting_mm: 0.0,
             lines: HashMap::new(),
             bins: vec![(0.0, 0.0); bins],
+            moves: Vec::new(),
         }
     }
 
@@ -91,6 +100,11 @@ impl<'a> WearCounter<'a> {
         let bin = ((alpha_deg / HISTOGRAM_BIN_DEG) as usize).min(self.bins.len() - 1);
         self.bins[bin].0 += wear;
         self.bins[bin].1 += ds;
+        let i = r.sample.move_index;
+        if self.moves.len() <= i {
+            self.moves.resize(i + 1, 0.0);
+        }
+        self.moves[i] += wear;
     }
 
     pub fn finish(self) -> WearReport {
@@ -120,10 +134,13 @@ impl<'a> WearCounter<'a> {
                 cutting_length_mm: len,
             })
             .collect();
+        let life = self.model.life_edge_arc_mm();
         WearReport {
-            consumption: Consumption::new(total, self.model.life_edge_arc_mm(), self.cutting_mm),
+            consumption: Consumption::new(total, life, self.cutting_mm),
             by_line,
             by_alpha,
+            move_consumption: self.moves.iter().map(|w| if life > 0.0 { w / life } else { 0.0 }).collect(),
+            samples: PathSamples::default(),
         }
     }
 }
@@ -137,8 +154,15 @@ pub fn path_wear(
 ) -> Result<(Analysis, WearReport), CoreError> {
     model.validate()?;
     let mut counter = WearCounter::new(model, spec.tool.flutes, spec.default_spindle_rpm);
-    let analysis = analyze_with(path, spec, progress, |r| counter.add(r))?;
-    Ok((analysis, counter.finish()))
+    let total_length_mm: f64 = path.moves.iter().map(crate::core::analysis::sampling::move_length).sum();
+    let mut drawing = SampleCollector::new(total_length_mm, DRAWING_SAMPLE_BINS);
+    let analysis = analyze_with(path, spec, progress, |r| {
+        counter.add(r);
+        drawing.add(r);
+    })?;
+    let mut report = counter.finish();
+    report.samples = drawing.finish();
+    Ok((analysis, report))
 }
 
 #[cfg(test)]

@@ -3,14 +3,25 @@
 //! ([`trace::trace_path`]), and how it is rendered ([`plan_view::render_drawing`],
 //! [`chart::render_chart`]). Pure: strings out, no I/O.
 
+pub mod analysis_scene;
 mod bar_chart;
 pub mod chart;
+pub mod charts;
+pub mod costing_scene;
 pub mod downsample;
 pub mod draw_options;
+pub mod feeds_scene;
 pub mod frame;
+pub mod insertion_scene;
 pub mod legend;
+pub mod medial;
+pub mod outlines;
 pub mod palette;
+pub mod paths;
 pub mod plan_view;
+pub mod process_scene;
+pub mod regions;
+pub mod samples;
 pub mod scene;
 pub mod svg;
 pub mod ticks;

@@ -40,7 +40,7 @@ const MIN_REGION_BAND: f64 = 6.0;
 const MAX_REGION_BAND: f64 = 24.0;
 /// Narrowest trochoid band, px.
 const MIN_TROCHOID_BAND_PX: f64 = 3.0;
-/// Regions labelled (those of the highest α).
+/// Regions labelled at most (those of the highest α whose labels do not overlap).
 const MAX_REGION_LABELS: usize = 12;
 /// Font of region labels, in size units.
 const REGION_FONT: f64 = 11.0;
@@ -387,12 +387,22 @@ fn draw_region_labels(svg: &mut Svg, scene: &Scene, regions: &[usize], frame: &F
     let mut order: Vec<usize> = regions.iter().copied().filter(|&i| !scene.regions[i].points.is_empty()).collect();
     order.sort_by(|&a, &b| scene.regions[b].max_alpha_deg.total_cmp(&scene.regions[a].max_alpha_deg).then(a.cmp(&b)));
     let font = REGION_FONT * k;
-    for &i in order.iter().take(MAX_REGION_LABELS) {
+    // Boxes of the labels placed so far: a label that would overlap one is left out.
+    let mut placed: Vec<(f64, f64, f64, f64)> = Vec::new();
+    for &i in &order {
+        if placed.len() >= MAX_REGION_LABELS {
+            break;
+        }
         let r = &scene.regions[i];
         let (x, y) = frame.px(r.points[r.points.len() / 2]);
         let text = format!("α {}° · N{}–N{}", value_label(r.max_alpha_deg), r.start_line, r.end_line);
         let w = text_width(&text, font);
         let (lx, ly) = (x + band / 2.0 + 2.0 * k, y - band / 2.0 - 2.0 * k);
+        let bx = (lx - 2.0 * k, ly - font, lx + w + 2.0 * k, ly + 0.3 * font);
+        if placed.iter().any(|p| bx.0 < p.2 && p.0 < bx.2 && bx.1 < p.3 && p.1 < bx.3) {
+            continue;
+        }
+        placed.push(bx);
         svg.group(Attrs::new().class("region-label").str("data-kind", &r.kind));
         svg.rect(
             lx - 2.0 * k,

@@ -264,10 +264,24 @@ impl Tracer {
             Motion::Rapid | Motion::Linear => 1,
             Motion::Arc { center, plane, .. } => arc_segments(m, center, plane, length, self.tolerance),
         };
+        // Vertices at the arc's chords and at every sample inside the move, so that the
+        // colour changes where the values do, not only at the move's ends.
+        let mut ts: Vec<f64> = (1..=segments).map(|k| k as f64 / segments as f64).collect();
+        if !rapid {
+            for (_, _, qv) in slots {
+                if let QuantityValues::PerSample { s_mm, .. } = qv {
+                    let lo = s_mm.partition_point(|&x| x <= s_start + S_TOLERANCE_MM);
+                    let hi = s_mm.partition_point(|&x| x < s_start + length - S_TOLERANCE_MM);
+                    ts.extend(s_mm[lo..hi.max(lo)].iter().map(|&x| (x - s_start) / length));
+                }
+            }
+            ts.sort_by(f64::total_cmp);
+            ts.dedup_by(|a, b| (*a - *b).abs() * length <= S_TOLERANCE_MM);
+        }
         let mut s_prev = s_start;
-        for k in 1..=segments {
-            let t = k as f64 / segments as f64;
-            let p = if k == segments { m.end } else { point_on(m, t).0 };
+        let mut from = m.start;
+        for (k, &t) in ts.iter().enumerate() {
+            let p = if k + 1 == ts.len() { m.end } else { point_on(m, t).0 };
             let s = s_start + length * t;
             let mut values = [None; QUANTITIES];
             for &(slot, _, ref qv) in slots {
@@ -277,8 +291,8 @@ impl Tracer {
                 }
             }
             let layer = if layers.is_empty() { None } else { layer_of(p.z, layers) };
-            let from = if k == 1 { m.start } else { point_on(m, (k - 1) as f64 / segments as f64).0 };
             self.feed(from, p, layer, rapid, values);
+            from = p;
             s_prev = s;
         }
     }

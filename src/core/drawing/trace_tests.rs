@@ -108,15 +108,22 @@ fn a_value_changing_bin_keeps_its_vertex() {
 }
 
 #[test]
-fn per_sample_values_keep_the_peak_of_each_stretch() {
+fn per_sample_values_colour_the_stretch_where_the_peak_is() {
     let path = toolpath(polyline(&[P3::new(0.0, 0.0, -1.0), P3::new(10.0, 0.0, -1.0), P3::new(20.0, 0.0, -1.0)]));
     let s: Vec<f64> = (1..=200).map(|i| f64::from(i) * 0.1).collect();
     let mut v: Vec<Option<f64>> = s.iter().map(|_| Some(10.0)).collect();
     v[42] = Some(90.0);
     let values = TraceValues::new().per_sample(Quantity::Alpha, &s, &v);
     let traced = trace_path("p", &path, &values, &[], &options(1e-3));
-    let alpha = &traced.runs[0].values[&Quantity::Alpha];
-    assert_eq!(alpha, &vec![Some(90.0), Some(90.0), Some(10.0)]);
+    let run = &traced.runs[0];
+    let alpha = &run.values[&Quantity::Alpha];
+    // A straight line keeps a vertex where the value changes bin: the peak colours only
+    // the stretch of its sample (4.2 to 4.3 mm), the rest stays at 10.
+    let peak: Vec<usize> = (0..alpha.len()).filter(|&i| alpha[i] == Some(90.0)).collect();
+    assert_eq!(peak.len(), 1, "{alpha:?}");
+    let (a, b) = (run.points[peak[0] - 1][0], run.points[peak[0]][0]);
+    assert!((a - 4.2).abs() < 1e-9 && (b - 4.3).abs() < 1e-9, "{:?}", run.points);
+    assert!(alpha.iter().all(|v| matches!(v, Some(x) if (x - 10.0).abs() < 1e-9 || (x - 90.0).abs() < 1e-9)));
 }
 
 #[test]

@@ -10,6 +10,7 @@ use super::split::sub_move;
 use crate::core::analysis::report::{Accumulator, PathPoint, Stats};
 use crate::core::analysis::sampling::move_length;
 use crate::core::analysis::{analyze_with, Analysis, AnalysisSpec};
+use crate::core::drawing::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE_BINS};
 use crate::core::engagement::max_chip_thickness_mm;
 use crate::core::force_model::ForceModel;
 use crate::core::progress::Progress;
@@ -78,6 +79,16 @@ pub struct FeedPlan {
     /// The analysis of the input path (side milling).
     pub analysis: Option<Analysis>,
     pub warnings: Vec<String>,
+    /// Samples kept for drawing, before and after (side milling).
+    pub drawing: Option<FeedDrawing>,
+}
+
+/// The kept samples of the input path at its programmed feeds (`before`) and at the
+/// optimised feeds (`after`: feed and predicted force changed, positions the same).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FeedDrawing {
+    pub before: PathSamples,
+    pub after: PathSamples,
 }
 
 /// Checks the spec.
@@ -145,8 +156,11 @@ pub fn optimize_side_milling(
     check_spec(spec)?;
     check_sample_count(crate::core::analysis::sample_count(path, analysis))?;
     let mut collector = Collector::new(spec.rule);
+    let total_length_mm: f64 = path.moves.iter().map(move_length).sum();
+    let mut drawing = SampleCollector::new(total_length_mm, DRAWING_SAMPLE_BINS);
     let default_rpm = analysis.default_spindle_rpm;
     let report = analyze_with(path, analysis, progress, |r| {
+        drawing.add(r);
         let s = &r.sample;
         let in_material = r.contact.alpha_rad > 0.0;
         let cut = SampleCut {
@@ -177,7 +191,7 @@ pub fn optimize_side_milling(
                 .to_string(),
         );
     }
-    Ok(assemble(path, collector, spec, Some(report), warnings))
+    Ok(assemble(path, collector, spec, Some((report, drawing.finish())), warnings))
 }
 
 /// Puts the optimised program together from the collected samples.
@@ -185,9 +199,12 @@ pub fn assemble(
     path: &Toolpath,
     collector: Collector,
     spec: &FeedSpec,
-    analysis: Option<Analysis>,
+    analysis: Option<(Analysis, PathSamples)>,
     mut warnings: Vec<String>,
 ) -> FeedPlan {
+    let (analysis, before) = analysis.unzip();
+    let drawn: Vec<usize> = before.as_ref().map(|b| b.index.clone()).unwrap_or_default();
+    let mut after_values: Vec<(Option<f64>, Option<f64>)> = Vec::with_capacity(drawn.len());
     let Collector { kept, lengths, shortfalls, .. } = collector;
     let (limited, rate_limited_mm) = rate_limited(&kept, spec.max_change_per_mm);
     let model = spec.rule.force_model;
@@ -204,7 +221,12 @@ pub fn assemble(
             i += 1;
         }
         let samples = &kept[start..i];
+        let mut drawn_here = drawn.partition_point(|&d| d < start)..drawn.partition_point(|&d| d < i);
         if matches!(m.motion, Motion::Rapid) || samples.is_empty() {
+            after_values.extend(drawn_here.map(|d| {
+                let k = &kept[drawn[d]];
+                (finite(k.programmed_mm_min).filter(|_| !matches!(m.motion, Motion::Rapid)), finite(k.force_before_n))
+            }));
             blocks.push(BlockFeed {
                 line: m.line,
                 length_mm: move_length(m),
@@ -229,10 +251,16 @@ pub fn assemble(
             while p + 1 < pieces.len() && t > pieces[p].t1 + f64::EPSILON {
                 p += 1;
             }
+            let mut after_n = None;
             if let (Some(model), Some(before)) = (model.as_ref(), finite(s.force_before_n)) {
                 let after = force_at_feed(model, s, pieces[p].feed_mm_min, flutes, before);
                 force_before.add(before, f64::from(s.step_mm));
                 force_after.add(after, f64::from(s.step_mm));
+                after_n = Some(after);
+            }
+            if drawn_here.start < drawn_here.end && drawn[drawn_here.start] == start + k {
+                after_values.push((Some(pieces[p].feed_mm_min), after_n));
+                drawn_here.start += 1;
             }
         }
         for piece in &pieces {
@@ -271,6 +299,14 @@ pub fn assemble(
         shortfalls,
         analysis,
         warnings,
+        drawing: before.map(|before| {
+            let after = PathSamples {
+                feed_mm_min: after_values.iter().map(|v| v.0).collect(),
+                force_n: after_values.iter().map(|v| v.1).collect(),
+                ..before.clone()
+            };
+            FeedDrawing { before, after }
+        }),
     }
 }
 

@@ -260,7 +260,7 @@ pub fn plan_insertion(
                 after,
                 rounds,
                 existing: existing.is_some(),
-                base_moves: base.moves.len(),
+                base_path: base.clone(),
             }));
         }
         for m in widen {

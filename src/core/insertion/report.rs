@@ -8,6 +8,7 @@ use super::spec::InsertionSpec;
 use super::treatments::{interval_class, Stretch};
 use super::verify::{check_gouges, EngagementOutcome, Verification};
 use crate::core::cycles::CycleReport;
+use crate::core::drawing::samples::PathSamples;
 use crate::core::geometry::Pocket;
 use crate::core::medial::{Boundary, BranchClasses, CriticalBranches, CriticalInterval, MedialAxis, RadiusClass};
 use crate::core::toolpath::Toolpath;
@@ -90,6 +91,20 @@ pub struct InsertionPlan {
     pub rounds: usize,
     pub pocket_area_mm2: f64,
     pub warnings: Vec<String>,
+    /// What the drawing of the plan needs beyond the above.
+    #[serde(skip)]
+    pub drawing: InsertionDrawing,
+}
+
+/// The base path, the samples of both simulations and the trochoid loops, for drawing.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InsertionDrawing {
+    pub base_path: Toolpath,
+    pub base_samples: PathSamples,
+    pub planned_samples: PathSamples,
+    /// Per trochoid stretch: the loop centres (the base path of the loops), mm, and the
+    /// largest loop radius ρ, mm.
+    pub trochoids: Vec<(Vec<[f64; 2]>, f64)>,
 }
 
 /// Everything [`assemble`] needs.
@@ -111,7 +126,7 @@ pub(super) struct Parts<'a> {
     pub after: EngagementOutcome,
     pub rounds: usize,
     pub existing: bool,
-    pub base_moves: usize,
+    pub base_path: Toolpath,
 }
 
 fn range(values: impl Iterator<Item = f64>) -> (Option<f64>, Option<f64>) {
@@ -273,7 +288,7 @@ pub(super) fn assemble(p: Parts) -> InsertionPlan {
     InsertionPlan {
         axis: p.axis,
         classes: p.classes,
-        base_moves: p.base_moves,
+        base_moves: p.base_path.moves.len(),
         base_max_alpha_deg: p.base_check.outside.max_alpha_deg,
         base_overloaded_samples: p.base_check.outside.overloaded,
         critical: p.critical,
@@ -288,5 +303,41 @@ pub(super) fn assemble(p: Parts) -> InsertionPlan {
         rounds: p.rounds,
         pocket_area_mm2: coverage.pocket_area(),
         warnings,
+        drawing: InsertionDrawing {
+            trochoids: trochoid_loops(&p.stretches),
+            base_path: p.base_path,
+            base_samples: p.base_check.samples,
+            planned_samples: p.after.samples,
+        },
     }
+}
+
+/// Loop radii within this ratio of each other draw as one band (see [`trochoid_loops`]).
+const BAND_RADIUS_RATIO: f64 = 1.15;
+
+/// The loop centres of every trochoid stretch, cut into pieces whose loop radii ρ stay
+/// within [`BAND_RADIUS_RATIO`] of each other, each with its largest ρ (variable loops
+/// grow and shrink along a stretch: one band of the largest ρ would overstate them).
+fn trochoid_loops(stretches: &[Stretch]) -> Vec<(Vec<[f64; 2]>, f64)> {
+    let mut pieces = Vec::new();
+    for s in stretches {
+        let Stretch::Trochoid(t) = s else { continue };
+        let mut piece: Vec<[f64; 2]> = Vec::new();
+        let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
+        for (c, &rho) in t.plan.centres.iter().zip(&t.plan.rho_mm) {
+            if !piece.is_empty() && (rho.max(hi) > BAND_RADIUS_RATIO * rho.min(lo)) {
+                let last = *piece.last().unwrap_or(&[c.x, c.y]);
+                pieces.push((std::mem::take(&mut piece), hi));
+                piece.push(last);
+                (lo, hi) = (f64::INFINITY, 0.0);
+            }
+            piece.push([c.x, c.y]);
+            lo = lo.min(rho);
+            hi = hi.max(rho);
+        }
+        if !piece.is_empty() {
+            pieces.push((piece, hi));
+        }
+    }
+    pieces
 }

@@ -5,6 +5,7 @@
 use super::cleared::ClearedZone;
 use crate::core::analysis::sampling::{move_length, point_on};
 use crate::core::analysis::{analyze_with, AnalysisSpec};
+use crate::core::drawing::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE_BINS};
 use crate::core::geometry::{Pocket, Point};
 use crate::core::medial::Boundary;
 use crate::core::progress::Progress;
@@ -83,6 +84,8 @@ pub struct EngagementOutcome {
     pub ramps: EngagementCheck,
     pub first_overload: Option<Spot>,
     pub overloaded: Vec<(Point, f64)>,
+    /// The samples kept for drawing (see [`SampleCollector`]).
+    pub samples: PathSamples,
 }
 
 /// Simulates `path` and sorts its samples into outside the z-cut zone, inside it and ramps.
@@ -100,9 +103,13 @@ pub fn check_engagement(
         ramps: EngagementCheck::default(),
         first_overload: None,
         overloaded: Vec::new(),
+        samples: PathSamples::default(),
     };
+    let total_length_mm: f64 = path.moves.iter().map(move_length).sum();
+    let mut collector = SampleCollector::new(total_length_mm, DRAWING_SAMPLE_BINS);
     analyze_with(path, analysis, progress, |r| {
         if r.sample.rapid {
+            collector.add(r);
             return;
         }
         let m = &path.moves[r.sample.move_index];
@@ -110,10 +117,13 @@ pub fn check_engagement(
         let p = Point::new(r.sample.p.x, r.sample.p.y);
         let entry = entry_moves.get(r.sample.move_index).copied().unwrap_or(false);
         if entry || r.plunge || (m.end.z - m.start.z).abs() > super::cleared::SAME_LEVEL_MM {
+            collector.add_with(r, true);
             out.ramps.add(alpha, limit);
         } else if zcut_zone.is_air(p) {
+            collector.add_with(r, true);
             out.inside.add(alpha, limit);
         } else {
+            collector.add(r);
             out.outside.add(alpha, limit);
             if alpha > limit {
                 out.overloaded.push((p, alpha));
@@ -127,6 +137,7 @@ pub fn check_engagement(
             }
         }
     })?;
+    out.samples = collector.finish();
     Ok(out)
 }
 

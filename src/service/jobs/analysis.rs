@@ -4,7 +4,11 @@
 use super::analysis_result::AnalysisResult;
 use super::conditions::{ForceModelRef, NamedRef, ToolRef};
 use super::inputs::{read_program, read_stock, ProgramInput, StockInput};
-use crate::core::analysis::{analyze, check, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_SERIES_POINTS};
+use crate::core::analysis::sampling::move_length;
+use crate::core::analysis::{analyze_with, check, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_SERIES_POINTS};
+use crate::core::drawing::analysis_scene::analysis_scene;
+use crate::core::drawing::samples::{SampleCollector, DRAWING_SAMPLE_BINS};
+use crate::core::drawing::scene::Scene;
 use crate::core::operation::Operation;
 use crate::core::progress::Progress;
 use crate::core::tool::ToolType;
@@ -172,11 +176,14 @@ pub fn run(
     request: AnalysisRequest,
     prepared: AnalysisPrepared,
     progress: &dyn Progress,
-) -> Result<AnalysisResult, CoreError> {
+) -> Result<(AnalysisResult, Scene), CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
     let (path, spec) = build(&request, &prepared).map_err(reread)?;
-    let analysis = analyze(&path, &spec, progress)?;
-    Ok(AnalysisResult::new(prepared, path.moves.len(), analysis))
+    let total_length_mm: f64 = path.moves.iter().map(move_length).sum();
+    let mut collector = SampleCollector::new(total_length_mm, DRAWING_SAMPLE_BINS);
+    let analysis = analyze_with(&path, &spec, progress, |r| collector.add(r))?;
+    let scene = analysis_scene(&path, &spec, &analysis, &collector.finish());
+    Ok((AnalysisResult::new(prepared, path.moves.len(), analysis), scene))
 }
 
 /// Reads the program and the stock and puts the analysis together.

@@ -8,8 +8,10 @@ use super::inputs::{ProgramInput, StockInput};
 use super::store;
 use crate::core::analysis::check;
 use crate::core::conditions::standard_centres;
-use crate::core::costing::cost::Rates;
+use crate::core::costing::cost::{cost, Rates};
 use crate::core::costing::wear::path_wear;
+use crate::core::drawing::costing_scene::costing_scene;
+use crate::core::drawing::scene::Scene;
 use crate::core::kinematics::{machining_time, MachineLimits, TimeOptions};
 use crate::core::progress::Progress;
 use crate::core::tool::ToolType;
@@ -240,11 +242,13 @@ pub fn run(
     request: CostingRequest,
     prepared: CostingPrepared,
     progress: &dyn Progress,
-) -> Result<CostingResult, CoreError> {
+) -> Result<(CostingResult, Scene), CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
     let analysis = request.analysis(request.program(&prepared).map_err(reread)?);
     let (path, spec) = build(&analysis, &prepared.base).map_err(reread)?;
     let (report, wear) = path_wear(&path, &spec, &prepared.life_model(), progress)?;
     let time = machining_time(&path, &prepared.limits, &TimeOptions::default())?;
-    CostingResult::new(prepared, &path, report, wear, time)
+    let cost = cost(time.kinematic_min, wear.consumption.ratio, &prepared.rates())?;
+    let scene = costing_scene(&path, &spec, &report, &wear, &time, &cost);
+    Ok((CostingResult::new(prepared, &path, report, wear, time)?, scene))
 }

@@ -8,6 +8,8 @@ use super::inputs::{read_program, read_stock, ProgramInput, StockInput};
 use super::output::OutputOptions;
 use crate::core::analysis::{check, sample_count, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG};
 use crate::core::conditions::{feed_mm_min, standard_centres};
+use crate::core::drawing::feeds_scene::feeds_scene;
+use crate::core::drawing::scene::Scene;
 use crate::core::feed::blocks::{BlockOptions, DEFAULT_FEED_STEP_MM_MIN, DEFAULT_FEED_TOLERANCE, DEFAULT_MIN_BLOCK_MM};
 use crate::core::feed::plan::{
     check_sample_count, check_spec, optimize_side_milling, FeedPlan, FeedSpec, DEFAULT_MAX_FEED_CHANGE_PER_MM,
@@ -361,7 +363,7 @@ pub fn run(
     request: FeedsRequest,
     prepared: FeedsPrepared,
     progress: &dyn Progress,
-) -> Result<(FeedsResult, String), CoreError> {
+) -> Result<(FeedsResult, String, Scene), CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
     let job = build(&request, &prepared).map_err(reread)?;
     let plan: FeedPlan = match (&job.analysis, &job.surface) {
@@ -371,5 +373,6 @@ pub fn run(
     };
     let options = request.output.to_writer(&prepared.base);
     let program = write_program(&plan.path, &options);
-    Ok((FeedsResult::new(prepared, request.mode, job.path.moves.len(), &program, plan), program))
+    let scene = feeds_scene(&job.path, &plan, job.analysis.as_ref());
+    Ok((FeedsResult::new(prepared, request.mode, job.path.moves.len(), &program, plan), program, scene))
 }

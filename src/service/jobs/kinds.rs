@@ -8,6 +8,7 @@ use super::feeds::{self, FeedsRequest};
 use super::model::JobKind;
 use super::plans::{self, PlanRequest};
 use super::trochoids::{self, TrochoidsRequest};
+use crate::core::drawing::scene::Scene;
 use crate::core::progress::Progress;
 use crate::core::CoreError;
 use crate::service::error::{ApiError, FieldError};
@@ -32,6 +33,8 @@ pub enum JobInput {
 pub struct JobOutput {
     pub result: serde_json::Value,
     pub program: Option<String>,
+    /// The drawing scene as JSON.
+    pub scene: Option<String>,
 }
 
 /// Prefixes the field paths of a validation error (e.g. `input.` for `POST /v1/jobs`).
@@ -104,6 +107,7 @@ pub fn run(kind: JobKind, input: &str, prepared: &str, progress: &dyn Progress) 
     let unreadable = |e: serde_json::Error| CoreError::invalid("prepared", format!("stored job input unreadable: {e}"));
     progress.checkpoint()?;
     let mut program = None;
+    let mut scene: Option<Scene> = None;
     let result = match kind {
         JobKind::Conditions => {
             let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
@@ -112,35 +116,46 @@ pub fn run(kind: JobKind, input: &str, prepared: &str, progress: &dyn Progress) 
         JobKind::Analysis => {
             let request = serde_json::from_str(input).map_err(unreadable)?;
             let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
-            serde_json::to_value(analysis::run(request, prepared, progress)?).map_err(unreadable)?
+            let (result, drawn) = analysis::run(request, prepared, progress)?;
+            scene = Some(drawn);
+            serde_json::to_value(result).map_err(unreadable)?
         }
         JobKind::Feeds => {
             let request = serde_json::from_str(input).map_err(unreadable)?;
             let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
-            let (result, text) = feeds::run(request, prepared, progress)?;
+            let (result, text, drawn) = feeds::run(request, prepared, progress)?;
             program = Some(text);
+            scene = Some(drawn);
             serde_json::to_value(result).map_err(unreadable)?
         }
         JobKind::Costing => {
             let request = serde_json::from_str(input).map_err(unreadable)?;
             let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
-            serde_json::to_value(costing::run(request, prepared, progress)?).map_err(unreadable)?
+            let (result, drawn) = costing::run(request, prepared, progress)?;
+            scene = Some(drawn);
+            serde_json::to_value(result).map_err(unreadable)?
         }
         JobKind::Trochoids => {
             let request = serde_json::from_str(input).map_err(unreadable)?;
             let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
-            let (result, text) = trochoids::run(request, prepared, progress)?;
+            let (result, text, drawn) = trochoids::run(request, prepared, progress)?;
             program = Some(text);
+            scene = Some(drawn);
             serde_json::to_value(result).map_err(unreadable)?
         }
         JobKind::Plan => {
             let request = serde_json::from_str(input).map_err(unreadable)?;
             let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
-            let (result, text) = plans::run(request, prepared, progress)?;
+            let (result, text, drawn) = plans::run(request, prepared, progress)?;
             program = Some(text);
+            scene = Some(drawn);
             serde_json::to_value(result).map_err(unreadable)?
         }
     };
+    let scene = scene
+        .map(|s| serde_json::to_string(&s))
+        .transpose()
+        .map_err(|e| CoreError::invalid("scene", format!("drawing scene unserialisable: {e}")))?;
     progress.report(1.0);
-    Ok(JobOutput { result, program })
+    Ok(JobOutput { result, program, scene })
 }

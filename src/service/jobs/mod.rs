@@ -6,6 +6,7 @@ pub mod analysis_result;
 pub mod conditions;
 pub mod costing;
 pub mod costing_result;
+pub mod drawings;
 pub mod feeds;
 pub mod feeds_result;
 pub mod inputs;

@@ -89,6 +89,12 @@ pub struct JobLinks {
     /// The NC program, when the job produced one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub program: Option<String>,
+    /// What can be drawn of the job (`getJobViews`), once it succeeded.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub views: Option<String>,
+    /// The plan view as SVG (`getJobDrawing`), once it succeeded.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub drawing: Option<String>,
 }
 
 /// A job with its input and, once finished, its result or error.

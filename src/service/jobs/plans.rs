@@ -11,6 +11,8 @@ use super::output::OutputOptions;
 use super::plans_result::PlanResult;
 use super::trochoids::DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM;
 use crate::core::conditions::{feed_mm_min, standard_centres, CuttingConditions};
+use crate::core::drawing::process_scene::process_scene;
+use crate::core::drawing::scene::Scene;
 use crate::core::insertion::DEFAULT_INSERTION_ALPHA_LIMIT_DEG;
 use crate::core::kinematics::MachineLimits;
 use crate::core::nc::write_program;
@@ -471,7 +473,7 @@ pub fn run(
     request: PlanRequest,
     prepared: PlanPrepared,
     progress: &dyn Progress,
-) -> Result<(PlanResult, String), CoreError> {
+) -> Result<(PlanResult, String, Scene), CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
     let (cavity, candidates, options) = build(&request, &prepared).map_err(reread)?;
     // The ball's life (assumed as the straight tool's, MODEL.md §5) counts against its own
@@ -498,5 +500,6 @@ pub fn run(
     writer_base.tool.name = chosen.name.clone();
     writer_base.tool.geometry = chosen.tool.into();
     let program = write_program(&plan.evaluation.program, &request.output.to_writer(&writer_base));
-    Ok((PlanResult::new(&prepared, &plan, &program), program))
+    let scene = process_scene(&cavity.whole(), &plan);
+    Ok((PlanResult::new(&prepared, &plan, &program), program, scene))
 }

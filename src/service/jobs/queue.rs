@@ -204,7 +204,7 @@ async fn execute(inner: &Arc<Inner>, row: &store::JobRow) -> Result<(), sqlx::Er
     match joined {
         Ok(Ok(output)) => {
             let text = serde_json::to_string(&output.result).unwrap_or_default();
-            store::succeed(pool, id, &text, output.program.as_deref()).await
+            store::succeed(pool, id, &text, output.program.as_deref(), output.scene.as_deref()).await
         }
         Ok(Err(CoreError::Cancelled)) => {
             if control.cancel.load(Ordering::Relaxed) {

@@ -48,10 +48,12 @@ impl JobRow {
             ),
             None => None,
         };
+        let status = self.status()?;
+        let drawn = status == JobStatus::Succeeded && super::drawings::draws(self.kind()?);
         Ok(Job {
             id: self.id.clone(),
             kind: self.kind()?,
-            status: self.status()?,
+            status,
             progress: self.progress,
             attempts: self.attempts,
             cancel_requested: self.cancel_requested,
@@ -65,6 +67,8 @@ impl JobRow {
             links: JobLinks {
                 this: format!("/v1/jobs/{}", self.id),
                 program: self.program.as_ref().map(|_| format!("/v1/jobs/{}/program", self.id)),
+                views: drawn.then(|| format!("/v1/jobs/{}/views", self.id)),
+                drawing: drawn.then(|| format!("/v1/jobs/{}/drawing.svg", self.id)),
             },
         })
     }
@@ -152,16 +156,36 @@ pub async fn set_progress(pool: &SqlitePool, id: &str, progress: f64) -> Result<
     Ok(())
 }
 
-/// Marks a running job succeeded with its result (and NC program, if any).
-pub async fn succeed(pool: &SqlitePool, id: &str, result: &str, program: Option<&str>) -> Result<(), sqlx::Error> {
+/// Marks a running job succeeded with its result (and NC program and drawing scene, if
+/// any), in one transaction.
+pub async fn succeed(
+    pool: &SqlitePool,
+    id: &str,
+    result: &str,
+    program: Option<&str>,
+    scene: Option<&str>,
+) -> Result<(), sqlx::Error> {
+    let mut tx = pool.begin_with("BEGIN IMMEDIATE").await?;
     sqlx::query("UPDATE jobs SET status = 'succeeded', progress = 1, result = ?, program = ?, finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now')
          WHERE id = ?")
     .bind(result)
     .bind(program)
     .bind(id)
-    .execute(pool)
+    .execute(&mut *tx)
     .await?;
-    Ok(())
+    if let Some(scene) = scene {
+        sqlx::query("INSERT OR REPLACE INTO job_scenes (job_id, scene) VALUES (?, ?)")
+            .bind(id)
+            .bind(scene)
+            .execute(&mut *tx)
+            .await?;
+    }
+    tx.commit().await
+}
+
+/// The drawing scene of a job (JSON), if it left one.
+pub async fn scene(pool: &SqlitePool, id: &str) -> Result<Option<String>, ApiError> {
+    Ok(sqlx::query_scalar("SELECT scene FROM job_scenes WHERE job_id = ?").bind(id).fetch_optional(pool).await?)
 }
 
 /// Marks a job failed with a problem document.

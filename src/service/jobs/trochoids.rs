@@ -10,6 +10,8 @@ use super::trochoids_result::TrochoidsResult;
 use crate::core::conditions::CuttingConditions;
 use crate::core::cycles::trochoid::default_loop_radius_mm;
 use crate::core::cycles::CutDirection;
+use crate::core::drawing::insertion_scene::insertion_scene;
+use crate::core::drawing::scene::Scene;
 use crate::core::geometry::Pocket;
 use crate::core::insertion::{check_plan, plan_insertion, InsertionSpec, LoopSize};
 use crate::core::medial::{CLASS_A_RATIO_MAX, CLASS_A_RATIO_MIN};
@@ -272,11 +274,12 @@ pub fn run(
     request: TrochoidsRequest,
     prepared: TrochoidsPrepared,
     progress: &dyn Progress,
-) -> Result<(TrochoidsResult, String), CoreError> {
+) -> Result<(TrochoidsResult, String, Scene), CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
     let (pocket, spec, path) = build(&request, &prepared).map_err(reread)?;
     let plan = plan_insertion(&pocket, &spec, path.as_ref(), progress)?;
     let options = request.output.to_writer(&prepared.base);
     let program = write_program(&plan.toolpath, &options);
-    Ok((TrochoidsResult::new(prepared, path.is_some(), &program, plan), program))
+    let scene = insertion_scene(&pocket, &spec, &plan);
+    Ok((TrochoidsResult::new(prepared, path.is_some(), &program, plan), program, scene))
 }

@@ -1,0 +1,158 @@
+//! Drawings and charts of finished jobs: `GET /v1/jobs/{id}/views`, `drawing.svg` and
+//! `charts/{chart}`.
+
+use crate::common::{assert_problem, TestApp};
+use serde_json::{json, Value};
+
+/// Most a job may take in these tests while the rest of the suite runs, s.
+const DEADLINE_S: u64 = 300;
+
+/// A full slot across a box of stock: the analysis finds one critical region.
+fn slotting_analysis() -> Value {
+    json!({
+        "program": {"gcode": "G21 G90\nS9600 M3\nG0 X-10 Y20 Z5\nG1 Z-10 F1000\nG1 X50 F2000\nG1 Y-5\nG0 Z5\nM30\n"},
+        "tool_type": "square", "diameter_mm": 10,
+        "stock": {"box": {"x_min": 0, "y_min": 0, "z_min": -10, "x_max": 100, "y_max": 40, "z_max": 0}}
+    })
+}
+
+async fn finished(app: &TestApp, endpoint: &str, body: Value) -> String {
+    let a = app.post(endpoint, body).await;
+    assert!(a.status == 201 || a.status == 202, "{}", a.text);
+    let id = a.body["id"].as_str().unwrap().to_string();
+    let job = app.wait_for_job_within(&id, DEADLINE_S).await;
+    assert_eq!(job["status"], "succeeded", "{job}");
+    assert_eq!(job["links"]["views"], format!("/v1/jobs/{id}/views"));
+    assert_eq!(job["links"]["drawing"], format!("/v1/jobs/{id}/drawing.svg"));
+    id
+}
+
+fn assert_svg(a: &crate::common::Answer) {
+    assert_eq!(a.status, 200, "{}", a.text);
+    assert!(a.content_type().starts_with("image/svg+xml"), "{}", a.content_type());
+    assert!(a.text.contains("<svg") && a.text.trim_end().ends_with("</svg>"), "{}", &a.text[..a.text.len().min(300)]);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_analysis_draws_its_path_by_engagement_with_the_overload_marked() {
+    let app = TestApp::start().await;
+    let id = finished(&app, "/v1/analysis", slotting_analysis()).await;
+    let views = app.get(&format!("/v1/jobs/{id}/views")).await;
+    assert_eq!(views.status, 200, "{}", views.text);
+    assert_eq!(views.body["paths"][0]["name"], "input");
+    let quantities = views.body["paths"][0]["quantities"].as_array().unwrap();
+    assert!(quantities.contains(&json!("alpha")) && quantities.contains(&json!("force")), "{}", views.text);
+    assert_eq!(views.body["critical_regions"], 1);
+    let charts: Vec<&str> =
+        views.body["charts"].as_array().unwrap().iter().map(|c| c["id"].as_str().unwrap()).collect();
+    assert!(charts.contains(&"alpha") && charts.contains(&"force"), "{charts:?}");
+
+    let drawing = app.get(&format!("/v1/jobs/{id}/drawing.svg")).await;
+    assert_svg(&drawing);
+    assert!(drawing.text.contains("class=\"region"), "the full slot is marked");
+    assert!(drawing.text.contains("class=\"rapid"), "rapids are drawn");
+    let by_force = app.get(&format!("/v1/jobs/{id}/drawing.svg?color=force&rapids=false&width=600")).await;
+    assert_svg(&by_force);
+    assert!(!by_force.text.contains("class=\"rapid\""), "rapids can be left out");
+    for chart in charts {
+        assert_svg(&app.get(&format!("/v1/jobs/{id}/charts/{chart}?width=640&height=300")).await);
+    }
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn bad_drawing_requests_are_refused_naming_the_parameter() {
+    let app = TestApp::start().await;
+    let id = finished(&app, "/v1/analysis", slotting_analysis()).await;
+    for (query, status, field) in [
+        ("color=heat", 422, Some("color")),
+        ("color=wear", 422, Some("color")),
+        ("path=planned", 422, Some("path")),
+        ("layer=7", 422, Some("layer")),
+        ("width=10", 422, Some("width")),
+        ("width=wide", 400, None),
+        ("zoom=2", 400, None),
+    ] {
+        assert_problem(&app.get(&format!("/v1/jobs/{id}/drawing.svg?{query}")).await, status, field);
+    }
+    assert_problem(&app.get(&format!("/v1/jobs/{id}/charts/nothing")).await, 404, None);
+    assert_problem(&app.get(&format!("/v1/jobs/{id}/charts/alpha?height=5000")).await, 422, Some("height"));
+    assert_problem(&app.get("/v1/jobs/no-such-job/drawing.svg").await, 404, None);
+
+    let conditions = app.post_wait("/v1/conditions", json!({"tool_type": "square", "diameter_mm": 10})).await;
+    let cid = conditions.body["id"].as_str().unwrap();
+    assert!(conditions.body["links"]["drawing"].is_null(), "{}", conditions.text);
+    assert_problem(&app.get(&format!("/v1/jobs/{cid}/views")).await, 409, None);
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_queued_job_has_no_drawing_yet() {
+    let app = TestApp::start_with(|c| c.workers = Some(0)).await;
+    let a = app.post("/v1/analysis", slotting_analysis()).await;
+    assert_eq!(a.status, 202, "{}", a.text);
+    let id = a.body["id"].as_str().unwrap();
+    assert!(a.body["links"]["views"].is_null());
+    assert_problem(&app.get(&format!("/v1/jobs/{id}/drawing.svg")).await, 409, None);
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_trochoid_insertion_draws_the_base_path_overloaded_and_the_planned_one_with_its_trochoids() {
+    let app = TestApp::start().await;
+    let body = json!({"contour": {"outer": [[0, 0], [80, 0], [80, 24], [120, 24], [120, 36], [80, 36], [80, 60], [0, 60]]},
+        "z_top": 0, "z_bottom": -10, "tool_type": "square", "diameter_mm": 10});
+    let id = finished(&app, "/v1/trochoids", body).await;
+    let views = app.get(&format!("/v1/jobs/{id}/views")).await;
+    let names: Vec<&str> =
+        views.body["paths"].as_array().unwrap().iter().map(|p| p["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["base", "planned"], "{}", views.text);
+    assert!(views.body["trochoids"].as_u64().unwrap() > 0, "{}", views.text);
+    assert!(!views.body["layers"].as_array().unwrap().is_empty());
+
+    let base = app.get(&format!("/v1/jobs/{id}/drawing.svg?path=base")).await;
+    assert_svg(&base);
+    assert!(base.text.contains("class=\"region"), "the base path overloads the slot");
+    assert!(base.text.contains("class=\"medial"), "the medial axis is drawn");
+    let planned = app.get(&format!("/v1/jobs/{id}/drawing.svg?path=planned&layer=0")).await;
+    assert_svg(&planned);
+    assert!(planned.text.contains("class=\"trochoid"), "the trochoids are marked");
+    assert_svg(&app.get(&format!("/v1/jobs/{id}/charts/alpha")).await);
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_feed_optimisation_charts_feed_and_force_before_and_after() {
+    let app = TestApp::start().await;
+    let body = json!({
+        "program": {"gcode": "%\nO0100\nG21 G90 G17\nT1 M6\nS9600 M3\nG0 X0 Y0 Z5\nG1 Z-10 F1000\nG1 X5 F5760\nG3 X5 Y0 I-5 J0\nG0 Z5\nM30\n%\n"},
+        "tool_type": "square", "diameter_mm": 10,
+        "stock": {"box": {"x_min": -30, "y_min": -30, "z_min": -10, "x_max": 30, "y_max": 30, "z_max": 0},
+                  "open": [{"circle": {"cx": 0, "cy": 0, "r": 9.5}}]}
+    });
+    let id = finished(&app, "/v1/feeds", body).await;
+    let views = app.get(&format!("/v1/jobs/{id}/views")).await;
+    let charts: Vec<&str> =
+        views.body["charts"].as_array().unwrap().iter().map(|c| c["id"].as_str().unwrap()).collect();
+    assert!(charts.contains(&"feed") && charts.contains(&"force"), "{charts:?}");
+    let feed = app.get(&format!("/v1/jobs/{id}/charts/feed")).await;
+    assert_svg(&feed);
+    assert!(feed.text.contains("programmed") && feed.text.contains("optimised"), "both lines are labelled");
+    assert_svg(&app.get(&format!("/v1/jobs/{id}/drawing.svg?path=optimised&color=feed")).await);
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_costing_draws_where_the_tool_life_is_spent_and_charts_time_and_cost() {
+    let app = TestApp::start().await;
+    let id = finished(&app, "/v1/costing", slotting_analysis()).await;
+    let views = app.get(&format!("/v1/jobs/{id}/views")).await;
+    let quantities = views.body["paths"][0]["quantities"].as_array().unwrap();
+    assert!(quantities.contains(&json!("wear")), "{}", views.text);
+    assert_svg(&app.get(&format!("/v1/jobs/{id}/drawing.svg?color=wear")).await);
+    for chart in ["time", "cost"] {
+        let a = app.get(&format!("/v1/jobs/{id}/charts/{chart}")).await;
+        assert_svg(&a);
+    }
+    app.stop().await;
+}
