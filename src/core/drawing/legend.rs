@@ -67,7 +67,8 @@ pub fn draw_ramp(svg: &mut Svg, at: (f64, f64), width: f64, k: f64, scale: &Valu
         ticks.push((l, format!("{} limit", value_label(l)), "legend-limit"));
     }
     ticks.push((scale.min, value_label(scale.min), "legend-min"));
-    ticks.push((scale.max, value_label(scale.max), "legend-max"));
+    let top = if scale.top_clipped { format!("≥ {}", value_label(scale.max)) } else { value_label(scale.max) };
+    ticks.push((scale.max, top, "legend-max"));
     let mut placed: Vec<(f64, f64)> = Vec::new();
     for (value, text, class) in ticks {
         let tx = x + scale.position(value) * width;

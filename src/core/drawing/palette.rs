@@ -158,12 +158,15 @@ pub struct ValueScale {
     pub max: f64,
     /// Values above it fall in the hot part of the ramp.
     pub limit: Option<f64>,
+    /// Some values lie above `max` (a few outliers left out of the range): they take the
+    /// top colour, and the legend says "≥ max".
+    pub top_clipped: bool,
 }
 
 impl ValueScale {
     /// A scale over `min..=max` without a limit.
     pub fn new(min: f64, max: f64) -> ValueScale {
-        ValueScale { min, max, limit: None }
+        ValueScale { min, max, limit: None, top_clipped: false }
     }
 
     /// The colour bin (0..[`BINS`]) of `value`.
@@ -247,19 +250,19 @@ mod tests {
 
     #[test]
     fn values_above_the_alpha_limit_fall_in_the_hot_end() {
-        let scale = ValueScale { min: 0.0, max: 180.0, limit: Some(40.0) };
+        let scale = ValueScale { min: 0.0, max: 180.0, limit: Some(40.0), top_clipped: false };
         assert!(scale.bin(40.0) < COOL_BINS);
         assert!(scale.bin(40.5) >= COOL_BINS);
         assert_eq!(scale.bin(180.0), BINS - 1);
         assert!((scale.position(40.0) - HOT_START).abs() < 1e-12);
         // Even a small excess is hot when the range is narrow.
-        let narrow = ValueScale { min: 10.0, max: 41.0, limit: Some(40.0) };
+        let narrow = ValueScale { min: 10.0, max: 41.0, limit: Some(40.0), top_clipped: false };
         assert!(narrow.bin(41.0) >= COOL_BINS);
     }
 
     #[test]
     fn a_range_below_the_limit_stays_cool() {
-        let scale = ValueScale { min: 0.0, max: 30.0, limit: Some(40.0) };
+        let scale = ValueScale { min: 0.0, max: 30.0, limit: Some(40.0), top_clipped: false };
         assert!(scale.bin(30.0) < COOL_BINS);
     }
 

@@ -187,22 +187,50 @@ fn scene_extent(scene: &Scene) -> Extent {
     Extent { x_min: e.x_min - pad, y_min: e.y_min - pad, x_max: e.x_max + pad, y_max: e.y_max + pad }
 }
 
+/// Share of the cut length whose values set the top of a colour scale other than α's:
+/// the rest, a few short outliers (the full circle at the bottom of a helical entry wears
+/// a tool ten times faster than the side cutting), take the top colour instead of
+/// washing the rest of the drawing into one colour.
+pub const SCALE_TOP_SHARE: f64 = 0.99;
+
 /// The colour scale of quantity `q` over the whole path (all layers: colours compare
-/// across layers), with the α limit when colouring by α.
+/// across layers), with the α limit when colouring by α. α's scale runs to its largest
+/// value; the others to the value below which [`SCALE_TOP_SHARE`] of the length lies.
 fn value_scale(scene: &Scene, path: &ScenePath, q: Quantity) -> ValueScale {
-    let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
-    for v in path.runs.iter().filter_map(|r| r.values.get(&q)).flatten().flatten() {
-        let v = f64::from(*v);
-        if v.is_finite() {
-            min = min.min(v);
-            max = max.max(v);
+    let mut weighted: Vec<(f64, f64)> = Vec::new();
+    for run in path.runs.iter().filter(|r| !r.rapid) {
+        let Some(values) = run.values.get(&q) else { continue };
+        for (k, v) in values.iter().enumerate() {
+            let Some(v) = v.map(f64::from).filter(|v| v.is_finite()) else { continue };
+            let length = match (k.checked_sub(1).and_then(|j| run.points.get(j)), run.points.get(k)) {
+                (Some(a), Some(b)) => (b[0] - a[0]).hypot(b[1] - a[1]),
+                _ => 0.0,
+            };
+            weighted.push((v, length));
         }
     }
-    if !min.is_finite() {
-        (min, max) = (0.0, 0.0);
+    if weighted.is_empty() {
+        return ValueScale { min: 0.0, max: 0.0, limit: None, top_clipped: false };
     }
+    weighted.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let min = weighted[0].0;
+    let max = weighted[weighted.len() - 1].0;
     let limit = if q == Quantity::Alpha { scene.alpha_limit_deg } else { None };
-    ValueScale { min, max, limit }
+    if q == Quantity::Alpha {
+        return ValueScale { min, max, limit, top_clipped: false };
+    }
+    let total: f64 = weighted.iter().map(|w| w.1).sum();
+    let mut below = 0.0;
+    let mut top = max;
+    for &(v, length) in &weighted {
+        below += length;
+        if below >= SCALE_TOP_SHARE * total {
+            top = v;
+            break;
+        }
+    }
+    let top_clipped = top < max && top > min;
+    ValueScale { min, max: if top_clipped { top } else { max }, limit, top_clipped }
 }
 
 fn draw_outlines(svg: &mut Svg, scene: &Scene, frame: &Frame, k: f64) {

@@ -182,3 +182,29 @@ fn a_million_sample_scene_renders_in_well_under_a_second_and_stays_small() {
     assert!(secs < 1.0, "{secs} s");
     assert!(svg.len() < 5_000_000, "{} bytes", svg.len());
 }
+
+#[test]
+fn a_short_outlier_takes_the_top_colour_without_stretching_the_wear_scale() {
+    let mut moves = Vec::new();
+    for k in 0..100 {
+        let x = f64::from(k);
+        moves.push(Move {
+            motion: Motion::Linear,
+            start: P3::new(x, 0.0, -1.0),
+            end: P3::new(x + 1.0, 0.0, -1.0),
+            feed_mm_min: Some(1000.0),
+            spindle_rpm: Some(9600.0),
+            tool: None,
+            line: k + 1,
+        });
+    }
+    let path = Toolpath { moves, events: Vec::new(), source_units: Units::Mm, warnings: Vec::new() };
+    // Every millimetre wears 1 %/m but the last, which wears 30 %/m.
+    let wear: Vec<Option<f64>> =
+        (0..100).map(|k| Some(if k == 99 { 30.0 } else { 1.0 + 0.01 * f64::from(k) })).collect();
+    let values = TraceValues::new().per_move(Quantity::Wear, &wear);
+    let traced = trace_path("program", &path, &values, &[], &TraceOptions::default());
+    let scene = Scene { title: "wear".into(), paths: vec![traced], ..Scene::default() };
+    let svg = draw(&scene, &DrawOptions { color_by: Some(Quantity::Wear), ..DrawOptions::default() });
+    assert!(svg.contains("≥ 1.98"), "the scale tops out below the outlier and says so");
+}
