@@ -4,6 +4,7 @@
 pub mod app;
 pub mod config;
 pub mod error;
+pub mod examples;
 pub mod extract;
 pub mod force_fit;
 pub mod health;
