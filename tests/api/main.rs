@@ -3,6 +3,7 @@
 
 mod analysis;
 mod architecture;
+mod browser;
 mod common;
 mod conditions;
 mod costing;
