@@ -115,13 +115,15 @@ try {
   await step('edit a tool row: the change is saved and the row becomes the shop’s', async () => {
     await page.locator('#database tbody tr').first().click();
     await page.waitForSelector('dialog.editor[open] #row-price');
-    await page.fill('#row-price', '123');
+    const price = Number(await page.inputValue('#row-price')) + 1;
+    await page.fill('#row-price', String(price));
     await shot(page, 'desktop-database-editor');
     await page.click('dialog.editor button[type="submit"]');
-    await page.waitForSelector('dialog.editor[open]', { state: 'detached', timeout: 10_000 }).catch(() => {});
+    await page.waitForSelector('dialog.editor[open]', { state: 'detached' })
+      .catch(async () => { throw new Error(`the editor stayed open: ${await page.locator('dialog.editor').innerText()}`); });
     await page.waitForSelector('#database tbody tr:first-child .source-user');
     const row = await page.evaluate(async () => (await (await fetch('/v1/tools?limit=1')).json()).items[0]);
-    check(row.price === 123 && row.source === 'user' && row.edited === true, `the PATCH did not stick: ${JSON.stringify(row)}`);
+    check(row.price === price && row.source === 'user' && row.edited === true, `the PATCH did not stick: ${JSON.stringify(row)}`);
   });
 
   await step('phone layout (390 × 844)', async () => {

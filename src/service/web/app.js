@@ -26,7 +26,8 @@ function setActiveNav(section) {
   }
 }
 
-async function route() {
+/** Renders the view of the current hash; `refresh` keeps the scroll position. */
+async function route(refresh = false) {
   if (cleanup) {
     try { cleanup(); } catch (err) { console.warn(err); }
     cleanup = null;
@@ -45,6 +46,10 @@ async function route() {
     return;
   }
   const container = h('div', { class: 'view' });
+  if (refresh && main.firstChild) {
+    // Keep the old content until the new one is ready (no flicker, no jump).
+    container.append(...main.firstChild.childNodes);
+  }
   main.replaceChildren(container);
   try {
     const result = await view();
@@ -52,8 +57,11 @@ async function route() {
       if (result?.cleanup) result.cleanup();
       return;
     }
+    const scroll = window.scrollY;
     container.replaceChildren(result.node);
     cleanup = result.cleanup || null;
+    if (refresh) window.scrollTo(0, scroll);
+    else window.scrollTo(0, 0);
     if (result.title) document.title = `${result.title} · dieplan`;
   } catch (err) {
     if (mine !== generation) return;
@@ -61,6 +69,8 @@ async function route() {
   }
 }
 
-window.addEventListener('hashchange', route);
-if (!location.hash) location.replace('#/new');
-route();
+window.addEventListener('hashchange', () => route(false));
+// Views ask for a refresh of themselves (after an edit, or while jobs run).
+window.addEventListener('dieplan:refresh', () => route(true));
+if (!location.hash) history.replaceState(null, '', '#/new');
+route(false);

@@ -96,7 +96,7 @@ export async function databaseView(key, params) {
       try {
         await api('DELETE', `${spec.path}/${row.id}`);
         close();
-        window.dispatchEvent(new HashChangeEvent('hashchange'));
+        window.dispatchEvent(new Event('dieplan:refresh'));
       } catch (err) { problemSlot.replaceChildren(problemBox(err, 'Not deleted')); }
     } }, 'Delete row');
     const formEl = h('form', { method: 'dialog', novalidate: true, onsubmit: async (event) => {
@@ -115,7 +115,7 @@ export async function databaseView(key, params) {
           await api('PATCH', `${spec.path}/${row.id}`, patch, { contentType: 'application/merge-patch+json' });
         }
         close();
-        window.dispatchEvent(new HashChangeEvent('hashchange'));
+        window.dispatchEvent(new Event('dieplan:refresh'));
       } catch (err) {
         problemSlot.replaceChildren(problemBox(err, isNew ? 'Not added' : 'Not saved'));
         for (const e of err.problem?.errors || []) document.getElementById(`row-${e.field.split(/[.[]/)[0]}`)?.setAttribute('aria-invalid', 'true');

@@ -49,7 +49,7 @@ export async function jobsView(params) {
 
   let timer = null;
   if (page.items.some((j) => j.status === 'queued' || j.status === 'running')) {
-    timer = setTimeout(() => window.dispatchEvent(new HashChangeEvent('hashchange')), 2000);
+    timer = setTimeout(() => window.dispatchEvent(new Event('dieplan:refresh')), 2000);
   }
   return { node, title: 'Jobs', cleanup: () => clearTimeout(timer) };
 }
