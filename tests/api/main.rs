@@ -17,3 +17,4 @@ mod jobs;
 mod openapi;
 mod plans;
 mod trochoids;
+mod web;

@@ -10,6 +10,7 @@
 # Without DIEPLAN_BIN it builds the release binary first. `cargo test --release` runs it
 # through tests/api/browser.rs with the binary cargo just built.
 set -euo pipefail
+exec 2>&1 # one stream, in order, for tests/api/browser.rs
 cd "$(dirname "$0")/../.."
 ROOT=$(pwd)
 HERE="$ROOT/tests/browser"
