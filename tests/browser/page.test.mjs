@@ -37,6 +37,7 @@ async function shot(page, name) {
   shots.push(path);
 }
 
+rmSync(SHOTS, { recursive: true, force: true });
 mkdirSync(SHOTS, { recursive: true });
 const profile = mkdtempSync(join(tmpdir(), 'dieplan-chromium-'));
 const context = await chromium.launchPersistentContext(profile, {

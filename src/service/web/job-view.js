@@ -1,6 +1,6 @@
 // One job: progress (polled), cancel, and once succeeded the key figures, the drawing with
 // its controls, the charts, the NC program download and the raw result.
-import { h, api, problemBox, num, minutes, when, duration, figures, table, badge, KIND_NAMES } from './ui.js';
+import { h, api, problemBox, pretty, num, minutes, when, duration, figures, table, badge, KIND_NAMES } from './ui.js';
 import { drawingPanel } from './drawing.js';
 
 const POLL_MS = 1000;
@@ -154,8 +154,8 @@ export async function jobView(id) {
     }
     parts.push(h('section', { class: 'card' }, h('h2', {}, 'Result'), ...(SUMMARIES[job.kind]?.(r) || [h('p', { class: 'muted' }, 'See the raw result below.')]), warnings(r.warnings)));
     parts.push(drawingPanel(job));
-    parts.push(h('details', { class: 'card raw' }, h('summary', {}, 'Raw result (JSON)'), h('pre', { class: 'code' }, JSON.stringify(job.result, null, 2))));
-    parts.push(h('details', { class: 'card raw' }, h('summary', {}, 'Input (JSON)'), h('pre', { class: 'code' }, JSON.stringify(job.input, null, 2))));
+    parts.push(h('details', { class: 'card raw' }, h('summary', {}, 'Raw result (JSON)'), h('pre', { class: 'code' }, pretty(job.result))));
+    parts.push(h('details', { class: 'card raw' }, h('summary', {}, 'Input (JSON)'), h('pre', { class: 'code' }, pretty(job.input))));
     body.replaceChildren(...parts);
   }
 

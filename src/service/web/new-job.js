@@ -1,7 +1,7 @@
 // The "New job" form: operation, source (built-in example, pasted text, uploaded file),
 // tool and material from the database, the operation's key options, and the exact JSON
 // request, editable. Submits to the operation's endpoint and opens the job.
-import { h, api, problemBox, ENDPOINTS, KIND_NAMES, openapi } from './ui.js';
+import { h, api, problemBox, pretty, ENDPOINTS, KIND_NAMES, openapi } from './ui.js';
 
 const OPERATIONS = [
   ['trochoids', 'Trochoids', 'Insert trochoid cycles where a pocket’s roughing path overloads the tool'],
@@ -26,7 +26,7 @@ const DEPTHS = [
 const FIELDS = {
   analysis: [
     num('alpha_limit_deg', 'Engagement limit α', '°', '40'),
-    num('spindle_rpm', 'Spindle speed (if no S word)', 'min⁻¹', 'from database'),
+    num('spindle_rpm', 'Spindle speed (if no S word)', 'min⁻¹', 'database'),
     num('series_points', 'Chart points', 'points', '0', { value: '400', step: '1', min: '0' }),
     num('sample_spacing_mm', 'Sample spacing', 'mm', 'min(0.05, D/100)'),
   ],
@@ -40,15 +40,15 @@ const FIELDS = {
   ],
   feeds: [
     { key: 'strategy', label: 'Strategy', type: 'select', options: [['constant_force', 'constant force'], ['cutting_point', 'constant feed at the cutting point'], ['both', 'both']], value: 'constant_force' },
-    num('target_force_n', 'Target force', 'N', 'tool’s standard force β0'),
-    num('min_feed_mm_min', 'Minimum feed', 'mm/min', 'from database'),
-    num('max_feed_mm_min', 'Maximum feed', 'mm/min', '2 × standard feed'),
+    num('target_force_n', 'Target force', 'N', 'tool’s β0'),
+    num('min_feed_mm_min', 'Minimum feed', 'mm/min', 'database'),
+    num('max_feed_mm_min', 'Maximum feed', 'mm/min', '2 × standard'),
     num('max_feed_change_per_mm', 'Feed change limit', 'mm/min per mm', '1000'),
     { key: 'output.dialect', label: 'NC dialect', type: 'select', options: [['', 'Fanuc (default)'], ['linux_cnc', 'LinuxCNC']] },
   ],
   costing: [
-    num('tool_price', 'Tool price', 'currency', 'tool’s price'),
-    num('spindle_rpm', 'Spindle speed (if no S word)', 'min⁻¹', 'from database'),
+    num('tool_price', 'Tool price', 'cost-rate currency', 'tool’s price'),
+    num('spindle_rpm', 'Spindle speed (if no S word)', 'min⁻¹', 'database'),
   ],
   plan: [
     ...DEPTHS.map((f) => (f.key === 'z_bottom' ? { ...f, value: '-20' } : f)),
@@ -194,7 +194,7 @@ export async function newJobView(params) {
         h('button', { type: 'button', class: 'link', onclick: () => { state.jsonEdited = false; refreshJson(); } }, 'Discard my edits and use the form'));
       return;
     }
-    jsonArea.value = JSON.stringify(buildRequest(), null, 2);
+    jsonArea.value = pretty(buildRequest());
     jsonNote.textContent = 'Edit it to send fields the form does not show (see the API docs for every field).';
   }
   jsonArea.addEventListener('input', () => {
@@ -225,7 +225,7 @@ export async function newJobView(params) {
     if (state.source === 'example') {
       const current = list.find((e) => e.id === state.exampleId);
       body.push(field('example', 'Example', h('select', { id: 'example', onchange: (e) => { applyExample(examples.find((x) => x.id === e.target.value)); render(); } },
-        list.map((e) => h('option', { value: e.id, selected: e.id === state.exampleId }, e.kind === state.kind ? e.title : `${e.title} (input of a ${e.kind} job)`)))),
+        list.map((e) => h('option', { value: e.id, selected: e.id === state.exampleId }, e.kind === state.kind ? e.title : `${e.title} (as ${/^[aeiou]/.test(e.kind) ? 'an' : 'a'} ${e.kind} job’s input)`)))),
       current ? h('p', { class: 'hint' }, current.description) : h('p', { class: 'hint' }, 'No example for this operation.'));
     } else {
       if (state.source === 'file') {
@@ -282,11 +282,11 @@ export async function newJobView(params) {
         ? h('select', { id, dataset: { field: f.key }, onchange: onChange((t) => { state.values[f.key] = t.value; }) },
           f.options.map(([v, label]) => h('option', { value: v, selected: v === (value ?? '') }, label)))
         : h('input', { id, type: 'number', step: f.step || 'any', min: f.min, inputmode: 'decimal', required: f.required,
-          placeholder: f.placeholder ? `default: ${f.placeholder}` : '', value: value ?? '', dataset: { field: f.key },
+          placeholder: f.placeholder || '', value: value ?? '', dataset: { field: f.key },
           oninput: onChange((t) => { state.values[f.key] = t.value; }) });
       return field(id, f.label, control, { unit: f.unit });
     });
-    const out = [h('fieldset', { class: 'card' }, h('legend', {}, 'Options'), h('p', { class: 'hint' }, 'Empty fields take the database’s or the model’s default, shown greyed.'), h('div', { class: 'grid options' }, controls))];
+    const out = [h('fieldset', { class: 'card' }, h('legend', {}, 'Options'), h('p', { class: 'hint' }, 'Leave a field empty for the default shown in grey (from the database or the model).'), h('div', { class: 'grid options' }, controls))];
     if (!POCKET_KINDS.has(state.kind)) {
       const inputs = BOX.map((k) => field(`box-${k}`, k.replace('_', ' '), h('input', { id: `box-${k}`, type: 'number', step: 'any', inputmode: 'decimal', required: true, value: state.box[k], dataset: { field: `stock.box.${k}` },
         oninput: onChange((t) => { state.box[k] = t.value; }) }), { unit: 'mm' }));
@@ -369,7 +369,7 @@ export async function newJobView(params) {
       setKind(job.kind);
       render();
       state.jsonEdited = true;
-      jsonArea.value = JSON.stringify(job.input, null, 2);
+      jsonArea.value = pretty(job.input);
       details.open = true;
       refreshJson();
     }

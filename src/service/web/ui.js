@@ -73,6 +73,13 @@ export function problemBox(err, heading) {
       : null);
 }
 
+/** JSON with two-space indents, arrays of plain values (points, vertices) on one line. */
+export function pretty(value) {
+  return JSON.stringify(value, null, 2)
+    .replace(/"(?:[^"\\]|\\.)*"|\[\s*([^[\]{}"]*?)\s*\]/g,
+      (match, inner) => (inner === undefined ? match : `[${inner.split(/,\s*/).join(', ')}]`));
+}
+
 /** Formats a number with at most `digits` decimals (trailing zeros dropped) and a unit. */
 export function num(value, digits = 1, unit = '') {
   if (value === null || value === undefined || Number.isNaN(value)) return '–';
