@@ -15,7 +15,7 @@ const TABLES = {
 };
 const READ_ONLY = new Set(['id', 'created_at', 'updated_at', 'edited']);
 
-const heading = (key) => key.replace(/_(mm|um|n|m|s|hrc)$/, (m, u) => ` (${{ um: 'µm', n: 'N', hrc: 'HRC' }[u] || u})`).replace(/_/g, ' ');
+const heading = (key) => key.replace(/_id$/, '').replace(/_(mm|um|n|m|s|hrc)$/, (m, u) => ` (${{ um: 'µm', n: 'N', hrc: 'HRC' }[u] || u})`).replace(/_/g, ' ');
 const cell = (v) => (typeof v === 'number' ? num(v, 4) : v === null || v === undefined ? '–' : typeof v === 'object' ? JSON.stringify(v) : String(v));
 
 /** The JSON type a property takes: number, integer, string, boolean, enum, json. */
@@ -28,7 +28,7 @@ function kindOf(doc, prop) {
 }
 
 /** A form for one row's data; `read()` gives the values, or throws naming the bad field. */
-function rowForm(doc, schema, values) {
+function rowForm(doc, schema, values, refs = {}) {
   const props = schema.properties || {};
   const required = new Set(schema.required || []);
   const inputs = {};
@@ -37,7 +37,10 @@ function rowForm(doc, schema, values) {
     const kind = kindOf(doc, prop);
     const value = values[key];
     let control;
-    if (kind.type === 'boolean') control = h('input', { id, type: 'checkbox', checked: Boolean(value) });
+    if (refs[key]) {
+      control = h('select', { id }, refs[key].map(([v, label]) => h('option', { value: v, selected: v === value }, `${label} (#${v})`)));
+      kind.type = 'integer';
+    } else if (kind.type === 'boolean') control = h('input', { id, type: 'checkbox', checked: Boolean(value) });
     else if (kind.type === 'enum') {
       control = h('select', { id }, required.has(key) ? null : h('option', { value: '' }, '—'),
         kind.values.map((v) => h('option', { value: v, selected: v === value }, v)));
@@ -75,11 +78,13 @@ export async function databaseView(key, params) {
     return { node: h('div') };
   }
   const offset = Math.max(0, Number(params.get('offset')) || 0);
-  const [page, doc, tools] = await Promise.all([
+  const [page, doc, tools, materials] = await Promise.all([
     api('GET', `${spec.path}?limit=${PAGE}&offset=${offset}`),
     openapi(),
-    spec.columns.includes('tool_id') ? api('GET', '/v1/tools?limit=500').then((r) => r.items) : Promise.resolve([]),
+    api('GET', '/v1/tools?limit=500').then((r) => r.items),
+    api('GET', '/v1/materials?limit=500').then((r) => r.items),
   ]);
+  const refs = { tool_id: tools.map((t) => [t.id, t.name]), material_id: materials.map((m) => [m.id, m.name]) };
   const toolName = (id) => tools.find((t) => t.id === id)?.name || `#${id}`;
   const dataSchema = resolveSchema(doc, doc.paths[spec.path]?.post?.requestBody?.content?.['application/json']?.schema);
   const dialog = h('dialog', { class: 'editor', 'aria-labelledby': 'editor-title' });
@@ -87,7 +92,7 @@ export async function databaseView(key, params) {
   function openEditor(row) {
     const isNew = !row;
     const start = isNew ? { ...(dataSchema.example || {}) } : row;
-    const form = rowForm(doc, dataSchema, start);
+    const form = rowForm(doc, dataSchema, start, refs);
     const problemSlot = h('div', { 'aria-live': 'polite' });
     const close = () => dialog.close();
     const save = h('button', { type: 'submit', class: 'primary' }, isNew ? 'Add row' : 'Save changes');
@@ -134,7 +139,7 @@ export async function databaseView(key, params) {
 
   const columns = [
     ['id', (r) => h('button', { type: 'button', class: 'link', title: 'Edit this row', onclick: () => openEditor(r) }, String(r.id))],
-    ...spec.columns.map((c) => [heading(c === 'tool_id' ? 'tool' : c), (r) => (c === 'tool_id' ? toolName(r.tool_id) : cell(r[c]))]),
+    ...spec.columns.map((c) => [heading(c), (r) => (c === 'tool_id' ? toolName(r.tool_id) : cell(r[c]))]),
     ['source', (r) => h('span', { class: `source source-${r.source}` }, r.source, r.edited ? ' ✎' : '')],
     ['reference', (r) => h('span', { class: 'reference', title: r.reference || '' }, r.reference || '')],
   ];

@@ -138,8 +138,12 @@ export async function jobView(id) {
     } }, job.cancel_requested ? 'Cancelling…' : 'Cancel job');
     status.replaceChildren(...[
       h('div', { class: 'status-line' }, badge(job.status),
-        h('span', {}, running ? `${pct} %` : `finished ${when(job.finished_at)} · ran ${duration(job.started_at, job.finished_at)}`),
-        running ? cancel : h('a', { class: 'button', href: `#/new?from=${job.id}` }, 'Edit as a new job')),
+        h('span', {}, running
+          ? `${pct} %${job.started_at ? ` · running for ${duration(job.started_at)}` : ' · waiting for a worker'}${job.kind === 'plan' ? ' · a plan takes a minute or more' : ''}`
+          : `finished ${when(job.finished_at)} · ran ${duration(job.started_at, job.finished_at)}`),
+        running ? cancel : h('span', { class: 'actions tight' },
+          job.status === 'succeeded' && job.kind === 'feeds' ? h('a', { class: 'button', href: `#/new?cost=${job.id}` }, 'Cost this program') : null,
+          h('a', { class: 'button', href: `#/new?from=${job.id}` }, 'Edit as a new job'))),
       running ? h('progress', { max: 100, value: pct, 'aria-label': 'progress' }, `${pct} %`) : null,
       job.status === 'failed' && job.error ? problemBox({ problem: job.error }, 'The job failed') : null,
       job.status === 'cancelled' ? h('p', { class: 'muted' }, 'The job was cancelled before it finished.') : null,

@@ -363,15 +363,28 @@ export async function newJobView(params) {
   setKind(state.kind);
   if (fromExample) applyExample(fromExample);
   render();
-  if (params.get('from')) {
-    const job = await api('GET', `/v1/jobs/${encodeURIComponent(params.get('from'))}`);
-    if (REQUEST_SCHEMAS[job.kind]) {
-      setKind(job.kind);
+  // A previous job's input to edit, or a costing of a finished job's NC program.
+  const source = params.get('from') || params.get('cost');
+  if (source) {
+    const job = await api('GET', `/v1/jobs/${encodeURIComponent(source)}`);
+    let kind = job.kind;
+    let input = job.input;
+    if (params.get('cost')) {
+      kind = 'costing';
+      const keep = allowed('costing');
+      input = Object.fromEntries(Object.entries(job.input).filter(([k]) => keep.has(k) && k !== 'program'));
+      input = { job_id: job.id, ...input };
+    }
+    if (REQUEST_SCHEMAS[kind]) {
+      setKind(kind);
       render();
       state.jsonEdited = true;
-      jsonArea.value = pretty(job.input);
+      jsonArea.value = pretty(input);
       details.open = true;
       refreshJson();
+      problemSlot.append(h('p', { class: 'hint' }, params.get('cost')
+        ? `Costs the NC program of job ${job.id.slice(0, 8)} in the same stock, with the same tool. Edit the JSON below or run it as it is.`
+        : `The input of job ${job.id.slice(0, 8)}: edit the JSON below and run it again.`));
     }
   }
 

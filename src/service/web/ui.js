@@ -65,10 +65,13 @@ export async function api(method, path, body, { contentType = 'application/json'
 export function problemBox(err, heading) {
   const problem = err?.problem || { title: 'Error', detail: String(err?.message || err) };
   const status = problem.status ? ` (${problem.status})` : '';
+  const errors = Array.isArray(problem.errors) ? problem.errors : [];
+  // A validation problem's detail repeats its first error: show the list only.
+  const repeats = errors.length && String(problem.detail || '').startsWith(`${errors[0].field}: `);
   return h('div', { class: 'problem', role: 'alert' },
     h('strong', {}, heading || `${problem.title || 'Error'}${status}`),
-    problem.detail ? h('p', {}, problem.detail) : null,
-    Array.isArray(problem.errors) && problem.errors.length
+    problem.detail && !repeats ? h('p', {}, problem.detail) : null,
+    errors.length
       ? h('ul', {}, problem.errors.map((e) => h('li', {}, h('code', {}, e.field), ': ', e.reason)))
       : null);
 }
