@@ -148,7 +148,8 @@ try {
     check(links.views, `the job has no views link (links: ${JSON.stringify(links)}): the drawing endpoints are missing`);
     await page.waitForSelector('#drawing svg path', { state: 'attached', timeout: 30_000 });
     check(await page.locator('#drawing svg').isVisible(), 'the drawing SVG is not visible');
-    check(await page.locator('#drawing svg .legend').count() > 0, 'the drawing has no legend');
+    // The legend's elements: class "legend" or "legend-…" (caption, entries, ramp).
+    check(await page.locator('#drawing svg [class|="legend"]').count() > 0, 'the drawing has no legend');
     await page.click('button[aria-label="Zoom in"]');
     await page.click('button:has-text("Fit")');
   });

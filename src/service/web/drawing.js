@@ -6,14 +6,15 @@ const QUANTITIES = {
   alpha: 'Engagement angle α (°)',
   force: 'Cutting force (N)',
   feed: 'Feed (mm/min)',
-  wear: 'Tool wear',
+  wear: 'Tool wear (% of a tool per m)',
 };
 const PATHS = { input: 'Input path', planned: 'Planned path' };
+/** Layers of detail: query parameter, label, shown at first, the job kinds that have them. */
 const TOGGLES = [
-  ['regions', 'Critical regions', true],
-  ['trochoids', 'Trochoids', true],
-  ['medial', 'Medial axis', true],
-  ['rapids', 'Rapids', false],
+  ['regions', 'Critical regions', true, null],
+  ['trochoids', 'Trochoids', true, ['trochoids', 'plan']],
+  ['medial', 'Medial axis', true, ['trochoids', 'plan']],
+  ['rapids', 'Rapids', false, null],
 ];
 
 /** Zoom with the wheel or the buttons, pan by dragging; "Fit" restores the whole drawing. */
@@ -81,7 +82,7 @@ export function drawingPanel(job) {
   const body = h('div', {}, h('p', { class: 'muted' }, 'Loading the drawing…'));
   section.append(body);
   api('GET', job.links.views).then((views) => {
-    renderDrawing(views, body);
+    renderDrawing(views, body, job.kind);
     renderCharts(views, chartsSection);
   }).catch((err) => {
     body.replaceChildren(problemBox(err, 'No drawing'));
@@ -90,9 +91,10 @@ export function drawingPanel(job) {
   return wrap;
 }
 
-function renderDrawing(views, body) {
+function renderDrawing(views, body, kind) {
   const paths = views.paths || [];
-  const state = { path: paths.at(-1)?.name, color: null, layer: '', toggles: Object.fromEntries(TOGGLES.map(([k, , v]) => [k, v])) };
+  const toggles = TOGGLES.filter(([, , , kinds]) => !kinds || kinds.includes(kind));
+  const state = { path: paths.at(-1)?.name, color: null, layer: '', toggles: Object.fromEntries(toggles.map(([k, , v]) => [k, v])) };
   const canvas = h('div', { class: 'drawing-canvas', id: 'drawing' });
   const controls = h('div', { class: 'drawing-controls' });
   const openLink = h('a', { target: '_blank', rel: 'noopener' }, 'Open the SVG');
@@ -133,7 +135,7 @@ function renderDrawing(views, body) {
       paths.length > 1 ? select('draw-path', 'Path', paths.map((p) => [p.name, PATHS[p.name] || p.name]), state.path, (v) => { state.path = v; }) : null,
       current.quantities.length ? select('draw-color', 'Colour by', current.quantities.map((q) => [q, QUANTITIES[q] || q]), state.color, (v) => { state.color = v; }) : null,
       (views.layers || []).length > 1 ? select('draw-layer', 'Layer', [['', 'All layers'], ...views.layers.map((l) => [l.index, `${l.index + 1}: ${l.name} (z ${l.z_top} → ${l.z_bottom} mm)`])], state.layer, (v) => { state.layer = v; }) : null,
-      h('fieldset', { class: 'toggles' }, h('legend', {}, 'Show'), TOGGLES.map(([key, label]) => h('label', {},
+      h('fieldset', { class: 'toggles' }, h('legend', {}, 'Show'), toggles.map(([key, label]) => h('label', {},
         h('input', { type: 'checkbox', checked: state.toggles[key], onchange: (e) => { state.toggles[key] = e.target.checked; draw(); } }), ` ${label}`))),
       h('div', { class: 'zoom', role: 'group', 'aria-label': 'zoom' },
         h('button', { type: 'button', title: 'Zoom in', 'aria-label': 'Zoom in', onclick: () => zoom('in') }, '+'),
