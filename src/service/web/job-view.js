@@ -45,7 +45,7 @@ const SUMMARIES = {
         ['Pitch (mm)', (t) => range(t.pitch_min_mm, t.pitch_max_mm)],
         ['Loop radius (mm)', (t) => range(t.loop_radius_min_mm, t.loop_radius_max_mm)],
         ['Area (mm²)', (t) => num(t.area_mm2, 0)], ['Time', (t) => minutes(t.time_min)],
-      ], r.treatments || []),
+      ], r.treatments || [], { limit: 15 }),
     ];
   },
   feeds(r) {
@@ -63,7 +63,7 @@ const SUMMARIES = {
       (r.shortfalls || []).length ? h('h3', {}, 'Where the target cannot be held') : null,
       (r.shortfalls || []).length ? table([
         ['Kind', (s) => words(s.kind)], ['NC lines', (s) => lines(s.start, s.end)], ['Length', (s) => num(s.length_mm, 1, 'mm')],
-        ['Max α', (s) => num(s.max_alpha_deg, 1, '°')]], r.shortfalls) : null,
+        ['Max α', (s) => num(s.max_alpha_deg, 1, '°')]], r.shortfalls, { limit: 15 }) : null,
     ];
   },
   costing(r) {
@@ -94,11 +94,11 @@ const SUMMARIES = {
       ]),
       h('h3', {}, 'Candidates'),
       table([['Tool', (c) => c.name], ['Status', (c) => words(c.status)], [`Cost (${tot.currency || ''})`, (c) => num(c.cost, 2)],
-        ['Trochoids', (c) => num(c.trochoids, 0)], ['Max α (°)', (c) => num(c.max_alpha_deg, 1)], ['Why not', (c) => c.reason || '']], r.candidates || []),
+        ['Trochoids', (c) => num(c.trochoids, 0)], ['Max α (°)', (c) => num(c.max_alpha_deg, 1)], ['Why not', (c) => c.reason || '']], r.candidates || [], { limit: 15 }),
       h('h3', {}, 'Layers'),
       table([['Layer', (l) => l.index + 1], ['Role', (l) => words(l.role)], ['z (mm)', (l) => `${num(l.z_top, 2)} → ${num(l.z_bottom, 2)}`],
         ['Trochoids', (l) => num(l.trochoids, 0)], ['Max α before → after (°)', (l) => `${num(l.base_max_alpha_deg, 1)} → ${num(l.max_alpha_deg, 1)}`],
-        ['Checked', (l) => (l.verification_passed ? 'passed' : 'failed')]], r.layers || []),
+        ['Checked', (l) => (l.verification_passed ? 'passed' : 'failed')]], r.layers || [], { limit: 15 }),
     ];
   },
 };
@@ -108,7 +108,7 @@ function regionsTable(regions) {
   return h('div', {}, h('h3', {}, 'Critical regions'), table([
     ['Kind', (c) => words(c.kind)], ['NC lines', (c) => lines(c.start, c.end)], ['Length', (c) => num(c.length_mm, 1, 'mm')],
     ['Max α', (c) => num(c.max_alpha_deg, 1, '°')], ['Max force', (c) => num(c.max_force_n, 0, 'N')],
-    ['At', (c) => (c.at_max ? `X${num(c.at_max.x, 2)} Y${num(c.at_max.y, 2)} Z${num(c.at_max.z, 2)}` : '–')]], regions));
+    ['At', (c) => (c.at_max ? `X${num(c.at_max.x, 2)} Y${num(c.at_max.y, 2)} Z${num(c.at_max.z, 2)}` : '–')]], regions, { limit: 15 }));
 }
 
 function warnings(list) {

@@ -122,9 +122,20 @@ export function figures(rows) {
     h('div', { class: hint ? `figure ${hint}` : 'figure' }, h('dt', {}, label), h('dd', {}, value))));
 }
 
-/** A table: columns [[heading, row => cell]], optional row click. Wrapped for small screens. */
-export function table(columns, rows, { onRow, rowLink, empty = 'Nothing to show.' } = {}) {
+/**
+ * A table: columns [[heading, row => cell]], optional row click. Wrapped for small screens.
+ * With `limit`, longer tables show their first rows and a button to show the rest.
+ */
+export function table(columns, rows, { onRow, rowLink, empty = 'Nothing to show.', limit } = {}) {
   if (!rows.length) return h('p', { class: 'muted' }, empty);
+  if (limit && rows.length > limit) {
+    const wrap = h('div', {}, table(columns, rows.slice(0, limit), { onRow, rowLink }));
+    const more = h('button', { type: 'button', class: 'link more', onclick: () => {
+      wrap.replaceChildren(table(columns, rows, { onRow, rowLink }));
+    } }, `Show all ${rows.length} rows`);
+    wrap.append(h('p', { class: 'hint' }, `The first ${limit} of ${rows.length}. `, more));
+    return wrap;
+  }
   const head = h('thead', {}, h('tr', {}, columns.map(([heading]) => h('th', { scope: 'col' }, heading))));
   const body = h('tbody', {}, rows.map((row) => {
     const tr = h('tr', {}, columns.map(([, cell]) => h('td', {}, cell(row))));
