@@ -69,6 +69,11 @@ async function route(refresh = false) {
   }
 }
 
+// The skip link focuses the content without touching the route in the hash.
+document.querySelector('.skip')?.addEventListener('click', (event) => {
+  event.preventDefault();
+  main.focus();
+});
 window.addEventListener('hashchange', () => route(false));
 // Views ask for a refresh of themselves (after an edit, or while jobs run).
 window.addEventListener('dieplan:refresh', () => route(true));
