@@ -8,7 +8,8 @@ const QUANTITIES = {
   feed: 'Feed (mm/min)',
   wear: 'Tool wear (% of a tool per m)',
 };
-const PATHS = { input: 'Input path', planned: 'Planned path' };
+const PATHS = { input: 'Input path', base: 'Base path (before trochoids)', planned: 'Planned path', optimised: 'Optimised path' };
+const pathLabel = (name) => PATHS[name] || name.charAt(0).toUpperCase() + name.slice(1).replace(/_/g, ' ');
 /** Layers of detail: query parameter, label, shown at first, the job kinds that have them. */
 const TOGGLES = [
   ['regions', 'Critical regions', true, null],
@@ -131,8 +132,8 @@ function renderDrawing(views, body, kind) {
     const select = (id, label, options, value, set) => h('div', { class: 'field' }, h('label', { for: id }, label),
       h('select', { id, onchange: (e) => { set(e.target.value); renderControls(); draw(); } },
         options.map(([v, text]) => h('option', { value: v, selected: String(v) === String(value) }, text))));
-    controls.replaceChildren(
-      paths.length > 1 ? select('draw-path', 'Path', paths.map((p) => [p.name, PATHS[p.name] || p.name]), state.path, (v) => { state.path = v; }) : null,
+    controls.replaceChildren(...[
+      paths.length > 1 ? select('draw-path', 'Path', paths.map((p) => [p.name, pathLabel(p.name)]), state.path, (v) => { state.path = v; }) : null,
       current.quantities.length ? select('draw-color', 'Colour by', current.quantities.map((q) => [q, QUANTITIES[q] || q]), state.color, (v) => { state.color = v; }) : null,
       (views.layers || []).length > 1 ? select('draw-layer', 'Layer', [['', 'All layers'], ...views.layers.map((l) => [l.index, `${l.index + 1}: ${l.name} (z ${l.z_top} → ${l.z_bottom} mm)`])], state.layer, (v) => { state.layer = v; }) : null,
       h('fieldset', { class: 'toggles' }, h('legend', {}, 'Show'), toggles.map(([key, label]) => h('label', {},
@@ -140,7 +141,8 @@ function renderDrawing(views, body, kind) {
       h('div', { class: 'zoom', role: 'group', 'aria-label': 'zoom' },
         h('button', { type: 'button', title: 'Zoom in', 'aria-label': 'Zoom in', onclick: () => zoom('in') }, '+'),
         h('button', { type: 'button', title: 'Zoom out', 'aria-label': 'Zoom out', onclick: () => zoom('out') }, '−'),
-        h('button', { type: 'button', title: 'Show the whole drawing', onclick: () => zoom('fit') }, 'Fit')));
+        h('button', { type: 'button', title: 'Show the whole drawing', onclick: () => zoom('fit') }, 'Fit')),
+    ].filter(Boolean));
   }
   renderControls();
   body.replaceChildren(controls, canvas, h('p', { class: 'hint' }, 'Scroll to zoom, drag to pan. ', openLink));

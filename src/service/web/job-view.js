@@ -168,7 +168,10 @@ export async function jobView(id) {
     try {
       job = await api('GET', `/v1/jobs/${job.id}`);
     } catch (err) {
-      status.replaceChildren(problemBox(err, 'Lost contact with the job; retrying'));
+      if (stopped) return;
+      status.replaceChildren(problemBox(err, 'Lost contact with the service; trying again every few seconds'));
+      timer = setTimeout(poll, 5 * POLL_MS);
+      return;
     }
     if (stopped) return;
     renderStatus();
