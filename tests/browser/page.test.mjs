@@ -152,6 +152,18 @@ try {
     check(await page.locator('#drawing svg [class|="legend"]').count() > 0, 'the drawing has no legend');
     await page.click('button[aria-label="Zoom in"]');
     await page.click('button:has-text("Fit")');
+    // Another path (the base path before the trochoids) redraws the drawing.
+    if (await page.locator('#draw-path').count()) {
+      const title = () => page.evaluate(() => document.querySelector('#drawing svg title')?.textContent || '');
+      const before = await title();
+      const other = await page.$eval('#draw-path', (s) => [...s.options].find((o) => !o.selected)?.value);
+      await page.selectOption('#draw-path', other);
+      await page.waitForFunction((t) => (document.querySelector('#drawing svg title')?.textContent || '') !== t, before);
+      check(await page.locator('#drawing svg path').count() > 0, `the ${other} path draws nothing`);
+      const changed = await title();
+      await page.selectOption('#draw-path', { index: (await page.$eval('#draw-path', (s) => s.options.length)) - 1 });
+      await page.waitForFunction((t) => (document.querySelector('#drawing svg title')?.textContent || '') !== t, changed);
+    }
   });
 
   await step('the charts are drawn', async () => {
