@@ -135,7 +135,7 @@ function renderDrawing(views, body, kind) {
     controls.replaceChildren(...[
       paths.length > 1 ? select('draw-path', 'Path', paths.map((p) => [p.name, pathLabel(p.name)]), state.path, (v) => { state.path = v; }) : null,
       current.quantities.length ? select('draw-color', 'Colour by', current.quantities.map((q) => [q, QUANTITIES[q] || q]), state.color, (v) => { state.color = v; }) : null,
-      (views.layers || []).length > 1 ? select('draw-layer', 'Layer', [['', 'All layers'], ...views.layers.map((l) => [l.index, `${l.index + 1}: ${l.name} (z ${l.z_top} → ${l.z_bottom} mm)`])], state.layer, (v) => { state.layer = v; }) : null,
+      (views.layers || []).length > 1 ? select('draw-layer', 'Layer', [['', 'All layers'], ...views.layers.map((l) => [l.index, l.name || `layer ${l.index + 1} (z ${l.z_top} → ${l.z_bottom} mm)`])], state.layer, (v) => { state.layer = v; }) : null,
       h('fieldset', { class: 'toggles' }, h('legend', {}, 'Show'), toggles.map(([key, label]) => h('label', {},
         h('input', { type: 'checkbox', checked: state.toggles[key], onchange: (e) => { state.toggles[key] = e.target.checked; draw(); } }), ` ${label}`))),
       h('div', { class: 'zoom', role: 'group', 'aria-label': 'zoom' },
