@@ -18,6 +18,10 @@ const TOGGLES = [
   ['rapids', 'Rapids', false, null],
 ];
 
+/** Bounds of the charts' width parameter, px. */
+const CHART_MIN_PX = 200;
+const CHART_MAX_PX = 4000;
+
 /** Zoom with the wheel or the buttons, pan by dragging; "Fit" restores the whole drawing. */
 function zoomable(svg, canvas) {
   const vb = svg.viewBox.baseVal;
@@ -156,10 +160,20 @@ function renderCharts(views, section) {
     return;
   }
   const grid = h('div', { class: 'charts' });
-  for (const chart of charts) {
+  const targets = charts.map((chart) => {
     const target = h('div', { class: 'chart-canvas' }, h('p', { class: 'muted' }, 'Loading…'));
     grid.append(h('figure', { class: 'chart', dataset: { chart: chart.id } }, h('figcaption', {}, chart.title || chart.id), target));
-    loadSvg(chart.href, target);
-  }
+    return [chart, target];
+  });
   section.append(grid);
+  // Each chart is drawn at the width it is shown at, so its text keeps its size.
+  requestAnimationFrame(() => {
+    for (const [chart, target] of targets) {
+      const url = new URL(chart.href, location.origin);
+      const width = Math.max(CHART_MIN_PX, Math.min(CHART_MAX_PX, Math.round(target.clientWidth || 800)));
+      url.searchParams.set('width', String(width));
+      url.searchParams.set('height', String(Math.max(240, Math.min(420, Math.round(width * 0.5)))));
+      loadSvg(`${url.pathname}${url.search}`, target);
+    }
+  });
 }
