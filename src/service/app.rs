@@ -54,6 +54,7 @@ pub fn router(state: AppState) -> Router {
     let (api, openapi) = api_router().split_for_parts();
     let request_id = HeaderName::from_static(REQUEST_ID);
     api.merge(SwaggerUi::new("/docs").url("/openapi.json", openapi))
+        .merge(crate::service::web::router())
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         .with_state(state)

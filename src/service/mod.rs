@@ -4,6 +4,7 @@
 pub mod app;
 pub mod config;
 pub mod error;
+pub mod examples;
 pub mod extract;
 pub mod force_fit;
 pub mod health;
@@ -14,3 +15,4 @@ pub mod resources;
 pub mod schemas;
 pub mod state;
 pub mod store;
+pub mod web;

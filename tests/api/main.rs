@@ -3,6 +3,7 @@
 
 mod analysis;
 mod architecture;
+mod browser;
 mod common;
 mod conditions;
 mod costing;
@@ -16,3 +17,4 @@ mod jobs;
 mod openapi;
 mod plans;
 mod trochoids;
+mod web;

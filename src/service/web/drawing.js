@@ -1,0 +1,179 @@
+// The drawing of a finished job (GET /v1/jobs/{id}/views, then drawing.svg with the chosen
+// path, colour quantity, layer and layers of detail) with zoom and pan, and its charts.
+import { h, api, problemBox, svgNode } from './ui.js';
+
+const QUANTITIES = {
+  alpha: 'Engagement angle α (°)',
+  force: 'Cutting force (N)',
+  feed: 'Feed (mm/min)',
+  wear: 'Tool wear (% of a tool per m)',
+};
+const PATHS = { input: 'Input path', base: 'Base path (before trochoids)', planned: 'Planned path', optimised: 'Optimised path' };
+const pathLabel = (name) => PATHS[name] || name.charAt(0).toUpperCase() + name.slice(1).replace(/_/g, ' ');
+/** Layers of detail: query parameter, label, shown at first, the job kinds that have them. */
+const TOGGLES = [
+  ['regions', 'Critical regions', true, null],
+  ['trochoids', 'Trochoids', true, ['trochoids', 'plan']],
+  ['medial', 'Medial axis', true, ['trochoids', 'plan']],
+  ['rapids', 'Rapids', false, null],
+];
+
+/** Bounds of the charts' width parameter, px. */
+const CHART_MIN_PX = 200;
+const CHART_MAX_PX = 4000;
+
+/** Zoom with the wheel or the buttons, pan by dragging; "Fit" restores the whole drawing. */
+function zoomable(svg, canvas) {
+  const vb = svg.viewBox.baseVal;
+  if (!vb || !vb.width) return () => {};
+  const home = { x: vb.x, y: vb.y, width: vb.width, height: vb.height };
+  const set = (x, y, width, height) => svg.setAttribute('viewBox', `${x} ${y} ${width} ${height}`);
+  const zoom = (factor, cx = vb.x + vb.width / 2, cy = vb.y + vb.height / 2) => {
+    const width = Math.min(home.width * 4, Math.max(home.width / 200, vb.width * factor));
+    const f = width / vb.width;
+    set(cx - (cx - vb.x) * f, cy - (cy - vb.y) * f, vb.width * f, vb.height * f);
+  };
+  const toSvg = (event) => {
+    const r = svg.getBoundingClientRect();
+    return [vb.x + ((event.clientX - r.left) / r.width) * vb.width, vb.y + ((event.clientY - r.top) / r.height) * vb.height];
+  };
+  svg.addEventListener('wheel', (event) => {
+    event.preventDefault();
+    zoom(event.deltaY > 0 ? 1.2 : 1 / 1.2, ...toSvg(event));
+  }, { passive: false });
+  let drag = null;
+  svg.addEventListener('pointerdown', (event) => {
+    drag = { x: event.clientX, y: event.clientY, vx: vb.x, vy: vb.y };
+    svg.setPointerCapture(event.pointerId);
+    canvas.classList.add('dragging');
+  });
+  svg.addEventListener('pointermove', (event) => {
+    if (!drag) return;
+    const r = svg.getBoundingClientRect();
+    set(drag.vx - ((event.clientX - drag.x) / r.width) * vb.width, drag.vy - ((event.clientY - drag.y) / r.height) * vb.height, vb.width, vb.height);
+  });
+  const end = () => { drag = null; canvas.classList.remove('dragging'); };
+  svg.addEventListener('pointerup', end);
+  svg.addEventListener('pointercancel', end);
+  return (action) => {
+    if (action === 'in') zoom(1 / 1.5);
+    else if (action === 'out') zoom(1.5);
+    else set(home.x, home.y, home.width, home.height);
+  };
+}
+
+async function loadSvg(href, target) {
+  try {
+    const svg = svgNode(await api('GET', href, undefined, { text: true }));
+    svg.removeAttribute('height');
+    svg.setAttribute('width', '100%');
+    target.replaceChildren(svg);
+    return svg;
+  } catch (err) {
+    target.replaceChildren(problemBox(err, 'Could not draw this'));
+    return null;
+  }
+}
+
+export function drawingPanel(job) {
+  const section = h('section', { class: 'card drawing-card' }, h('h2', {}, 'Drawing'));
+  const chartsSection = h('section', { class: 'card charts-card' }, h('h2', {}, 'Charts'));
+  const wrap = h('div', {}, section, chartsSection);
+  if (!job.links?.views) {
+    section.append(h('p', { class: 'muted' }, 'This job has nothing to draw.'));
+    chartsSection.remove();
+    return wrap;
+  }
+  const body = h('div', {}, h('p', { class: 'muted' }, 'Loading the drawing…'));
+  section.append(body);
+  api('GET', job.links.views).then((views) => {
+    renderDrawing(views, body, job.kind);
+    renderCharts(views, chartsSection);
+  }).catch((err) => {
+    body.replaceChildren(problemBox(err, 'No drawing'));
+    chartsSection.remove();
+  });
+  return wrap;
+}
+
+function renderDrawing(views, body, kind) {
+  const paths = views.paths || [];
+  const toggles = TOGGLES.filter(([, , , kinds]) => !kinds || kinds.includes(kind));
+  const state = { path: paths.at(-1)?.name, color: null, layer: '', toggles: Object.fromEntries(toggles.map(([k, , v]) => [k, v])) };
+  const canvas = h('div', { class: 'drawing-canvas', id: 'drawing' });
+  const controls = h('div', { class: 'drawing-controls' });
+  const openLink = h('a', { target: '_blank', rel: 'noopener' }, 'Open the SVG');
+  let zoom = () => {};
+  let request = 0;
+
+  const url = () => {
+    const q = new URLSearchParams();
+    if (state.path) q.set('path', state.path);
+    if (state.color) q.set('color', state.color);
+    if (state.layer !== '') q.set('layer', state.layer);
+    for (const [k, v] of Object.entries(state.toggles)) q.set(k, String(v));
+    q.set('width', String(Math.max(320, Math.min(2400, Math.round(canvas.clientWidth || 900)))));
+    return `${views.drawing}?${q}`;
+  };
+  async function draw() {
+    const mine = ++request;
+    canvas.classList.add('loading');
+    const href = url();
+    openLink.href = href;
+    const svg = await loadSvg(href, h('div'));
+    if (mine !== request) return;
+    canvas.classList.remove('loading');
+    if (svg) {
+      canvas.replaceChildren(svg);
+      zoom = zoomable(svg, canvas);
+    } else {
+      canvas.replaceChildren(problemBox({ message: 'The drawing could not be loaded.' }));
+    }
+  }
+  function renderControls() {
+    const current = paths.find((p) => p.name === state.path) || paths[0] || { quantities: [] };
+    if (!current.quantities.includes(state.color)) state.color = current.quantities[0] || null;
+    const select = (id, label, options, value, set) => h('div', { class: 'field' }, h('label', { for: id }, label),
+      h('select', { id, onchange: (e) => { set(e.target.value); renderControls(); draw(); } },
+        options.map(([v, text]) => h('option', { value: v, selected: String(v) === String(value) }, text))));
+    controls.replaceChildren(...[
+      paths.length > 1 ? select('draw-path', 'Path', paths.map((p) => [p.name, pathLabel(p.name)]), state.path, (v) => { state.path = v; }) : null,
+      current.quantities.length ? select('draw-color', 'Colour by', current.quantities.map((q) => [q, QUANTITIES[q] || q]), state.color, (v) => { state.color = v; }) : null,
+      (views.layers || []).length > 1 ? select('draw-layer', 'Layer', [['', 'All layers'], ...views.layers.map((l) => [l.index, l.name || `layer ${l.index + 1} (z ${l.z_top} → ${l.z_bottom} mm)`])], state.layer, (v) => { state.layer = v; }) : null,
+      h('fieldset', { class: 'toggles' }, h('legend', {}, 'Show'), toggles.map(([key, label]) => h('label', {},
+        h('input', { type: 'checkbox', checked: state.toggles[key], onchange: (e) => { state.toggles[key] = e.target.checked; draw(); } }), ` ${label}`))),
+      h('div', { class: 'zoom', role: 'group', 'aria-label': 'zoom' },
+        h('button', { type: 'button', title: 'Zoom in', 'aria-label': 'Zoom in', onclick: () => zoom('in') }, '+'),
+        h('button', { type: 'button', title: 'Zoom out', 'aria-label': 'Zoom out', onclick: () => zoom('out') }, '−'),
+        h('button', { type: 'button', title: 'Show the whole drawing', onclick: () => zoom('fit') }, 'Fit')),
+    ].filter(Boolean));
+  }
+  renderControls();
+  body.replaceChildren(controls, canvas, h('p', { class: 'hint' }, 'Scroll to zoom, drag to pan. ', openLink));
+  requestAnimationFrame(draw);
+}
+
+function renderCharts(views, section) {
+  const charts = views.charts || [];
+  if (!charts.length) {
+    section.remove();
+    return;
+  }
+  const grid = h('div', { class: 'charts' });
+  const targets = charts.map((chart) => {
+    const target = h('div', { class: 'chart-canvas' }, h('p', { class: 'muted' }, 'Loading…'));
+    grid.append(h('figure', { class: 'chart', dataset: { chart: chart.id } }, h('figcaption', {}, chart.title || chart.id), target));
+    return [chart, target];
+  });
+  section.append(grid);
+  // Each chart is drawn at the width it is shown at, so its text keeps its size.
+  requestAnimationFrame(() => {
+    for (const [chart, target] of targets) {
+      const url = new URL(chart.href, location.origin);
+      const width = Math.max(CHART_MIN_PX, Math.min(CHART_MAX_PX, Math.round(target.clientWidth || 800)));
+      url.searchParams.set('width', String(width));
+      url.searchParams.set('height', String(Math.max(240, Math.min(420, Math.round(width * 0.5)))));
+      loadSvg(`${url.pathname}${url.search}`, target);
+    }
+  });
+}

@@ -1,0 +1,192 @@
+// Drives the dieplan web page in headless chromium (Debian's, via playwright-core):
+// new job from the built-in trochoids example, its progress, result, NC program, the jobs
+// list, the database, and the drawing with its charts; desktop and phone screenshots.
+//
+//   node tests/browser/page.test.mjs http://127.0.0.1:8080
+//
+// Exits non-zero with the failed step's message. tests/browser/run.sh starts the service.
+import { chromium } from 'playwright-core';
+import { mkdtempSync, mkdirSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join, resolve } from 'node:path';
+
+const BASE = (process.argv[2] || process.env.DIEPLAN || 'http://127.0.0.1:8080').replace(/\/$/, '');
+const SHOTS = resolve(process.env.SCREENSHOT_DIR || 'target/browser-screenshots');
+const JOB_TIMEOUT_MS = 120_000;
+const ARGS = ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
+  '--disable-component-update', '--disable-sync', '--disable-dev-shm-usage'];
+
+const consoleErrors = [];
+const shots = [];
+let current = 'starting';
+
+function check(condition, message) {
+  if (!condition) throw new Error(message);
+}
+
+async function step(name, fn) {
+  current = name;
+  const t0 = Date.now();
+  await fn();
+  console.log(`ok: ${name} (${((Date.now() - t0) / 1000).toFixed(1)} s)`);
+}
+
+async function shot(page, name) {
+  const path = join(SHOTS, `${name}.png`);
+  await page.screenshot({ path, fullPage: true });
+  shots.push(path);
+}
+
+rmSync(SHOTS, { recursive: true, force: true });
+mkdirSync(SHOTS, { recursive: true });
+const profile = mkdtempSync(join(tmpdir(), 'dieplan-chromium-'));
+const context = await chromium.launchPersistentContext(profile, {
+  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  headless: true,
+  args: ARGS,
+  viewport: { width: 1280, height: 800 },
+  acceptDownloads: true,
+});
+let failed = false;
+try {
+  const page = context.pages()[0] || await context.newPage();
+  page.setDefaultTimeout(15_000);
+  page.on('console', (msg) => { if (msg.type() === 'error') consoleErrors.push(`${msg.text()} (${msg.location().url || 'page'})`); });
+  page.on('pageerror', (err) => consoleErrors.push(`uncaught: ${err.message}`));
+  let jobId;
+
+  await step('the page loads at / with its form filled from the API', async () => {
+    const response = await page.goto(`${BASE}/`);
+    check(response.ok(), `GET / answered ${response.status()}`);
+    check((response.headers()['content-type'] || '').startsWith('text/html'), 'GET / is not text/html');
+    await page.waitForSelector('#submit-job');
+    await page.waitForSelector('#tool option', { state: 'attached' });
+    check((await page.locator('h1').innerText()) === 'New job', 'the start page is not "New job"');
+  });
+
+  await step('pick the built-in trochoids example', async () => {
+    await page.check('input[name="kind"][value="trochoids"]', { force: true });
+    await page.check('input[name="source"][value="example"]', { force: true });
+    await page.selectOption('#example', 'pocket-slot-trochoids');
+    const json = JSON.parse(await page.inputValue('#json-input'));
+    check(Array.isArray(json.contour?.outer) && json.z_bottom === -10, `the JSON request is not the example's: ${JSON.stringify(json).slice(0, 200)}`);
+    check(Number.isInteger(json.tool_id), 'the request names no tool_id');
+    await shot(page, 'desktop-new-job');
+  });
+
+  await step('submit and wait for the job to succeed', async () => {
+    await page.click('#submit-job');
+    await page.waitForURL(/#\/jobs\/[0-9a-f-]{36}$/);
+    jobId = page.url().split('/').pop();
+    await page.waitForSelector('.badge-succeeded, .badge-failed, .badge-cancelled', { timeout: JOB_TIMEOUT_MS });
+    const status = await page.locator('.status-card .badge').innerText();
+    check(status === 'succeeded', `the job ended ${status}: ${await page.locator('.status-card').innerText()}`);
+  });
+
+  await step('the result shows its key figures and the verification passed', async () => {
+    await page.waitForSelector('.figures');
+    const text = await page.locator('.job-body').innerText();
+    check(/Verification\s*passed/i.test(text), `no passed verification in the summary: ${text.slice(0, 400)}`);
+  });
+
+  await step('the NC program link downloads G-code', async () => {
+    const link = page.locator('#download-program');
+    check(await link.count() === 1, 'no "Download NC program" link');
+    check((await link.getAttribute('download'))?.endsWith('.nc'), 'the program link has no download attribute');
+    const href = await link.getAttribute('href');
+    const text = await page.evaluate(async (url) => (await fetch(url)).text(), href);
+    check(/\bG0?1\b/.test(text), `the program at ${href} is not G-code: ${text.slice(0, 200)}`);
+  });
+
+  await step('the jobs list shows the job', async () => {
+    await page.click('nav.main-nav a[data-nav="jobs"]');
+    await page.waitForSelector(`#jobs a[href="#/jobs/${jobId}"]`);
+    await shot(page, 'desktop-jobs');
+  });
+
+  await step('the database tab shows the tools table', async () => {
+    await page.click('nav.main-nav a[data-nav="db"]');
+    await page.waitForSelector('#database table tbody tr');
+    const rows = await page.locator('#database tbody tr').count();
+    check(rows >= 10, `only ${rows} tool rows`);
+    check((await page.locator('.tabs a[aria-current="page"]').innerText()) === 'Tools', 'the Tools tab is not the current one');
+    await shot(page, 'desktop-database');
+  });
+
+  await step('edit a tool row: the change is saved and the row becomes the shop’s', async () => {
+    await page.locator('#database tbody tr').first().click();
+    await page.waitForSelector('dialog.editor[open] #row-price');
+    const price = Number(await page.inputValue('#row-price')) + 1;
+    await page.fill('#row-price', String(price));
+    await shot(page, 'desktop-database-editor');
+    await page.click('dialog.editor button[type="submit"]');
+    await page.waitForSelector('dialog.editor[open]', { state: 'detached' })
+      .catch(async () => { throw new Error(`the editor stayed open: ${await page.locator('dialog.editor').innerText()}`); });
+    await page.waitForSelector('#database tbody tr:first-child .source-user');
+    const row = await page.evaluate(async () => (await (await fetch('/v1/tools?limit=1')).json()).items[0]);
+    check(row.price === price && row.source === 'user' && row.edited === true, `the PATCH did not stick: ${JSON.stringify(row)}`);
+  });
+
+  await step('phone layout (390 × 844)', async () => {
+    await page.setViewportSize({ width: 390, height: 844 });
+    await page.goto(`${BASE}/#/new`);
+    await page.waitForSelector('#submit-job');
+    await shot(page, 'phone-new-job');
+    const width = await page.evaluate(() => document.documentElement.scrollWidth);
+    check(width <= 390, `the new-job page scrolls sideways on a phone (${width} px wide)`);
+    await page.goto(`${BASE}/#/jobs/${jobId}`);
+    await page.waitForSelector('.figures');
+    await page.waitForSelector('#drawing svg, .drawing-card .muted, .drawing-card .problem', { timeout: 30_000 }).catch(() => {});
+    await shot(page, 'phone-job');
+    await page.setViewportSize({ width: 1280, height: 800 });
+  });
+
+  await step('the drawing shows the path with its legend', async () => {
+    await page.goto(`${BASE}/#/jobs/${jobId}`);
+    await page.waitForSelector('.drawing-card');
+    const links = await page.evaluate(async (id) => (await (await fetch(`/v1/jobs/${id}`)).json()).links, jobId);
+    check(links.views, `the job has no views link (links: ${JSON.stringify(links)}): the drawing endpoints are missing`);
+    await page.waitForSelector('#drawing svg path', { state: 'attached', timeout: 30_000 });
+    check(await page.locator('#drawing svg').isVisible(), 'the drawing SVG is not visible');
+    // The legend's elements: class "legend" or "legend-…" (caption, entries, ramp).
+    check(await page.locator('#drawing svg [class|="legend"]').count() > 0, 'the drawing has no legend');
+    await page.click('button[aria-label="Zoom in"]');
+    await page.click('button:has-text("Fit")');
+    // Another path (the base path before the trochoids) redraws the drawing.
+    if (await page.locator('#draw-path').count()) {
+      const title = () => page.evaluate(() => document.querySelector('#drawing svg title')?.textContent || '');
+      const before = await title();
+      const other = await page.$eval('#draw-path', (s) => [...s.options].find((o) => !o.selected)?.value);
+      await page.selectOption('#draw-path', other);
+      await page.waitForFunction((t) => (document.querySelector('#drawing svg title')?.textContent || '') !== t, before);
+      check(await page.locator('#drawing svg path').count() > 0, `the ${other} path draws nothing`);
+      const changed = await title();
+      await page.selectOption('#draw-path', { index: (await page.$eval('#draw-path', (s) => s.options.length)) - 1 });
+      await page.waitForFunction((t) => (document.querySelector('#drawing svg title')?.textContent || '') !== t, changed);
+    }
+  });
+
+  await step('the charts are drawn', async () => {
+    await page.waitForSelector('.chart svg', { timeout: 30_000 });
+    const views = await page.evaluate(async (id) => (await (await fetch(`/v1/jobs/${id}/views`)).json()), jobId);
+    const drawn = await page.locator('.chart svg').count();
+    check(drawn === views.charts.length, `${drawn} of the ${views.charts.length} charts are drawn`);
+    await shot(page, 'desktop-job');
+  });
+
+  check(consoleErrors.length === 0, `console errors:\n  ${consoleErrors.join('\n  ')}`);
+  console.log('ok: no console errors');
+} catch (err) {
+  failed = true;
+  console.error(`FAILED at "${current}": ${err.message}`);
+  if (consoleErrors.length) console.error(`console errors:\n  ${consoleErrors.join('\n  ')}`);
+  try {
+    const page = context.pages()[0];
+    if (page) await shot(page, 'failure');
+  } catch { /* the browser is gone */ }
+} finally {
+  await context.close();
+  rmSync(profile, { recursive: true, force: true });
+}
+console.log(`screenshots:\n  ${shots.join('\n  ')}`);
+process.exit(failed ? 1 : 0);
