@@ -213,6 +213,15 @@ impl Validator {
         self.check(value.is_finite(), field, format!("must be a finite number, got {value}"));
     }
 
+    /// The value must be finite, above `lo` (not equal to it) and at most `hi`.
+    pub fn above_and_at_most(&mut self, field: &str, value: f64, lo: f64, hi: f64) {
+        self.check(
+            value.is_finite() && value > lo && value <= hi,
+            field,
+            format!("must be above {lo} and at most {hi}, got {value}"),
+        );
+    }
+
     /// The value must lie in `[lo, hi]`.
     pub fn within(&mut self, field: &str, value: f64, lo: f64, hi: f64) {
         self.check(

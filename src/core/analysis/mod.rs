@@ -27,6 +27,9 @@ use serde::Serialize;
 
 /// Engagement above this is critical by default (seed 002 §2.4, seed 004 §2.1), deg.
 pub const DEFAULT_ALPHA_LIMIT_DEG: f64 = 40.0;
+/// Largest engagement limit a request may set, deg (180° is full slotting: a limit there
+/// would mark nothing).
+pub const MAX_ALPHA_LIMIT_DEG: f64 = 179.9;
 /// Samples are never further apart than this by default, mm (issue: 0.05 mm or D/100).
 pub const DEFAULT_MAX_SPACING_MM: f64 = 0.05;
 /// Default spacing as a fraction of the tool diameter.

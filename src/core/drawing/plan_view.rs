@@ -22,6 +22,8 @@ const MIN_UNIT: f64 = 0.6;
 const MAX_UNIT: f64 = 2.5;
 /// Margin around everything, in size units.
 const MARGIN: f64 = 16.0;
+/// Smallest title font, as a share of [`TITLE_FONT`], a long title is shrunk to.
+const MIN_TITLE_SHRINK: f64 = 0.6;
 /// Title font and subtitle font, in size units.
 const TITLE_FONT: f64 = 16.0;
 const SUBTITLE_FONT: f64 = 12.0;
@@ -165,11 +167,15 @@ pub fn render_drawing(scene: &Scene, options: &DrawOptions) -> Result<String, Dr
 
     let mut svg = Svg::new(width, height, &heading, "dieplan-drawing");
     svg.rect(0.0, 0.0, width, height, Attrs::new().class("background").str("fill", "#ffffff"));
-    svg.text((margin, margin + TITLE_FONT * k), TITLE_FONT * k, Anchor::Start, &heading, Attrs::new().class("title"));
-    let subtitle = match resolved.color_by {
+    // The scene's title on the first line, its font shrunk (down to a floor) to fit the
+    // width; the path, layer and quantity on the second.
+    let title_font = (inner / text_width(&scene.title, 1.0)).min(TITLE_FONT * k).max(MIN_TITLE_SHRINK * TITLE_FONT * k);
+    svg.text((margin, margin + TITLE_FONT * k), title_font, Anchor::Start, &scene.title, Attrs::new().class("title"));
+    let coloured = match resolved.color_by {
         Some(q) => format!("coloured by {}", q.caption()),
         None => "no values to colour by".into(),
     };
+    let subtitle = format!("{path_name} — {layer_name} — {coloured}");
     let sub_y = margin + (TITLE_FONT + SUBTITLE_FONT * 1.4) * k;
     svg.text((margin, sub_y), SUBTITLE_FONT * k, Anchor::Start, &subtitle, Attrs::new().class("subtitle"));
     svg.insert(&body.finish_fragment());

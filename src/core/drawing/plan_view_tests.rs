@@ -42,8 +42,8 @@ fn the_default_drawing_shows_everything_the_scene_has() {
         "class=\"legend-rapid\"",
         "class=\"legend-region\"",
         "class=\"legend-trochoid\"",
-        "Square pocket with an island — planned — all layers",
-        "coloured by engagement α, deg",
+        "Square pocket with an island",
+        "planned — all layers — coloured by engagement α, deg",
     ] {
         assert!(svg.contains(needle), "missing {needle}");
     }

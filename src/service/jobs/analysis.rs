@@ -5,7 +5,9 @@ use super::analysis_result::AnalysisResult;
 use super::conditions::{ForceModelRef, NamedRef, ToolRef};
 use super::inputs::{read_program, read_stock, ProgramInput, StockInput};
 use crate::core::analysis::sampling::move_length;
-use crate::core::analysis::{analyze_with, check, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_SERIES_POINTS};
+use crate::core::analysis::{
+    analyze_with, check, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_ALPHA_LIMIT_DEG, MAX_SERIES_POINTS,
+};
 use crate::core::drawing::analysis_scene::analysis_scene;
 use crate::core::drawing::samples::{SampleCollector, DRAWING_SAMPLE_BINS};
 use crate::core::drawing::scene::Scene;
@@ -71,7 +73,7 @@ pub struct AnalysisPrepared {
 pub async fn prepare(pool: &SqlitePool, request: AnalysisRequest) -> Result<AnalysisPrepared, ApiError> {
     let mut v = Validator::new();
     if let Some(a) = request.alpha_limit_deg {
-        v.within("alpha_limit_deg", a, f64::MIN_POSITIVE, 179.9);
+        v.above_and_at_most("alpha_limit_deg", a, 0.0, MAX_ALPHA_LIMIT_DEG);
     }
     for (field, value) in [
         ("sample_spacing_mm", request.sample_spacing_mm),

@@ -6,7 +6,7 @@ use super::analysis::{resolve, AnalysisPrepared, PathJobRefs, Resolved};
 use super::feeds_result::FeedsResult;
 use super::inputs::{read_program, read_stock, ProgramInput, StockInput};
 use super::output::OutputOptions;
-use crate::core::analysis::{check, sample_count, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG};
+use crate::core::analysis::{check, sample_count, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_ALPHA_LIMIT_DEG};
 use crate::core::conditions::{feed_mm_min, standard_centres};
 use crate::core::drawing::feeds_scene::feeds_scene;
 use crate::core::drawing::scene::Scene;
@@ -158,7 +158,7 @@ fn validate(request: &FeedsRequest) -> Result<(), ApiError> {
         }
     }
     if let Some(a) = request.alpha_limit_deg {
-        v.within("alpha_limit_deg", a, f64::MIN_POSITIVE, 179.9);
+        v.above_and_at_most("alpha_limit_deg", a, 0.0, MAX_ALPHA_LIMIT_DEG);
     }
     if let Some(s) = request.sample_spacing_mm {
         v.within("sample_spacing_mm", s, 1e-4, 5.0);
