@@ -21,6 +21,10 @@ const TOGGLES = [
 /** Bounds of the charts' width parameter, px. */
 const CHART_MIN_PX = 200;
 const CHART_MAX_PX = 4000;
+// A chart is drawn again when its width changes by more than this share, after the
+// window has been still for this long.
+const CHART_REDRAW_RATIO = 0.2;
+const CHART_REDRAW_DELAY_MS = 250;
 
 /** Zoom with the wheel or the buttons, pan by dragging; "Fit" restores the whole drawing. */
 function zoomable(svg, canvas) {
@@ -166,14 +170,30 @@ function renderCharts(views, section) {
     return [chart, target];
   });
   section.append(grid);
-  // Each chart is drawn at the width it is shown at, so its text keeps its size.
-  requestAnimationFrame(() => {
-    for (const [chart, target] of targets) {
-      const url = new URL(chart.href, location.origin);
-      const width = Math.max(CHART_MIN_PX, Math.min(CHART_MAX_PX, Math.round(target.clientWidth || 800)));
-      url.searchParams.set('width', String(width));
-      url.searchParams.set('height', String(Math.max(240, Math.min(420, Math.round(width * 0.5)))));
-      loadSvg(`${url.pathname}${url.search}`, target);
-    }
-  });
+  // Each chart is drawn at the width it is shown at, so its text keeps its size; when
+  // the window makes it much wider or narrower, it is drawn again.
+  const drawnAt = new Map();
+  const load = (chart, target) => {
+    const width = Math.max(CHART_MIN_PX, Math.min(CHART_MAX_PX, Math.round(target.clientWidth || 800)));
+    const before = drawnAt.get(target);
+    if (before && Math.abs(width - before) < CHART_REDRAW_RATIO * before) return;
+    drawnAt.set(target, width);
+    const url = new URL(chart.href, location.origin);
+    url.searchParams.set('width', String(width));
+    url.searchParams.set('height', String(Math.max(240, Math.min(420, Math.round(width * 0.5)))));
+    loadSvg(`${url.pathname}${url.search}`, target);
+  };
+  requestAnimationFrame(() => targets.forEach(([chart, target]) => load(chart, target)));
+  if (typeof ResizeObserver === 'function') {
+    let pending = null;
+    const observer = new ResizeObserver(() => {
+      if (!grid.isConnected) {
+        observer.disconnect();
+        return;
+      }
+      clearTimeout(pending);
+      pending = setTimeout(() => targets.forEach(([chart, target]) => load(chart, target)), CHART_REDRAW_DELAY_MS);
+    });
+    observer.observe(grid);
+  }
 }
