@@ -19,6 +19,8 @@ const TOGGLES = [
 ];
 
 /** Bounds of the charts' width parameter, px. */
+// Width of each drawing of the before-and-after strip, px.
+const COMPARE_WIDTH_PX = 700;
 const CHART_MIN_PX = 200;
 const CHART_MAX_PX = 4000;
 // A chart is drawn again when its width changes by more than this share, after the
@@ -100,6 +102,23 @@ export function drawingPanel(job) {
   return wrap;
 }
 
+// Before and after side by side (the first and the last path, e.g. the base path with
+// its overloads and the planned one with its trochoids), as images: the job at a glance.
+function compareStrip(views, paths) {
+  if (paths.length < 2) return [];
+  const [first, last] = [paths[0], paths.at(-1)];
+  const figure = (path, caption) => {
+    const q = new URLSearchParams({ path: path.name, width: String(COMPARE_WIDTH_PX), rapids: 'false' });
+    if (path.quantities.includes('alpha')) q.set('color', 'alpha');
+    const src = `${views.drawing}?${q}`;
+    return h('figure', { class: 'compare-item' },
+      h('a', { href: src, target: '_blank', rel: 'noopener' },
+        h('img', { src, alt: `${caption}: ${pathLabel(path.name)}`, loading: 'lazy' })),
+      h('figcaption', {}, h('strong', {}, caption), ` · ${pathLabel(path.name)}`));
+  };
+  return [h('div', { class: 'compare' }, figure(first, 'Before'), figure(last, 'After'))];
+}
+
 function renderDrawing(views, body, kind) {
   const paths = views.paths || [];
   const toggles = TOGGLES.filter(([, , , kinds]) => !kinds || kinds.includes(kind));
@@ -153,7 +172,7 @@ function renderDrawing(views, body, kind) {
     ].filter(Boolean));
   }
   renderControls();
-  body.replaceChildren(controls, canvas, h('p', { class: 'hint' }, 'Scroll to zoom, drag to pan. ', openLink));
+  body.replaceChildren(...compareStrip(views, paths), controls, canvas, h('p', { class: 'hint' }, 'Scroll to zoom, drag to pan. ', openLink));
   requestAnimationFrame(draw);
 }
 
