@@ -9,60 +9,15 @@ use dieplan::core::drawing::chart::render_chart;
 use dieplan::core::drawing::downsample::min_max_per_bucket;
 use dieplan::core::drawing::plan_view::{render_drawing, DrawOptions};
 use dieplan::core::drawing::scene::{ChartBody, ChartData, LineChart, LineSeries, Quantity, Scene};
+use dieplan::core::drawing::synthetic::{alpha_at, alpha_samples, long_loops};
 use dieplan::core::drawing::trace::{trace_path, TraceOptions, TraceValues};
-use dieplan::core::toolpath::{Motion, Move, Plane, Toolpath, Units, P3};
+use dieplan::core::toolpath::{Motion, Move, Toolpath};
 use std::time::Instant;
 
 /// Sample spacing of the per-sample values, mm.
 const SPACING_MM: f64 = 0.05;
 /// Repetitions of each measured step (the best is reported).
 const RUNS: usize = 5;
-
-/// Rectangular loops (50 mm longer than high) offset by 0.5 mm, with 3 mm corner arcs.
-fn long_loops() -> Toolpath {
-    const STEP_MM: f64 = 0.5;
-    const CORNER_MM: f64 = 3.0;
-    let z = -2.0;
-    let mut moves = Vec::new();
-    let mut at = P3::new(100.0, 75.0, 5.0);
-    let mut push = |motion: Motion, to: P3, moves: &mut Vec<Move>| {
-        let line = moves.len() as u32 + 1;
-        moves.push(Move { motion, start: at, end: to, feed_mm_min: Some(2000.0), spindle_rpm: None, tool: None, line });
-        at = to;
-    };
-    let mut o = 70.0;
-    let mut first = true;
-    while o > 2.0 {
-        let (x0, y0, x1, y1) = (100.0 - o - 25.0, 75.0 - o, 100.0 + o + 25.0, 75.0 + o);
-        let c = CORNER_MM.min(o / 2.0);
-        let start = P3::new(x0 + c, y0, z);
-        if first {
-            push(Motion::Rapid, P3::new(start.x, start.y, 5.0), &mut moves);
-            first = false;
-        }
-        push(Motion::Linear, start, &mut moves);
-        let corners = [(x1, y0, -1.0, 1.0), (x1, y1, -1.0, -1.0), (x0, y1, 1.0, -1.0), (x0, y0, 1.0, 1.0)];
-        let mut dir = (1.0, 0.0);
-        for (cx, cy, sx, sy) in corners {
-            push(Motion::Linear, P3::new(cx - dir.0 * c, cy - dir.1 * c, z), &mut moves);
-            let center = P3::new(cx + sx * c, cy + sy * c, z);
-            let next = (-dir.1, dir.0);
-            let after = P3::new(cx + next.0 * c, cy + next.1 * c, z);
-            push(Motion::Arc { center, clockwise: false, plane: Plane::Xy, turns: 0 }, after, &mut moves);
-            dir = next;
-        }
-        o -= STEP_MM;
-    }
-    Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] }
-}
-
-/// α per sample: a slow wave plus sharp peaks (like corners) above the 40° limit.
-fn alpha_samples(total_mm: f64) -> (Vec<f64>, Vec<Option<f64>>) {
-    let n = (total_mm / SPACING_MM) as usize;
-    let s: Vec<f64> = (1..=n).map(|i| i as f64 * SPACING_MM).collect();
-    let alpha = s.iter().map(|&s| Some(alpha_at(s))).collect();
-    (s, alpha)
-}
 
 /// The same path as ~0.05 mm linear moves (arcs included), and α per move.
 fn dense(path: &Toolpath) -> (Toolpath, Vec<Option<f64>>) {
@@ -83,11 +38,6 @@ fn dense(path: &Toolpath) -> (Toolpath, Vec<Option<f64>>) {
         }
     }
     (Toolpath { moves, ..path.clone() }, alpha)
-}
-
-fn alpha_at(s: f64) -> f64 {
-    let corner = ((s / 7.3).sin() * 0.5 + 0.5).powi(40);
-    18.0 + 8.0 * (s / 95.0).sin() + 70.0 * corner
 }
 
 fn save(name: &str, svg: &str) {
@@ -111,7 +61,7 @@ fn best<T>(mut f: impl FnMut() -> T) -> (T, f64) {
 fn main() {
     let path = long_loops();
     let total: f64 = path.moves.iter().map(move_length).sum();
-    let (s, alpha) = alpha_samples(total);
+    let (s, alpha) = alpha_samples(total, SPACING_MM);
     let values = TraceValues::new().per_sample(Quantity::Alpha, &s, &alpha);
     let (traced, trace_secs) = best(|| trace_path("planned", &path, &values, &[], &TraceOptions::default()));
     let vertices: usize = traced.runs.iter().map(|r| r.points.len()).sum();

@@ -45,29 +45,9 @@ if [ ! -d "$HERE/node_modules/playwright-core" ] || [ ! -f "$STAMP" ] || [ "$HER
   (cd "$HERE" && npm ci --no-audit --no-fund --loglevel=error) || fail "npm ci failed in tests/browser"
 fi
 
-BIN=${DIEPLAN_BIN:-}
-if [ -z "$BIN" ]; then
-  cargo build --release
-  BIN=target/release/dieplan
-fi
-
-TMP=$(mktemp -d)
-PORT=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
-"$BIN" serve --addr "127.0.0.1:$PORT" --database "$TMP/dieplan.sqlite" --workers 2 >"$TMP/server.log" 2>&1 &
-PID=$!
-cleanup() {
-  kill "$PID" 2>/dev/null || true
-  wait "$PID" 2>/dev/null || true
-  rm -rf "$TMP"
-}
-trap cleanup EXIT
-
-BASE="http://127.0.0.1:$PORT"
-for _ in $(seq 1 100); do
-  curl -fsS "$BASE/healthz" >/dev/null 2>&1 && break
-  sleep 0.1
-done
-curl -fsS "$BASE/readyz" >/dev/null || { echo "service did not become ready"; cat "$TMP/server.log"; exit 1; }
+# shellcheck source=tests/serve.sh
+source "$ROOT/tests/serve.sh"
+BASE=$DIEPLAN
 
 export SCREENSHOT_DIR=${SCREENSHOT_DIR:-$ROOT/target/browser-screenshots}
 if ! CHROMIUM="$CHROMIUM" node "$HERE/page.test.mjs" "$BASE"; then

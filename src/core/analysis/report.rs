@@ -36,6 +36,18 @@ pub enum RegionKind {
 }
 
 impl RegionKind {
+    /// The kind of a run of samples above the limit that peaks at `max_alpha_deg` over
+    /// `length_mm` of path, for a tool of `diameter_mm`.
+    pub fn classify(max_alpha_deg: f64, length_mm: f64, diameter_mm: f64) -> RegionKind {
+        if max_alpha_deg >= FULL_SLOT_DEG {
+            RegionKind::FullSlotting
+        } else if length_mm <= CORNER_LENGTH_DIAMETERS * diameter_mm {
+            RegionKind::InnerCorner
+        } else {
+            RegionKind::NarrowRegion
+        }
+    }
+
     /// The name used in JSON.
     pub fn as_str(self) -> &'static str {
         match self {
@@ -244,13 +256,7 @@ impl ReportBuilder {
 
     fn close_region(&mut self) {
         if let Some(mut region) = self.open.take() {
-            region.kind = if region.max_alpha_deg >= FULL_SLOT_DEG {
-                RegionKind::FullSlotting
-            } else if region.length_mm <= CORNER_LENGTH_DIAMETERS * self.diameter_mm {
-                RegionKind::InnerCorner
-            } else {
-                RegionKind::NarrowRegion
-            };
+            region.kind = RegionKind::classify(region.max_alpha_deg, region.length_mm, self.diameter_mm);
             self.regions.push(region);
         }
     }

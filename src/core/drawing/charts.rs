@@ -3,7 +3,7 @@
 
 use super::downsample::min_max_per_bucket;
 use super::samples::PathSamples;
-use super::scene::{ChartBody, ChartData, LineChart, LineSeries, Quantity};
+use super::scene::{BarChart, BarGroup, ChartBody, ChartData, LineChart, LineSeries, Quantity};
 
 /// Buckets a line chart's series are reduced to (about one per pixel column of a
 /// 1200 px chart, each keeping its minimum and maximum).
@@ -52,4 +52,14 @@ pub fn distance_chart(
             limits,
         }),
     })
+}
+
+/// A bar chart of `groups` over `categories`, without notes or a highlighted category.
+pub fn bar_chart(id: &str, title: &str, y_label: &str, categories: Vec<String>, groups: Vec<BarGroup>) -> ChartData {
+    let notes = vec![String::new(); categories.len()];
+    ChartData {
+        id: id.to_string(),
+        title: title.to_string(),
+        body: ChartBody::Bars(BarChart { y_label: y_label.to_string(), categories, groups, notes, highlight: None }),
+    }
 }

@@ -2,30 +2,16 @@
 //! the tool's life is spent, and charts of the machining time and the cost.
 
 use super::analysis_scene::{alpha_limit, layer_of_range, stock_scene, INPUT_PATH};
-use super::charts::distance_chart;
+use super::charts::{bar_chart, distance_chart};
 use super::paths::{traced, wear_rates};
 use super::regions::marks_of_regions;
-use super::scene::{BarChart, BarGroup, ChartBody, ChartData, Quantity, Scene};
+use super::scene::{BarGroup, ChartData, Quantity, Scene};
 use super::trace::layer_of;
 use crate::core::analysis::{Analysis, AnalysisSpec};
 use crate::core::costing::cost::Cost;
 use crate::core::costing::wear::WearReport;
 use crate::core::kinematics::MachiningTime;
 use crate::core::toolpath::Toolpath;
-
-fn bar_chart(id: &str, title: &str, y_label: &str, categories: &[&str], groups: Vec<BarGroup>) -> ChartData {
-    ChartData {
-        id: id.to_string(),
-        title: title.to_string(),
-        body: ChartBody::Bars(BarChart {
-            y_label: y_label.to_string(),
-            categories: categories.iter().map(|c| (*c).to_string()).collect(),
-            groups,
-            notes: vec![String::new(); categories.len()],
-            highlight: None,
-        }),
-    }
-}
 
 /// Time per part of the program (feed moves, rapids, tool changes, dwells), nominal
 /// and kinematic.
@@ -34,7 +20,7 @@ fn time_chart(time: &MachiningTime) -> ChartData {
         "time",
         "Machining time per part of the program",
         "time, min",
-        &["feed moves", "rapids", "tool changes", "dwells"],
+        ["feed moves", "rapids", "tool changes", "dwells"].map(String::from).to_vec(),
         vec![
             BarGroup {
                 name: "nominal".to_string(),
@@ -58,7 +44,7 @@ fn cost_chart(cost: &Cost) -> ChartData {
         "cost",
         "Cost: machine time and tool",
         &format!("cost, {}", cost.currency),
-        &["machine", "tool", "total"],
+        ["machine", "tool", "total"].map(String::from).to_vec(),
         vec![BarGroup {
             name: "cost".to_string(),
             values: vec![Some(cost.machine), Some(cost.tool), Some(cost.total)],

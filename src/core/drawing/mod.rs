@@ -24,6 +24,7 @@ pub mod regions;
 pub mod samples;
 pub mod scene;
 pub mod svg;
+pub mod synthetic;
 pub mod ticks;
 pub mod trace;
 

@@ -2,9 +2,10 @@
 //! the chosen tool's program by layer, coloured by feed and tool-life consumption, and
 //! charts of the candidates, of time and cost per operation, and of the baseline.
 
+use super::charts::bar_chart;
 use super::outlines::pocket_outlines;
 use super::paths::{move_feeds, traced, wear_rates};
-use super::scene::{BarChart, BarGroup, ChartBody, ChartData, LayerInfo, Quantity, Scene};
+use super::scene::{BarGroup, ChartBody, ChartData, LayerInfo, Quantity, Scene};
 use crate::core::process::{CandidateStatus, Cavity, ProcessPlan, Step};
 
 /// The chosen tool's program.
@@ -31,19 +32,10 @@ fn status_name(status: CandidateStatus) -> &'static str {
     }
 }
 
-fn bars(id: &str, title: &str, y_label: &str, categories: Vec<String>, groups: Vec<BarGroup>) -> ChartData {
-    let notes = vec![String::new(); categories.len()];
-    ChartData {
-        id: id.to_string(),
-        title: title.to_string(),
-        body: ChartBody::Bars(BarChart { y_label: y_label.to_string(), categories, groups, notes, highlight: None }),
-    }
-}
-
 /// Cost of each candidate (machine and tool), the chosen one highlighted.
 fn candidates_chart(plan: &ProcessPlan, currency: &str) -> ChartData {
     let c = &plan.candidates;
-    let mut chart = bars(
+    let mut chart = bar_chart(
         "candidates",
         "Candidate end mills: cost of the job at the standard force",
         &format!("cost, {currency}"),
@@ -84,7 +76,7 @@ fn step_charts(plan: &ProcessPlan, currency: &str) -> [ChartData; 2] {
     let cost = &plan.evaluation.cost;
     let share = |part: f64, whole: f64| if whole > 0.0 { part / whole } else { 0.0 };
     [
-        bars(
+        bar_chart(
             "time",
             "Machining time per operation",
             "time, min",
@@ -94,7 +86,7 @@ fn step_charts(plan: &ProcessPlan, currency: &str) -> [ChartData; 2] {
                 BarGroup { name: "kinematic".to_string(), values: steps.iter().map(|s| Some(s.2)).collect() },
             ],
         ),
-        bars(
+        bar_chart(
             "cost",
             "Cost per operation",
             &format!("cost, {currency}"),
@@ -117,7 +109,7 @@ fn step_charts(plan: &ProcessPlan, currency: &str) -> [ChartData; 2] {
 fn baseline_chart(plan: &ProcessPlan, currency: &str) -> Option<ChartData> {
     let b = plan.baseline.as_ref()?;
     let chosen = &plan.candidates[plan.chosen].name;
-    Some(bars(
+    Some(bar_chart(
         "baseline",
         "The plan against the conventional ball-end roughing",
         &format!("kinematic time, min; cost, {currency}"),

@@ -3,7 +3,7 @@
 
 use super::samples::PathSamples;
 use super::scene::RegionMark;
-use crate::core::analysis::report::{CriticalRegion, RegionKind, CORNER_LENGTH_DIAMETERS, FULL_SLOT_DEG};
+use crate::core::analysis::report::{CriticalRegion, RegionKind};
 
 /// Marks for an analysis' critical regions: each through the kept samples between its
 /// start and end.
@@ -66,13 +66,7 @@ pub fn marks_of_samples(
             }
         }
         let length = samples.s_mm[i - 1] - samples.s_mm[start];
-        let kind = if max_alpha >= FULL_SLOT_DEG {
-            RegionKind::FullSlotting
-        } else if length <= CORNER_LENGTH_DIAMETERS * diameter_mm {
-            RegionKind::InnerCorner
-        } else {
-            RegionKind::NarrowRegion
-        };
+        let kind = RegionKind::classify(max_alpha, length, diameter_mm);
         marks.push(RegionMark {
             kind: kind.as_str().to_string(),
             path: path.to_string(),

@@ -37,13 +37,6 @@ impl PathSamples {
     pub fn is_empty(&self) -> bool {
         self.s_mm.is_empty()
     }
-
-    /// The same samples with the feed of sample `i` replaced by `feed_at(i)` (e.g. the
-    /// optimised feed of the block it lies in).
-    pub fn with_feed(&self, feed_at: impl Fn(usize) -> Option<f64>) -> PathSamples {
-        let feed_mm_min = (0..self.len()).map(feed_at).collect();
-        PathSamples { feed_mm_min, ..self.clone() }
-    }
 }
 
 /// Collects [`PathSamples`] from an analysis' samples (see [`crate::core::analysis::analyze_with`]).

@@ -4,7 +4,6 @@ use super::*;
 use crate::core::analysis::sampling::{for_each_sample, move_curvatures};
 use crate::core::toolpath::{Motion, Move, Plane, Toolpath, Units, P3};
 use proptest::prelude::*;
-use std::time::Instant;
 
 fn mv(motion: Motion, start: P3, end: P3) -> Move {
     Move { motion, start, end, feed_mm_min: Some(1000.0), spindle_rpm: Some(9600.0), tool: None, line: 1 }
@@ -220,7 +219,8 @@ fn path_distance_is_measured_as_the_analysis_measures_it() {
 }
 
 #[test]
-fn a_million_moves_trace_in_well_under_a_second() {
+fn a_million_moves_trace_to_a_few_thousand_vertices() {
+    // Its speed is measured by `cargo bench --bench drawing`.
     // Contour-parallel squares, 1 mm segments, about 1 M moves (≈ 1 km of path).
     let mut points = vec![P3::new(0.0, 0.0, -1.0)];
     let mut k = 0;
@@ -245,11 +245,8 @@ fn a_million_moves_trace_in_well_under_a_second() {
     let feed: Vec<Option<f64>> =
         path.moves.iter().map(|m| Some(if m.end.x.abs() > 100.0 { 500.0 } else { 1000.0 })).collect();
     let values = TraceValues::new().per_move(Quantity::Feed, &feed);
-    let started = Instant::now();
     let traced = trace_path("big", &path, &values, &[], &TraceOptions::default());
-    let secs = started.elapsed().as_secs_f64();
     let vertices: usize = traced.runs.iter().map(|r| r.points.len()).sum();
-    assert!(secs < 1.0, "{secs} s");
     assert!(vertices < 50_000, "{vertices} vertices");
 }
 

@@ -79,6 +79,16 @@ fn unreachable_mm2(cavity: &Cavity, radius_mm: f64, allowance_mm: f64) -> f64 {
     cavity.layers.iter().map(|l| unreachable_area_mm2(&l.pocket, radius_mm + allowance_mm)).sum()
 }
 
+/// A candidate's planning step: cancelling stops the whole job (`Err`); any other failure
+/// makes the candidate unplannable, for the reason given (`Ok(Err(reason))`).
+fn unplannable_unless_cancelled<T>(step: Result<T, CoreError>) -> Result<Result<T, String>, CoreError> {
+    match step {
+        Ok(value) => Ok(Ok(value)),
+        Err(CoreError::Cancelled) => Err(CoreError::Cancelled),
+        Err(e) => Ok(Err(e.to_string())),
+    }
+}
+
 /// Plans `cavity` with each of `candidates`, chooses the cheapest complete one, tunes it, and
 /// (with `baseline`) plans the conventional baseline.
 pub fn plan_process(
@@ -120,12 +130,11 @@ pub fn plan_process(
         }
         let plan_stage = Stage { inner: &stage, from: 0.0, span: 0.7 };
         let layered = input.layers_for(c.roughing.ad_mm, c.intermediate.ad_mm)?;
-        let layers = match layer::plan_layers(&layered, c, options, &plan_stage) {
+        let layers = match unplannable_unless_cancelled(layer::plan_layers(&layered, c, options, &plan_stage))? {
             Ok(l) => l,
-            Err(CoreError::Cancelled) => return Err(CoreError::Cancelled),
-            Err(e) => {
+            Err(reason) => {
                 report.status = CandidateStatus::Unplannable;
-                report.reason = Some(e.to_string());
+                report.reason = Some(reason);
                 reports.push(report);
                 continue;
             }
@@ -136,12 +145,12 @@ pub fn plan_process(
             continue;
         }
         let eval_stage = Stage { inner: &stage, from: 0.7, span: 0.3 };
-        let evaluation = match evaluate::evaluate(&layers, c, options, 1.0, &eval_stage) {
+        let evaluation = match unplannable_unless_cancelled(evaluate::evaluate(&layers, c, options, 1.0, &eval_stage))?
+        {
             Ok(e) => e,
-            Err(CoreError::Cancelled) => return Err(CoreError::Cancelled),
-            Err(e) => {
+            Err(reason) => {
                 report.status = CandidateStatus::Unplannable;
-                report.reason = Some(e.to_string());
+                report.reason = Some(reason);
                 reports.push(report);
                 continue;
             }

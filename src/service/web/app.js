@@ -35,7 +35,7 @@ async function route(refresh = false) {
   const mine = ++generation;
   const { parts, params } = parseHash();
   const section = parts[0] || 'new';
-  setActiveNav(section === 'db' ? 'db' : section === 'jobs' && parts[1] ? 'jobs' : section);
+  setActiveNav(section);
   const view = {
     new: () => newJobView(params),
     jobs: () => (parts[1] ? jobView(parts[1]) : jobsView(params)),

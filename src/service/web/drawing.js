@@ -18,9 +18,9 @@ const TOGGLES = [
   ['rapids', 'Rapids', false, null],
 ];
 
-/** Bounds of the charts' width parameter, px. */
 // Width of each drawing of the before-and-after strip, px.
 const COMPARE_WIDTH_PX = 700;
+/** Bounds of the charts' width parameter, px (as the API checks them). */
 const CHART_MIN_PX = 200;
 const CHART_MAX_PX = 4000;
 // A chart is drawn again when its width changes by more than this share, after the
