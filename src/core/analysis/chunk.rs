@@ -20,6 +20,17 @@ pub const CHORD_DEVIATION_CELLS: f64 = 0.05;
 /// kink halfway; L·θ/8 on an arc).
 const KINK_DEVIATION_PER_TURN: f64 = 4.0;
 
+/// Centres closer than this in x and in y are one XY point, mm.
+const SAME_XY_MM: f64 = 1e-9;
+
+/// A unit heading has |x| + |y| ≥ 1; the (0, 0) of a move along z only has 0.
+const HEADING_PRESENT: f64 = 0.5;
+
+/// `true` for a unit heading, `false` for the (0, 0) of a move along z only.
+fn has_heading(h: (f64, f64)) -> bool {
+    h.0.abs() + h.1.abs() >= HEADING_PRESENT
+}
+
 /// The centres swept since the last update of the rasters.
 pub struct Chunk {
     /// Where the chunk starts: the end of the previous one, or its first centre.
@@ -88,6 +99,15 @@ impl Chunk {
     /// when `p` would turn the chunk or bow it away from its chord, or it is full, the
     /// chunk is first applied, so it ends at the previous centre.
     pub fn push(&mut self, slices: &mut [Slice], radius: f64, p: (f64, f64), heading: (f64, f64), step_mm: f64) {
+        let last = self.recent.last().copied();
+        if last.is_some_and(|q| (p.0 - q.0).abs() <= SAME_XY_MM && (p.1 - q.1).abs() <= SAME_XY_MM) {
+            // A move along z only: the tool sweeps nothing new in XY.
+            return;
+        }
+        if self.start.is_some() && !has_heading(self.heading) {
+            // The chunk so far is one XY point (the foot of a plunge): its line starts here.
+            self.heading = heading;
+        }
         if self.start.is_some() {
             let (h, c) = (self.heading, heading);
             let turn = (h.0 * c.1 - h.1 * c.0).abs();
@@ -127,8 +147,16 @@ impl Chunk {
     /// starts at its last centre.
     pub fn flush(&mut self, slices: &mut [Slice], radius: f64) {
         if let (Some(a), Some(&b)) = (self.start, self.recent.last()) {
-            for s in slices.iter_mut().take(self.cut) {
-                s.raster.clear_capsule_after(a, b, radius, self.start_cleared);
+            // From the deepest slice cut up: above a slice with no material near the
+            // capsule, none has any (see [`super::slices`]).
+            let mut material_near = true;
+            let cut = self.cut.min(slices.len());
+            for s in slices[..cut].iter_mut().rev() {
+                if material_near {
+                    material_near = s.raster.clear_capsule_after(a, b, radius, self.start_cleared);
+                } else {
+                    s.raster.skip_capsule();
+                }
             }
             self.start = Some(b);
             self.start_cleared = true;
@@ -136,5 +164,64 @@ impl Chunk {
             self.recent.push(b);
             self.reset_line();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::stock::{rect_signed_distance, Raster, Rect};
+
+    const RADIUS: f64 = 5.0;
+    const CELL: f64 = 0.1;
+
+    /// One slice of a 40 × 40 mm block.
+    fn block() -> Vec<Slice> {
+        let rect = Rect { x_min: -20.0, y_min: -20.0, x_max: 20.0, y_max: 20.0 };
+        let mut raster = Raster::new(rect, CELL);
+        raster.paint(
+            true,
+            |y, out| {
+                if (rect.y_min..rect.y_max).contains(&y) {
+                    out.push((rect.x_min, rect.x_max))
+                }
+            },
+            |x, y| rect_signed_distance(&rect, x, y),
+        );
+        vec![Slice::new(0.0, -10.0, raster)]
+    }
+
+    #[test]
+    fn a_move_along_z_only_sweeps_nothing_new_and_applies_nothing() {
+        let mut slices = block();
+        let mut chunk = Chunk::new(1, CELL);
+        chunk.push(&mut slices, RADIUS, (0.0, 0.0), (1.0, 0.0), 0.05);
+        chunk.push(&mut slices, RADIUS, (0.05, 0.0), (1.0, 0.0), 0.05);
+        let version = slices[0].raster.version();
+        for _ in 0..100 {
+            chunk.push(&mut slices, RADIUS, (0.05, 0.0), (0.0, 0.0), 0.05);
+        }
+        assert_eq!(slices[0].raster.version(), version, "a plunge in place applied a capsule");
+        assert_eq!(chunk.recent().len(), 2);
+    }
+
+    #[test]
+    fn a_chunk_that_starts_with_a_plunge_takes_the_heading_of_the_first_move_in_xy() {
+        let mut slices = block();
+        let version = slices[0].raster.version();
+        let mut chunk = Chunk::new(1, CELL);
+        for _ in 0..10 {
+            chunk.push(&mut slices, RADIUS, (0.0, 0.0), (0.0, 0.0), 0.05);
+        }
+        chunk.push(&mut slices, RADIUS, (0.0, 0.05), (0.0, 1.0), 0.05);
+        chunk.push(&mut slices, RADIUS, (0.0, 0.10), (0.0, 1.0), 0.05);
+        assert_eq!(slices[0].raster.version(), version, "the plunge's foot was applied on its own");
+        let corridor = chunk.corridor();
+        assert!(corridor.ordered && corridor.dir.1 > 1.0 - 1e-12);
+        // The chunk, when applied, clears the plunge's foot and the move.
+        chunk.flush(&mut slices, RADIUS);
+        assert!(!slices[0].raster.is_material(0.0, -RADIUS + 0.5));
+        assert!(!slices[0].raster.is_material(0.0, RADIUS + 0.05));
+        assert!(slices[0].raster.is_material(0.0, -RADIUS - 0.5));
     }
 }

@@ -134,7 +134,8 @@ pub fn simulate(
             ad_mm: 0.0,
             t_m_um: 0.0,
             force_n: force_model.map(|_| 0.0),
-            plunge: plunge && slices.iter_mut().take(cut).any(|s| s.any_material_near(p.0, p.1, r)),
+            // The deepest slice cut holds the material of all above it (see `slices`).
+            plunge: plunge && cut > 0 && slices[cut - 1].any_material_near(p.0, p.1, r),
             force_extrapolated: false,
             cutting_point_ratio: 1.0,
         };
@@ -146,9 +147,13 @@ pub fn simulate(
                 Line { id: run.id, dir: sample.heading, ahead_cells: to_end / cell_mm }
             });
             site.set(&table, p, grid, sample.heading, chunk.recent(), &chunk.corridor(), line);
-            for (k, s) in slices.iter_mut().take(cut).enumerate() {
-                contacts[k] = if s.any_material_near(p.0, p.1, r) {
-                    table.contact(&s.raster, &site, Some(&mut memories[k]))
+            // From the deepest slice cut up: above a slice with no material near the tool,
+            // none has any (see `slices`).
+            let mut material_near = true;
+            for k in (0..cut).rev() {
+                material_near = material_near && slices[k].any_material_near(p.0, p.1, r);
+                contacts[k] = if material_near {
+                    table.contact(&slices[k].raster, &site, Some(&mut memories[k]))
                 } else {
                     Contact::default()
                 };
@@ -213,5 +218,75 @@ fn evaluate(
     }
     if model.is_some() {
         result.force_n = Some(force);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::analysis::slices::{build, slice_levels};
+    use crate::core::progress::NoProgress;
+    use crate::core::stock::{rect_signed_distance, Rect};
+    use crate::core::toolpath::{Motion, Move, Units, P3};
+
+    #[test]
+    fn every_slice_keeps_its_material_inside_the_material_of_the_slice_below() {
+        // Zig-zag passes along x that step down and across, ramping in z: a relief
+        // program in miniature.
+        let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 30.0, y_max: 30.0 };
+        let mut moves = Vec::new();
+        let mut at = P3::new(-3.0, 2.0, -0.5);
+        for pass in 0..14 {
+            let y = 2.0 + 2.0 * f64::from(pass);
+            let depth = -0.5 - 0.7 * f64::from(pass % 7);
+            let x_end = if pass % 2 == 0 { 33.0 } else { -3.0 };
+            for end in [P3::new(at.x, y, at.z), P3::new((at.x + x_end) / 2.0, y, depth), P3::new(x_end, y, -0.5)] {
+                moves.push(Move {
+                    motion: Motion::Linear,
+                    start: at,
+                    end,
+                    feed_mm_min: Some(600.0),
+                    spindle_rpm: Some(9600.0),
+                    tool: None,
+                    line: moves.len() as u32 + 1,
+                });
+                at = end;
+            }
+        }
+        let path = Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] };
+        let levels = slice_levels(&path, -6.0, 0.0);
+        let mut slices = build(&levels, rect, 0.1, |raster| {
+            raster.paint(
+                true,
+                |y, out| {
+                    if (rect.y_min..rect.y_max).contains(&y) {
+                        out.push((rect.x_min, rect.x_max))
+                    }
+                },
+                |x, y| rect_signed_distance(&rect, x, y),
+            )
+        });
+        assert!(slices.len() > 4, "{} slices", slices.len());
+        let cutter = Cutter {
+            radius_mm: 2.0,
+            flutes: 2,
+            default_spindle_rpm: None,
+            force_model: None,
+            spacing_mm: 0.05,
+            total_samples: 1,
+        };
+        simulate(&path, cutter, &mut slices, &NoProgress, |_| {}).expect("simulates");
+        let mut removed_somewhere = vec![false; slices.len()];
+        for i in 0..300 {
+            for j in 0..300 {
+                let (x, y) = (0.05 + 0.1 * f64::from(i), 0.05 + 0.1 * f64::from(j));
+                for (k, pair) in slices.windows(2).enumerate() {
+                    let (upper, lower) = (pair[0].raster.is_material(x, y), pair[1].raster.is_material(x, y));
+                    assert!(!upper || lower, "material at ({x}, {y}) in slice {k} but not below it");
+                    removed_somewhere[k] |= !upper;
+                }
+            }
+        }
+        assert!(removed_somewhere.iter().take(slices.len() - 1).all(|&r| r), "some slice was never cut");
     }
 }

@@ -1,6 +1,11 @@
 //! The stock of a layer as a stack of z slices, each a raster (MODEL.md §6): slice
 //! boundaries follow the z levels the program cuts at, so a 2.5-D program is simulated
 //! exactly and a 3-D one in steps.
+//!
+//! Every slice starts as the same raster, and a tool removes material from the slices
+//! above its tip, a run of slices from the top: so a slice's material always lies inside
+//! the material of the slice below it. Above a slice with no material near the tool,
+//! none has any.
 
 use crate::core::stock::{BlockRange, Raster, Rect};
 use crate::core::toolpath::{Motion, Toolpath};

@@ -24,7 +24,9 @@ impl Raster {
     /// changes: cells behind `a` (whose nearest point of the segment is `a`) already hold
     /// their distance, and when that capsule was applied, cells deep inside the disc about
     /// `a` are already cleared.
-    pub fn clear_capsule_after(&mut self, a: (f64, f64), b: (f64, f64), r: f64, disc_at_a_cleared: bool) {
+    /// Returns `false` when no material lies near the capsule (nothing changed; see
+    /// [`Raster::skip_capsule`]).
+    pub fn clear_capsule_after(&mut self, a: (f64, f64), b: (f64, f64), r: f64, disc_at_a_cleared: bool) -> bool {
         let skip_start_disc = disc_at_a_cleared && self.end_disc_cleared;
         self.end_disc_cleared = false;
         let reach = SDF_CLAMP_CELLS * self.cell_mm;
@@ -32,12 +34,12 @@ impl Raster {
         let y_hi = a.1.max(b.1) + r + reach;
         let (j_first, j_end) = self.index_range(y_lo, y_hi, self.y0, self.ny);
         if j_end == 0 {
-            return;
+            return false;
         }
         let centre = ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0);
         let half = ((b.0 - a.0).hypot(b.1 - a.1)) / 2.0 + r + reach;
         if !self.any_material_near(centre.0, centre.1, half) {
-            return;
+            return false;
         }
         let outer = Capsule::new(a, b, r + reach);
         let inner = Capsule::new(a, b, (r - reach).max(0.0));
@@ -67,6 +69,14 @@ impl Raster {
             self.clear_cells(j, skip_to.max(skip_from), in_to);
         }
         self.end_disc_cleared = true;
+        true
+    }
+
+    /// What [`Raster::clear_capsule_after`] does to a raster with no material near the
+    /// capsule, known without looking: nothing, and the capsule's end disc is not
+    /// remembered as cleared.
+    pub fn skip_capsule(&mut self) {
+        self.end_disc_cleared = false;
     }
 
     /// `true` when the `WORD_CELLS` cells from index `k` are all "far outside".
