@@ -170,7 +170,8 @@ impl Chunk {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::core::stock::{rect_signed_distance, Raster, Rect};
+    use crate::core::analysis::region::{paint, StockRegion};
+    use crate::core::stock::{Raster, Rect};
 
     const RADIUS: f64 = 5.0;
     const CELL: f64 = 0.1;
@@ -179,15 +180,7 @@ mod tests {
     fn block() -> Vec<Slice> {
         let rect = Rect { x_min: -20.0, y_min: -20.0, x_max: 20.0, y_max: 20.0 };
         let mut raster = Raster::new(rect, CELL);
-        raster.paint(
-            true,
-            |y, out| {
-                if (rect.y_min..rect.y_max).contains(&y) {
-                    out.push((rect.x_min, rect.x_max))
-                }
-            },
-            |x, y| rect_signed_distance(&rect, x, y),
-        );
+        paint(&mut raster, &[StockRegion::Rect(rect)], &[]);
         vec![Slice::new(0.0, -10.0, raster)]
     }
 

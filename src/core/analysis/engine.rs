@@ -224,9 +224,10 @@ fn evaluate(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::core::analysis::region::{paint, StockRegion};
     use crate::core::analysis::slices::{build, slice_levels};
     use crate::core::progress::NoProgress;
-    use crate::core::stock::{rect_signed_distance, Rect};
+    use crate::core::stock::Rect;
     use crate::core::toolpath::{Motion, Move, Units, P3};
 
     #[test]
@@ -255,17 +256,7 @@ mod tests {
         }
         let path = Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] };
         let levels = slice_levels(&path, -6.0, 0.0);
-        let mut slices = build(&levels, rect, 0.1, |raster| {
-            raster.paint(
-                true,
-                |y, out| {
-                    if (rect.y_min..rect.y_max).contains(&y) {
-                        out.push((rect.x_min, rect.x_max))
-                    }
-                },
-                |x, y| rect_signed_distance(&rect, x, y),
-            )
-        });
+        let mut slices = build(&levels, rect, 0.1, |raster| paint(raster, &[StockRegion::Rect(rect)], &[]));
         assert!(slices.len() > 4, "{} slices", slices.len());
         let cutter = Cutter {
             radius_mm: 2.0,
