@@ -5,6 +5,7 @@
 use super::chunk::Chunk;
 use super::lines::straight_runs;
 use super::probe::{AngleTable, Contact, ProbeSite};
+use super::same_below::SameBelow;
 use super::sampling::{for_each_sample, move_curvatures, Sample};
 use super::scan_memory::{Line, ScanMemory};
 use super::slices::{self, Slice};
@@ -105,6 +106,7 @@ pub fn simulate(
     let mut chunk = Chunk::new(0, cell_mm);
     let mut contacts = vec![Contact::default(); slices.len()];
     let mut memories = vec![ScanMemory::default(); slices.len()];
+    let mut same_below = SameBelow::new(slices.len());
     let runs = straight_runs(path);
     let mut s_mm = 0.0;
     let mut n = 0usize;
@@ -148,9 +150,14 @@ pub fn simulate(
             });
             site.set(&table, p, grid, sample.heading, chunk.recent(), &chunk.corridor(), line);
             // From the deepest slice cut up: above a slice with no material near the tool,
-            // none has any (see `slices`).
+            // none has any (see `slices`); a slice with the cells of the one below under
+            // the tool has its contact.
             let mut material_near = true;
             for k in (0..cut).rev() {
+                if k + 1 < cut && same_below.same(slices, k, p, sample.heading, r) {
+                    contacts[k] = contacts[k + 1];
+                    continue;
+                }
                 material_near = material_near && slices[k].any_material_near(p.0, p.1, r);
                 contacts[k] = if material_near {
                     table.contact(&slices[k].raster, &site, Some(&mut memories[k]))

@@ -9,6 +9,7 @@ pub mod probe;
 pub mod recent;
 pub mod region;
 pub mod report;
+pub mod same_below;
 pub mod sampling;
 pub mod scan_memory;
 pub mod slices;

@@ -6,8 +6,10 @@
 
 mod along;
 mod capsule;
+mod compare;
 mod tiles;
 
+pub use compare::CellRect;
 pub use tiles::Certified;
 use tiles::Tiles;
 

@@ -1,0 +1,117 @@
+//! Slices that hold the same cells under the tool. A slice's material lies inside the
+//! material of the slice below it (see [`super::slices`]), and over much of a layered
+//! or relief program the two are still alike where the tool is: then the upper slice's
+//! engagement is the lower one's, found without probing it. Rasters change only when a
+//! chunk is applied, so an agreement found over a stretch ahead of the tool holds until
+//! either raster changes.
+
+use super::slices::Slice;
+use crate::core::stock::CellRect;
+
+/// An agreement is checked this far ahead of the tool along its heading, cells.
+const AHEAD_CELLS: f64 = 64.0;
+
+/// What is known of one slice and the slice below it, while neither changes.
+#[derive(Debug, Clone, Copy, Default)]
+struct Pair {
+    /// The rasters' versions this is known for.
+    versions: (u64, u64),
+    /// The cells are the same over this rectangle …
+    same_over: Option<CellRect>,
+    /// … and differ at this cell.
+    differ_at: Option<(usize, usize)>,
+}
+
+/// For each slice but the last, what is known of it and the slice below.
+pub struct SameBelow {
+    pairs: Vec<Pair>,
+}
+
+impl SameBelow {
+    pub fn new(slices: usize) -> SameBelow {
+        SameBelow { pairs: vec![Pair::default(); slices.saturating_sub(1)] }
+    }
+
+    /// `true` when slice `k` and the slice below it hold the same cells wherever a probe
+    /// of a tool of `radius_mm` at `center` reads; `heading`, the tool's unit direction,
+    /// says where to look ahead.
+    pub fn same(
+        &mut self,
+        slices: &[Slice],
+        k: usize,
+        center: (f64, f64),
+        heading: (f64, f64),
+        radius_mm: f64,
+    ) -> bool {
+        let (upper, lower) = (&slices[k].raster, &slices[k + 1].raster);
+        let pair = &mut self.pairs[k];
+        let versions = (upper.version(), lower.version());
+        if pair.versions != versions {
+            *pair = Pair { versions, ..Pair::default() };
+        }
+        let read = upper.cells_read_near(center, radius_mm, heading, 0.0);
+        if pair.same_over.is_some_and(|r| r.contains(&read)) {
+            return true;
+        }
+        if pair.differ_at.is_some_and(|c| read.holds(c)) {
+            return false;
+        }
+        let ahead = upper.cells_read_near(center, radius_mm, heading, AHEAD_CELLS);
+        let found = match upper.first_difference(lower, ahead) {
+            None => Some(ahead),
+            Some(c) if read.holds(c) => {
+                pair.differ_at = Some(c);
+                None
+            }
+            Some(_) => match upper.first_difference(lower, read) {
+                None => Some(read),
+                Some(c) => {
+                    pair.differ_at = Some(c);
+                    None
+                }
+            },
+        };
+        pair.same_over = found.or(pair.same_over);
+        found.is_some()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::analysis::region::{paint, StockRegion};
+    use crate::core::analysis::slices::build;
+    use crate::core::stock::Rect;
+
+    const RADIUS: f64 = 2.0;
+
+    fn two_slices() -> Vec<Slice> {
+        let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 40.0, y_max: 40.0 };
+        build(&[0.0, -5.0, -10.0], rect, 0.1, |raster| paint(raster, &[StockRegion::Rect(rect)], &[]))
+    }
+
+    #[test]
+    fn slices_cut_alike_are_the_same_under_the_tool() {
+        let mut slices = two_slices();
+        for s in &mut slices {
+            s.raster.clear_capsule((0.0, 20.0), (20.0, 20.0), RADIUS);
+        }
+        let mut same = SameBelow::new(slices.len());
+        assert!(same.same(&slices, 0, (21.0, 20.0), (1.0, 0.0), RADIUS));
+        // Further along, the agreement found ahead is reused.
+        assert!(same.same(&slices, 0, (24.0, 20.0), (1.0, 0.0), RADIUS));
+    }
+
+    #[test]
+    fn a_cut_in_the_upper_slice_alone_makes_them_differ_near_it_and_only_there() {
+        let mut slices = two_slices();
+        let mut same = SameBelow::new(slices.len());
+        assert!(same.same(&slices, 0, (10.0, 10.0), (1.0, 0.0), RADIUS));
+        slices[0].raster.clear_capsule((13.0, 10.0), (13.0, 10.0), RADIUS);
+        // The upper raster changed: what was found ahead no longer counts.
+        assert!(!same.same(&slices, 0, (10.0, 10.0), (1.0, 0.0), RADIUS));
+        assert!(!same.same(&slices, 0, (10.1, 10.0), (1.0, 0.0), RADIUS));
+        assert!(same.same(&slices, 0, (13.0, 30.0), (1.0, 0.0), RADIUS));
+        assert!(same.same(&slices, 0, (5.0, 10.0), (-1.0, 0.0), RADIUS));
+    }
+}

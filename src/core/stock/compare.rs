@@ -1,0 +1,92 @@
+//! Whether two rasters of one grid hold the same cells over a rectangle. A probe reads
+//! only cells (its 2 × 2 stencil, see [`Raster::is_material_at`]; the tile counts it may
+//! also read only tell how far its answer holds), so where two rasters hold the same
+//! cells, every probe gives the same answer on both.
+
+use super::Raster;
+
+/// A probe this far beyond a reach still reads only the rectangle, cells (rounding).
+const ROUNDING_CELLS: f64 = 1.0;
+
+/// A rectangle of cells: columns and rows, each a half-open range.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CellRect {
+    pub columns: (usize, usize),
+    pub rows: (usize, usize),
+}
+
+impl CellRect {
+    /// `true` when `other` lies inside `self`.
+    pub fn contains(&self, other: &CellRect) -> bool {
+        self.columns.0 <= other.columns.0
+            && other.columns.1 <= self.columns.1
+            && self.rows.0 <= other.rows.0
+            && other.rows.1 <= self.rows.1
+    }
+
+    /// `true` when cell (i, j) lies inside.
+    pub fn holds(&self, (i, j): (usize, usize)) -> bool {
+        (self.columns.0..self.columns.1).contains(&i) && (self.rows.0..self.rows.1).contains(&j)
+    }
+}
+
+impl Raster {
+    /// The cells read by every probe within `reach_mm` of `(x, y)`, and of the points up
+    /// to `ahead_cells` further along the unit vector `dir`.
+    pub fn cells_read_near(&self, (x, y): (f64, f64), reach_mm: f64, dir: (f64, f64), ahead_cells: f64) -> CellRect {
+        let (gx, gy) = self.grid_position(x, y);
+        let reach = reach_mm * self.inv_cell + ROUNDING_CELLS;
+        let span = |g: f64, d: f64, n: usize| {
+            let (lo, hi) = (g - reach + (d * ahead_cells).min(0.0), g + reach + (d * ahead_cells).max(0.0));
+            // Positions lo..hi read cells floor(lo)..=floor(hi) + 1.
+            let first = lo.max(0.0) as usize;
+            let end = (hi.max(0.0) as usize + 2).min(n);
+            (first.min(end), end)
+        };
+        CellRect { columns: span(gx, dir.0, self.nx), rows: span(gy, dir.1, self.ny) }
+    }
+
+    /// The first cell of `rect` (row by row) where `self` and `other`, two rasters of
+    /// one grid, differ; `None` when they hold the same cells there.
+    pub fn first_difference(&self, other: &Raster, rect: CellRect) -> Option<(usize, usize)> {
+        debug_assert!(self.nx == other.nx && self.ny == other.ny, "rasters of different grids");
+        let (c0, c1) = rect.columns;
+        (rect.rows.0..rect.rows.1).find_map(|j| {
+            let cells = j * self.nx + c0..j * self.nx + c1;
+            let (a, b) = (&self.f[cells.clone()], &other.f[cells]);
+            (a != b).then(|| (c0 + a.iter().zip(b).position(|(u, v)| u != v).unwrap_or(0), j))
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::Rect;
+    use super::*;
+
+    #[test]
+    fn rasters_differ_only_where_one_of_them_was_cut() {
+        let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 20.0, y_max: 20.0 };
+        let mut a = Raster::new(rect, 0.1);
+        a.paint(true, |_, out| out.push((0.0, 20.0)), |x, y| super::super::rect_signed_distance(&rect, x, y));
+        let mut b = a.clone();
+        b.clear_capsule((15.0, 15.0), (15.0, 15.0), 2.0);
+        let far = a.cells_read_near((5.0, 5.0), 2.0, (1.0, 0.0), 20.0);
+        assert_eq!(a.first_difference(&b, far), None);
+        let near = a.cells_read_near((11.0, 15.0), 2.0, (0.0, 1.0), 0.0);
+        let (i, j) = a.first_difference(&b, near).expect("the cut disc is read");
+        assert!(near.holds((i, j)));
+        // The difference lies within the disc and its band.
+        let (x, y) = (0.1 * i as f64 + a.x0 + 0.05, 0.1 * j as f64 + a.y0 + 0.05);
+        assert!((x - 15.0).hypot(y - 15.0) < 2.0 + 0.3, "({x}, {y})");
+    }
+
+    #[test]
+    fn a_reach_ahead_widens_the_cells_read_on_the_side_it_points_to() {
+        let r = Raster::new(Rect { x_min: 0.0, y_min: 0.0, x_max: 50.0, y_max: 50.0 }, 0.1);
+        let here = r.cells_read_near((25.0, 25.0), 3.0, (-1.0, 0.0), 0.0);
+        let ahead = r.cells_read_near((25.0, 25.0), 3.0, (-1.0, 0.0), 40.0);
+        assert!(ahead.contains(&here) && ahead.columns.0 + 40 == here.columns.0 && ahead.columns.1 == here.columns.1);
+        assert_eq!(ahead.rows, here.rows);
+    }
+}
