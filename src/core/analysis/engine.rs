@@ -154,14 +154,14 @@ pub fn simulate(
             // the tool has its contact.
             let mut material_near = true;
             for k in (0..cut).rev() {
-                if k + 1 < cut && same_below.same(slices, k, p, sample.heading, r) {
-                    contacts[k] = contacts[k + 1];
-                    continue;
-                }
-                material_near = material_near && slices[k].any_material_near(p.0, p.1, r);
-                contacts[k] = if material_near {
+                contacts[k] = if !material_near {
+                    Contact::default()
+                } else if k + 1 < cut && same_below.same(slices, k, p, sample.heading, r) {
+                    contacts[k + 1]
+                } else if slices[k].any_material_near(p.0, p.1, r) {
                     table.contact(&slices[k].raster, &site, Some(&mut memories[k]))
                 } else {
+                    material_near = false;
                     Contact::default()
                 };
             }
