@@ -4,6 +4,7 @@
 //! away from its chord.
 
 use super::recent::Corridor;
+use super::sampling::has_heading;
 use super::slices::Slice;
 
 /// A chunk holds at most this many steps: straight stretches are applied in capsules
@@ -22,14 +23,6 @@ const KINK_DEVIATION_PER_TURN: f64 = 4.0;
 
 /// Centres closer than this in x and in y are one XY point, mm.
 const SAME_XY_MM: f64 = 1e-9;
-
-/// A unit heading has |x| + |y| ≥ 1; the (0, 0) of a move along z only has 0.
-const HEADING_PRESENT: f64 = 0.5;
-
-/// `true` for a unit heading, `false` for the (0, 0) of a move along z only.
-fn has_heading(h: (f64, f64)) -> bool {
-    h.0.abs() + h.1.abs() >= HEADING_PRESENT
-}
 
 /// The centres swept since the last update of the rasters.
 pub struct Chunk {

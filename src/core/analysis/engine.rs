@@ -6,7 +6,7 @@ use super::chunk::Chunk;
 use super::lines::straight_runs;
 use super::probe::{AngleTable, Contact, ProbeSite};
 use super::same_below::SameBelow;
-use super::sampling::{for_each_sample, move_curvatures, Sample};
+use super::sampling::{for_each_sample, has_heading, move_curvatures, Sample};
 use super::scan_memory::{Line, ScanMemory};
 use super::slices::{self, Slice};
 use crate::core::engagement::max_chip_thickness_mm;
@@ -26,8 +26,6 @@ const UM_PER_MM: f64 = 1000.0;
 const MIN_CUTTING_POINT_RATIO: f64 = 0.05;
 /// Engagement this close to a full slot has no side: the feed ratio is 1.
 const SLOT_ALPHA_RAD: f64 = 0.99 * std::f64::consts::PI;
-/// A sample whose XY heading is shorter than this has none: it plunges straight down.
-const PLUNGE_HEADING: f64 = 0.5;
 /// Engagement angles closer than this are the same (they are whole probe steps), rad.
 const SAME_ALPHA_RAD: f64 = 1e-12;
 /// Samples between progress reports and cancellation checks.
@@ -127,7 +125,7 @@ pub fn simulate(
         if cut != chunk.cut {
             chunk.restart(slices, r, cut);
         }
-        let plunge = sample.heading.0.abs() + sample.heading.1.abs() < PLUNGE_HEADING;
+        let plunge = !has_heading(sample.heading);
         let mut result = SampleResult {
             sample: *sample,
             s_mm,

@@ -160,6 +160,16 @@ fn curvature_at(ends: (PointCurvature, PointCurvature), t: f64) -> PointCurvatur
     }
 }
 
+/// A unit heading has |x| + |y| ≥ 1, the (0, 0) of a move along z only has 0: anything
+/// shorter than this is no heading.
+const HEADING_PRESENT: f64 = 0.5;
+
+/// `true` for a sample's unit heading, `false` for the (0, 0) of a move along z only (a
+/// plunge or a retract).
+pub fn has_heading(h: (f64, f64)) -> bool {
+    h.0.abs() + h.1.abs() >= HEADING_PRESENT
+}
+
 /// The unit vector along `d`, or (0, 0) when it has no length.
 fn unit_heading(d: (f64, f64)) -> (f64, f64) {
     let dl = d.0.hypot(d.1);
