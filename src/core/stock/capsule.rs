@@ -3,7 +3,8 @@
 //! in a band of the clamp width around its edge get their distance to it; along a path,
 //! only the leading crescent of each capsule changes anything.
 
-use super::{Raster, DEGENERATE_SEGMENT_MM, FULL, SDF_CLAMP_CELLS};
+use super::tiles::TILE_CELLS;
+use super::{Raster, BLOCK_CELLS, DEGENERATE_SEGMENT_MM, FULL, SDF_CLAMP_CELLS};
 
 /// A capsule whose direction has an x component below this is treated as parallel to
 /// the rows when its start line is located.
@@ -113,19 +114,29 @@ impl Raster {
         }
     }
 
-    /// Sets cells [from, to) of row `j` to "far outside".
+    /// Sets cells [from, to) of row `j` to "far outside", a tile's width at a time: the
+    /// material cells of each stretch are counted and the block and tile counts updated
+    /// once.
     fn clear_cells(&mut self, j: usize, from: usize, to: usize) {
         let row = j * self.nx;
         let mut i = from;
         while i < to {
-            if i + WORD_CELLS <= to && self.far_outside_word(row + i) {
-                i += WORD_CELLS;
-                continue;
+            let end = ((i / TILE_CELLS + 1) * TILE_CELLS).min(to);
+            let cells = &mut self.f[row + i..row + end];
+            let cleared = match <&[i8; WORD_CELLS]>::try_from(&*cells) {
+                Ok(word) => u64::from_ne_bytes(word.map(|v| v as u8)) == FAR_OUTSIDE_WORD,
+                Err(_) => cells.iter().all(|&v| v == -FULL),
+            };
+            if !cleared {
+                let lost = cells.iter().filter(|&&v| v > 0).count();
+                cells.fill(-FULL);
+                self.version += 1;
+                if lost > 0 {
+                    self.blocks[(j / BLOCK_CELLS) * self.bx + i / BLOCK_CELLS] -= lost as u32;
+                    self.tiles.lose(i, j, lost);
+                }
             }
-            if self.f[row + i] != -FULL {
-                self.write(i, j, -FULL);
-            }
-            i += 1;
+            i = end;
         }
     }
 }
@@ -241,6 +252,7 @@ impl Capsule {
 
 #[cfg(test)]
 mod tests {
+    use super::super::tiles::Tiles;
     use super::super::{rect_signed_distance, Rect};
     use super::*;
     use proptest::prelude::*;
@@ -285,6 +297,33 @@ mod tests {
             prop_assert!(worst.unwrap_or(0) <= 1, "cells differ by {:?}", worst);
             let differing_sign = crescents.f.iter().zip(&whole.f).filter(|(p, q)| (**p > 0) != (**q > 0)).count();
             prop_assert!(differing_sign == 0, "{} cells change side", differing_sign);
+        }
+
+        #[test]
+        fn the_block_and_tile_counts_kept_while_clearing_are_those_of_the_cells(
+            start in (0.0..SIDE, 0.0..SIDE),
+            steps in prop::collection::vec((-4.0..4.0f64, -4.0..4.0f64), 1..12),
+            radius in 0.3..6.0f64,
+        ) {
+            let mut raster = block();
+            let mut a = start;
+            for (k, d) in steps.iter().enumerate() {
+                let b = (a.0 + d.0, a.1 + d.1);
+                raster.clear_capsule_after(a, b, radius, k > 0);
+                a = b;
+            }
+            let mut blocks = vec![0u32; raster.blocks.len()];
+            let mut tiles = Tiles::new(raster.nx, raster.ny);
+            for j in 0..raster.ny {
+                for i in 0..raster.nx {
+                    if raster.f[j * raster.nx + i] > 0 {
+                        blocks[(j / BLOCK_CELLS) * raster.bx + i / BLOCK_CELLS] += 1;
+                        tiles.update(i, j, true);
+                    }
+                }
+            }
+            prop_assert!(blocks == raster.blocks, "block counts differ");
+            prop_assert!(tiles == raster.tiles, "tile counts differ");
         }
     }
 }

@@ -38,7 +38,7 @@ impl Certified {
 }
 
 /// Per-tile counts of one raster.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Tiles {
     /// Tiles per row and per column.
     tx: usize,
@@ -76,6 +76,24 @@ impl Tiles {
         }
         if before.max(after) == CELLS_PER_TILE {
             self.spread(ti, tj, LEVEL_RADII.len(), !gained);
+        }
+    }
+
+    /// Records that `lost` (at least one) material cells of the tile holding cell (i, j)
+    /// were cleared.
+    #[inline]
+    pub fn lose(&mut self, i: usize, j: usize, lost: usize) {
+        let (ti, tj) = (i / TILE_CELLS, j / TILE_CELLS);
+        let t = tj * self.tx + ti;
+        let before = self.material[t];
+        // (At most a tile's cells, which fit the count's type.)
+        let after = before - lost as u8;
+        self.material[t] = after;
+        if before == CELLS_PER_TILE {
+            self.spread(ti, tj, LEVEL_RADII.len(), true);
+        }
+        if after == 0 {
+            self.spread(ti, tj, 0, false);
         }
     }
 
