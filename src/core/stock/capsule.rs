@@ -9,6 +9,8 @@ use super::{Raster, BLOCK_CELLS, DEGENERATE_SEGMENT_MM, FULL, SDF_CLAMP_CELLS};
 /// A capsule whose direction has an x component below this is treated as parallel to
 /// the rows when its start line is located.
 const MIN_ROW_SLOPE: f64 = 1e-6;
+// A tile's stretch of a row lies in one block of material counts.
+const _: () = assert!(BLOCK_CELLS.is_multiple_of(TILE_CELLS));
 /// Cells compared at once when skipping runs of "far outside" cells.
 const WORD_CELLS: usize = 8;
 /// Eight "far outside" cells as one word.
