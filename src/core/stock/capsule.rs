@@ -9,12 +9,12 @@ use super::{Raster, BLOCK_CELLS, DEGENERATE_SEGMENT_MM, FULL, SDF_CLAMP_CELLS};
 /// A capsule whose direction has an x component below this is treated as parallel to
 /// the rows when its start line is located.
 const MIN_ROW_SLOPE: f64 = 1e-6;
-// A tile's stretch of a row lies in one block of material counts.
-const _: () = assert!(BLOCK_CELLS.is_multiple_of(TILE_CELLS));
 /// Cells compared at once when skipping runs of "far outside" cells.
 const WORD_CELLS: usize = 8;
 /// Eight "far outside" cells as one word.
 const FAR_OUTSIDE_WORD: u64 = u64::from_ne_bytes([(-FULL) as u8; WORD_CELLS]);
+// A tile's stretch of a row is one word and lies in one block of material counts.
+const _: () = assert!(WORD_CELLS == TILE_CELLS && BLOCK_CELLS.is_multiple_of(TILE_CELLS));
 
 impl Raster {
     /// Removes the area swept by a disc of radius `r` moving from `a` to `b` (a capsule).
@@ -124,12 +124,13 @@ impl Raster {
         let mut i = from;
         while i < to {
             let end = ((i / TILE_CELLS + 1) * TILE_CELLS).min(to);
-            let cells = &mut self.f[row + i..row + end];
-            let cleared = match <&[i8; WORD_CELLS]>::try_from(&*cells) {
-                Ok(word) => u64::from_ne_bytes(word.map(|v| v as u8)) == FAR_OUTSIDE_WORD,
-                Err(_) => cells.iter().all(|&v| v == -FULL),
+            let cleared = if end - i == WORD_CELLS {
+                self.far_outside_word(row + i)
+            } else {
+                self.f[row + i..row + end].iter().all(|&v| v == -FULL)
             };
             if !cleared {
+                let cells = &mut self.f[row + i..row + end];
                 let lost = cells.iter().filter(|&&v| v > 0).count();
                 cells.fill(-FULL);
                 self.version += 1;
