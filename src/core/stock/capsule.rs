@@ -194,14 +194,20 @@ impl Capsule {
         self.dir.is_some_and(|((ux, uy), _)| (q.0 - self.a.0) * ux + (q.1 - self.a.1) * uy <= 0.0)
     }
 
-    /// Distance from `q` to the segment.
+    /// Distance from `q` to the segment: beside it, the distance to its line (no square
+    /// root); beyond either end, to that end.
     fn distance(&self, q: (f64, f64)) -> f64 {
         let (px, py) = (q.0 - self.a.0, q.1 - self.a.1);
         match self.dir {
             Some(((ux, uy), len)) => {
-                let t = (px * ux + py * uy).clamp(0.0, len);
-                let (ex, ey) = (px - t * ux, py - t * uy);
-                (ex * ex + ey * ey).sqrt()
+                let t = px * ux + py * uy;
+                if (0.0..=len).contains(&t) {
+                    (px * uy - py * ux).abs()
+                } else {
+                    let t = t.clamp(0.0, len);
+                    let (ex, ey) = (px - t * ux, py - t * uy);
+                    (ex * ex + ey * ey).sqrt()
+                }
             }
             None => (px * px + py * py).sqrt(),
         }
