@@ -45,6 +45,8 @@ pub struct Chunk {
     start_cleared: bool,
     cos_turn: f64,
     max_deviation_mm: f64,
+    /// Capsules applied so far (numbers them for [`Slice::take_capsule`]).
+    capsules: u64,
 }
 
 impl Chunk {
@@ -62,6 +64,7 @@ impl Chunk {
             start_cleared: false,
             cos_turn: CHUNK_TURN_DEG.to_radians().cos(),
             max_deviation_mm: CHORD_DEVIATION_CELLS * cell_mm,
+            capsules: 0,
         }
     }
 
@@ -144,9 +147,10 @@ impl Chunk {
             // capsule, none has any (see [`super::slices`]).
             let mut material_near = true;
             let cut = self.cut.min(slices.len());
+            self.capsules += 1;
             for s in slices[..cut].iter_mut().rev() {
                 if material_near {
-                    material_near = s.raster.clear_capsule_after(a, b, radius, self.start_cleared);
+                    material_near = s.take_capsule(self.capsules, a, b, radius, self.start_cleared);
                 } else {
                     s.raster.skip_capsule();
                 }

@@ -47,7 +47,12 @@ impl SameBelow {
         let pair = &mut self.pairs[k];
         let versions = (upper.version(), lower.version());
         if pair.versions != versions {
-            *pair = Pair { versions, ..Pair::default() };
+            *pair = if both_took_one_capsule_since(pair.versions, &slices[k], &slices[k + 1]) {
+                // Cells the same in both stay the same; cells that differed may not.
+                Pair { versions, same_over: pair.same_over, differ_at: None }
+            } else {
+                Pair { versions, ..Pair::default() }
+            };
         }
         let read = upper.cells_read_near(center, radius_mm, heading, 0.0);
         if pair.same_over.is_some_and(|r| r.contains(&read)) {
@@ -76,6 +81,17 @@ impl SameBelow {
     }
 }
 
+/// `true` when the only change to the pair of slices since their rasters had `versions`
+/// is one capsule applied to both. A capsule sets each cell from that cell's value alone
+/// (see [`crate::core::stock::Raster::clear_capsule_after`]), so cells the same in both
+/// rasters before are the same after.
+fn both_took_one_capsule_since(versions: (u64, u64), upper: &Slice, lower: &Slice) -> bool {
+    match (upper.last_capsule(), lower.last_capsule()) {
+        (Some(u), Some(l)) => u.serial == l.serial && (u.version_before, l.version_before) == versions,
+        _ => false,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -100,6 +116,52 @@ mod tests {
         assert!(same.same(&slices, 0, (21.0, 20.0), (1.0, 0.0), RADIUS));
         // Further along, the agreement found ahead is reused.
         assert!(same.same(&slices, 0, (24.0, 20.0), (1.0, 0.0), RADIUS));
+    }
+
+    #[test]
+    fn one_capsule_taken_by_both_slices_keeps_them_known_alike_and_any_other_change_does_not() {
+        let mut slices = two_slices();
+        let versions = (slices[0].raster.version(), slices[1].raster.version());
+        for s in &mut slices {
+            assert!(s.take_capsule(1, (0.0, 20.0), (20.0, 20.0), RADIUS, false));
+        }
+        assert!(both_took_one_capsule_since(versions, &slices[0], &slices[1]));
+        // A second capsule since the versions, or one the upper slice alone took.
+        for s in &mut slices {
+            s.take_capsule(2, (20.0, 20.0), (25.0, 20.0), RADIUS, true);
+        }
+        assert!(!both_took_one_capsule_since(versions, &slices[0], &slices[1]));
+        let versions = (slices[0].raster.version(), slices[1].raster.version());
+        slices[0].take_capsule(3, (25.0, 20.0), (30.0, 20.0), RADIUS, true);
+        assert!(!both_took_one_capsule_since(versions, &slices[0], &slices[1]));
+        // A raster changed other than by a capsule.
+        let versions = (slices[0].raster.version(), slices[1].raster.version());
+        for s in &mut slices {
+            s.take_capsule(4, (30.0, 20.0), (35.0, 20.0), RADIUS, true);
+        }
+        slices[1].raster.clear_capsule((5.0, 5.0), (5.0, 5.0), RADIUS);
+        assert!(!both_took_one_capsule_since(versions, &slices[0], &slices[1]));
+    }
+
+    #[test]
+    fn what_is_kept_across_capsules_taken_by_both_slices_agrees_with_a_fresh_comparison() {
+        let mut slices = two_slices();
+        // The upper slice alone was cut along y = 14: the slices differ there.
+        slices[0].raster.clear_capsule((0.0, 14.0), (40.0, 14.0), RADIUS);
+        let mut kept = SameBelow::new(slices.len());
+        let mut at = (2.0, 20.0);
+        let mut answers = [false; 2];
+        for step in 0..60u32 {
+            let next = (at.0 + 0.6, 20.0 - 0.1 * f64::from(step));
+            for s in &mut slices {
+                s.take_capsule(u64::from(step) + 1, at, next, RADIUS, step > 0);
+            }
+            at = next;
+            let fresh = SameBelow::new(slices.len()).same(&slices, 0, at, (1.0, 0.0), RADIUS);
+            assert_eq!(kept.same(&slices, 0, at, (1.0, 0.0), RADIUS), fresh, "at step {step}");
+            answers[usize::from(fresh)] = true;
+        }
+        assert_eq!(answers, [true, true], "the path meets both alike and differing cells");
     }
 
     #[test]

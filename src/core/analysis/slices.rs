@@ -25,11 +25,39 @@ pub struct Slice {
     /// Blocks last found to hold no material: material is only ever removed during a
     /// simulation, so they stay empty.
     empty: Option<BlockRange>,
+    /// The last capsule applied to the raster (see [`Slice::took_capsule`]).
+    last_capsule: Option<TakenCapsule>,
+}
+
+/// A capsule applied to a slice's raster: which one, and the raster's versions before
+/// and after it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TakenCapsule {
+    /// Numbers the capsules of one simulation: slices given the same capsule share it.
+    pub serial: u64,
+    pub version_before: u64,
+    pub version_after: u64,
 }
 
 impl Slice {
     pub fn new(z_top: f64, z_bottom: f64, raster: Raster) -> Slice {
-        Slice { z_bottom, z_top, raster, empty: None }
+        Slice { z_bottom, z_top, raster, empty: None, last_capsule: None }
+    }
+
+    /// Applies capsule number `serial` to the raster ([`Raster::clear_capsule_after`]),
+    /// remembering it when it was applied. Returns `false` when no material lies near it.
+    pub fn take_capsule(&mut self, serial: u64, a: (f64, f64), b: (f64, f64), r: f64, disc_at_a_cleared: bool) -> bool {
+        let version_before = self.raster.version();
+        let applied = self.raster.clear_capsule_after(a, b, r, disc_at_a_cleared);
+        self.last_capsule =
+            applied.then(|| TakenCapsule { serial, version_before, version_after: self.raster.version() });
+        applied
+    }
+
+    /// The last capsule applied to the raster, if the raster has not changed otherwise
+    /// since (every change to a slice's raster during a simulation is a capsule).
+    pub fn last_capsule(&self) -> Option<TakenCapsule> {
+        self.last_capsule.filter(|t| t.version_after == self.raster.version())
     }
 
     /// As [`Raster::any_material_near`], remembering an empty answer: while the tool
