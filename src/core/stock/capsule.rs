@@ -11,6 +11,8 @@ use super::{Raster, BLOCK_CELLS, DEGENERATE_SEGMENT_MM, FULL, SDF_CLAMP_CELLS};
 const MIN_ROW_SLOPE: f64 = 1e-6;
 /// Cells compared at once when skipping runs of "far outside" cells.
 const WORD_CELLS: usize = 8;
+/// Words of cells tested at once when skipping the tiles of a row already cleared.
+const SKIP_WORDS: usize = 4;
 /// Eight "far outside" cells as one word.
 const FAR_OUTSIDE_WORD: u64 = u64::from_ne_bytes([(-FULL) as u8; WORD_CELLS]);
 // A tile's stretch of a row is one word and lies in one block of material counts.
@@ -85,11 +87,22 @@ impl Raster {
     /// `true` when the `WORD_CELLS` cells from index `k` are all "far outside".
     #[inline]
     fn far_outside_word(&self, k: usize) -> bool {
-        let mut word = [0u8; WORD_CELLS];
-        for (w, &v) in word.iter_mut().zip(&self.f[k..k + WORD_CELLS]) {
-            *w = v as u8;
-        }
-        u64::from_ne_bytes(word) == FAR_OUTSIDE_WORD
+        self.far_outside_words::<1>(k)
+    }
+
+    /// `true` when the `WORDS` × `WORD_CELLS` cells from index `k` are all "far outside"
+    /// (one test for all the words).
+    #[inline]
+    fn far_outside_words<const WORDS: usize>(&self, k: usize) -> bool {
+        let cells = &self.f[k..k + WORDS * WORD_CELLS];
+        let differing = cells.chunks_exact(WORD_CELLS).fold(0u64, |acc, w| {
+            let mut word = [0u8; WORD_CELLS];
+            for (b, &v) in word.iter_mut().zip(w) {
+                *b = v as u8;
+            }
+            acc | (u64::from_ne_bytes(word) ^ FAR_OUTSIDE_WORD)
+        });
+        differing == 0
     }
 
     /// Cells [from, to) of row `j` in the band around the capsule `outer` (radius
@@ -123,6 +136,16 @@ impl Raster {
         let row = j * self.nx;
         let mut i = from;
         while i < to {
+            // Runs of tiles already cleared, several at once.
+            while i.is_multiple_of(TILE_CELLS)
+                && i + SKIP_WORDS * WORD_CELLS <= to
+                && self.far_outside_words::<SKIP_WORDS>(row + i)
+            {
+                i += SKIP_WORDS * WORD_CELLS;
+            }
+            if i >= to {
+                break;
+            }
             let end = ((i / TILE_CELLS + 1) * TILE_CELLS).min(to);
             let cleared = if end - i == WORD_CELLS {
                 self.far_outside_word(row + i)
