@@ -61,23 +61,34 @@ impl SameBelow {
         if pair.differ_at.is_some_and(|c| read.holds(c)) {
             return false;
         }
+        // A stretch ahead alike spares the checks of the next samples; where a known
+        // difference lies in it, it is not looked at. Only cells beyond those known alike
+        // are compared.
         let ahead = upper.cells_read_near(center, radius_mm, heading, AHEAD_CELLS);
-        let found = match upper.first_difference(lower, ahead) {
-            None => Some(ahead),
-            Some(c) if read.holds(c) => {
-                pair.differ_at = Some(c);
-                None
-            }
-            Some(_) => match upper.first_difference(lower, read) {
-                None => Some(read),
+        if !pair.differ_at.is_some_and(|c| ahead.holds(c)) {
+            match upper.first_difference_beyond(lower, ahead, pair.same_over) {
+                None => {
+                    pair.same_over = Some(ahead);
+                    return true;
+                }
                 Some(c) => {
                     pair.differ_at = Some(c);
-                    None
+                    if read.holds(c) {
+                        return false;
+                    }
                 }
-            },
-        };
-        pair.same_over = found.or(pair.same_over);
-        found.is_some()
+            }
+        }
+        match upper.first_difference_beyond(lower, read, pair.same_over) {
+            None => {
+                pair.same_over = Some(read);
+                true
+            }
+            Some(c) => {
+                pair.differ_at = Some(c);
+                false
+            }
+        }
     }
 }
 

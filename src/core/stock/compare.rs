@@ -5,6 +5,8 @@
 
 use super::Raster;
 
+/// Rows of fewer cells than this are compared cell by cell (a library call costs more).
+const SHORT_ROW_CELLS: usize = 32;
 /// A probe this far beyond a reach still reads only the rectangle, cells (rounding).
 const ROUNDING_CELLS: f64 = 1.0;
 
@@ -27,6 +29,29 @@ impl CellRect {
     /// `true` when cell (i, j) lies inside.
     pub fn holds(&self, (i, j): (usize, usize)) -> bool {
         (self.columns.0..self.columns.1).contains(&i) && (self.rows.0..self.rows.1).contains(&j)
+    }
+
+    /// `true` when no cell lies inside.
+    pub fn is_empty(&self) -> bool {
+        self.columns.0 >= self.columns.1 || self.rows.0 >= self.rows.1
+    }
+
+    /// The cells of `self` outside `other`, as at most four rectangles (the rows below
+    /// and above `other`, then the columns left and right of it in the rows between);
+    /// empty ones are left out.
+    pub fn minus(&self, other: &CellRect) -> impl Iterator<Item = CellRect> {
+        let clamp = |v: usize, (lo, hi): (usize, usize)| v.clamp(lo, hi);
+        let (r0, r1) = (clamp(other.rows.0, self.rows), clamp(other.rows.1, self.rows));
+        let (c0, c1) = (clamp(other.columns.0, self.columns), clamp(other.columns.1, self.columns));
+        let middle = (r0, r1.max(r0));
+        [
+            CellRect { columns: self.columns, rows: (self.rows.0, r0) },
+            CellRect { columns: self.columns, rows: (r1.max(r0), self.rows.1) },
+            CellRect { columns: (self.columns.0, c0), rows: middle },
+            CellRect { columns: (c1.max(c0), self.columns.1), rows: middle },
+        ]
+        .into_iter()
+        .filter(|r| !r.is_empty())
     }
 }
 
@@ -54,8 +79,24 @@ impl Raster {
         (rect.rows.0..rect.rows.1).find_map(|j| {
             let cells = j * self.nx + c0..j * self.nx + c1;
             let (a, b) = (&self.f[cells.clone()], &other.f[cells]);
-            (a != b).then(|| (c0 + a.iter().zip(b).position(|(u, v)| u != v).unwrap_or(0), j))
+            // Short stretches byte by byte; long ones with the library's comparison.
+            let same = if a.len() < SHORT_ROW_CELLS { a.iter().zip(b).all(|(u, v)| u == v) } else { a == b };
+            (!same).then(|| (c0 + a.iter().zip(b).position(|(u, v)| u != v).unwrap_or(0), j))
         })
+    }
+
+    /// As [`Raster::first_difference`] over the cells of `rect` outside `known_same`
+    /// (where the rasters are known to hold the same cells), if any.
+    pub fn first_difference_beyond(
+        &self,
+        other: &Raster,
+        rect: CellRect,
+        known_same: Option<CellRect>,
+    ) -> Option<(usize, usize)> {
+        match known_same {
+            Some(known) => rect.minus(&known).find_map(|part| self.first_difference(other, part)),
+            None => self.first_difference(other, rect),
+        }
     }
 }
 
@@ -79,6 +120,26 @@ mod tests {
         // The difference lies within the disc and its band.
         let (x, y) = (0.1 * i as f64 + a.x0 + 0.05, 0.1 * j as f64 + a.y0 + 0.05);
         assert!((x - 15.0).hypot(y - 15.0) < 2.0 + 0.3, "({x}, {y})");
+    }
+
+    #[test]
+    fn a_rectangle_minus_another_keeps_exactly_the_cells_outside_it() {
+        let a = CellRect { columns: (10, 20), rows: (5, 15) };
+        for other in [
+            CellRect { columns: (12, 22), rows: (3, 13) },
+            CellRect { columns: (0, 100), rows: (0, 100) },
+            CellRect { columns: (30, 40), rows: (5, 15) },
+            CellRect { columns: (14, 16), rows: (8, 9) },
+        ] {
+            let parts: Vec<CellRect> = a.minus(&other).collect();
+            for i in 0..30 {
+                for j in 0..30 {
+                    let inside = parts.iter().filter(|p| p.holds((i, j))).count();
+                    let expected = usize::from(a.holds((i, j)) && !other.holds((i, j)));
+                    assert_eq!(inside, expected, "cell ({i}, {j}) minus {other:?}");
+                }
+            }
+        }
     }
 
     #[test]
