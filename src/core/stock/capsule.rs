@@ -111,6 +111,7 @@ impl Raster {
     fn band_cells(&mut self, j: usize, from: usize, to: usize, outer: &Capsule, r: f64, behind: Option<&Capsule>) {
         let row = j * self.nx;
         let y = self.row_y(j);
+        let mut changed = false;
         let mut i = from;
         while i < to {
             if i + WORD_CELLS <= to && self.far_outside_word(row + i) {
@@ -118,14 +119,24 @@ impl Raster {
                 continue;
             }
             let q = (self.col_x(i), y);
-            if self.f[row + i] != -FULL && !behind.is_some_and(|c| c.behind_start(q)) {
+            let old = self.f[row + i];
+            if old != -FULL && !behind.is_some_and(|c| c.behind_start(q)) {
                 // Material stays where it is farther than r from the segment.
                 let v = self.encode(outer.distance(q) - r);
-                if v < self.f[row + i] {
-                    self.write(i, j, v);
+                if v < old {
+                    if (old > 0) == (v > 0) {
+                        // The cell stays on its side: no count changes.
+                        self.f[row + i] = v;
+                        changed = true;
+                    } else {
+                        self.write(i, j, v);
+                    }
                 }
             }
             i += 1;
+        }
+        if changed {
+            self.version += 1;
         }
     }
 
