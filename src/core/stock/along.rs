@@ -11,6 +11,8 @@ const NARROW_CELLS: f64 = 1.0;
 /// [`Raster::constant_along`] widens the segment by this across (rounding of the probe
 /// positions), cells.
 const ACROSS_ROUNDING_CELLS: f64 = 1e-9;
+/// Cells compared at once by [`all_equal`].
+const ALL_EQUAL_STRETCH: usize = 32;
 /// An interpolated value this close to zero is not decided by
 /// [`Raster::constant_along`] (rounding of the interpolation), stored units.
 const INTERPOLATION_ROUNDING: f64 = 1e-9;
@@ -107,13 +109,29 @@ impl Raster {
         }
         let (t_lo, t_hi) = (c_lo - line as f64, c_hi - line as f64);
         let (first, last) = (a_lo as usize, a_hi as usize + 1);
-        let at = |k: usize, l: usize| if along_x { self.f[l * self.nx + k] } else { self.f[k * self.nx + l] };
-        let (v0, v1) = (at(first, line), at(first, line + 1));
-        if (first + 1..=last).any(|k| at(k, line) != v0 || at(k, line + 1) != v1) {
+        let constant = if along_x {
+            // Two stretches of rows.
+            let (r0, r1) = (line * self.nx, (line + 1) * self.nx);
+            all_equal(&self.f[r0 + first..=r0 + last]) && all_equal(&self.f[r1 + first..=r1 + last])
+        } else {
+            // The two columns are side by side in each row.
+            let at = |k: usize| (self.f[k * self.nx + line], self.f[k * self.nx + line + 1]);
+            let v = at(first);
+            (first + 1..=last).all(|k| at(k) == v)
+        };
+        if !constant {
             return None;
         }
-        decide_between(v0, v1, (t_lo, t_hi))
+        let at = |k: usize, l: usize| if along_x { self.f[l * self.nx + k] } else { self.f[k * self.nx + l] };
+        decide_between(at(first, line), at(first, line + 1), (t_lo, t_hi))
     }
+}
+
+/// `true` when every cell of `cells` (at least one) holds the first one's value; tested a
+/// stretch at a time without stopping inside it, so each stretch is compared at once.
+fn all_equal(cells: &[i8]) -> bool {
+    let v = cells[0];
+    cells.chunks(ALL_EQUAL_STRETCH).all(|stretch| stretch.iter().fold(true, |same, &c| same & (c == v)))
 }
 
 /// The answer of every probe that reads the value `v0` on one line and `v1` on the next,
