@@ -121,16 +121,15 @@ impl Raster {
             let q = (self.col_x(i), y);
             let old = self.f[row + i];
             if old != -FULL && !behind.is_some_and(|c| c.behind_start(q)) {
-                // Material stays where it is farther than r from the segment.
-                let v = self.encode(outer.distance(q) - r);
-                if v < old {
-                    if (old > 0) == (v > 0) {
-                        // The cell stays on its side: no count changes.
-                        self.f[row + i] = v;
-                        changed = true;
-                    } else {
-                        self.write(i, j, v);
-                    }
+                // Material stays where it is farther than r from the segment. The cell
+                // is written whether or not it changes (no branch to mispredict); it can
+                // only lose material.
+                let v = self.encode(outer.distance(q) - r).min(old);
+                self.f[row + i] = v;
+                changed |= v != old;
+                if old > 0 && v <= 0 {
+                    self.blocks[(j / BLOCK_CELLS) * self.bx + i / BLOCK_CELLS] -= 1;
+                    self.tiles.update(i, j, false);
                 }
             }
             i += 1;
