@@ -61,6 +61,12 @@ impl SameBelow {
         if pair.differ_at.is_some_and(|c| read.holds(c)) {
             return false;
         }
+        // The slices differed nearby: most often they still do, along the same row or
+        // column (edges of earlier cuts run along the path), so those are looked at first.
+        if let Some(c) = pair.differ_at.and_then(|c| upper.first_difference_across(lower, read, c)) {
+            pair.differ_at = Some(c);
+            return false;
+        }
         // A stretch ahead alike spares the checks of the next samples; where a known
         // difference lies in it, it is not looked at. Only cells beyond those known alike
         // are compared.

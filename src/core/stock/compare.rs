@@ -85,6 +85,21 @@ impl Raster {
         })
     }
 
+    /// A cell of `rect` in the row or the column of cell `c` where `self` and `other`
+    /// differ, if any.
+    pub fn first_difference_across(
+        &self,
+        other: &Raster,
+        rect: CellRect,
+        (i, j): (usize, usize),
+    ) -> Option<(usize, usize)> {
+        let row =
+            (rect.rows.0..rect.rows.1).contains(&j).then_some(CellRect { columns: rect.columns, rows: (j, j + 1) });
+        let column =
+            (rect.columns.0..rect.columns.1).contains(&i).then_some(CellRect { columns: (i, i + 1), rows: rect.rows });
+        [row, column].into_iter().flatten().find_map(|line| self.first_difference(other, line))
+    }
+
     /// As [`Raster::first_difference`] over the cells of `rect` outside `known_same`
     /// (where the rasters are known to hold the same cells), if any.
     pub fn first_difference_beyond(
@@ -120,6 +135,29 @@ mod tests {
         // The difference lies within the disc and its band.
         let (x, y) = (0.1 * i as f64 + a.x0 + 0.05, 0.1 * j as f64 + a.y0 + 0.05);
         assert!((x - 15.0).hypot(y - 15.0) < 2.0 + 0.3, "({x}, {y})");
+    }
+
+    #[test]
+    fn a_difference_is_looked_for_along_the_row_and_the_column_of_a_cell() {
+        let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 20.0, y_max: 20.0 };
+        let mut a = Raster::new(rect, 0.1);
+        a.paint(true, |_, out| out.push((0.0, 20.0)), |x, y| super::super::rect_signed_distance(&rect, x, y));
+        let mut b = a.clone();
+        b.clear_capsule((10.0, 10.0), (10.0, 10.0), 1.0);
+        let all = CellRect { columns: (0, a.nx), rows: (0, a.ny) };
+        let (ci, cj) = a.first_difference(&b, all).expect("the cut differs");
+        // Along the row of the disc's centre, or its column, a difference is found there.
+        let centre = (((10.0 - a.x0) / 0.1) as usize, ((10.0 - a.y0) / 0.1) as usize);
+        let (i, j) = a.first_difference_across(&b, all, (3, centre.1)).expect("the centre row crosses the disc");
+        assert_eq!(j, centre.1);
+        assert!(i.abs_diff(centre.0) <= 12, "{i} vs {}", centre.0);
+        let (i, _) = a.first_difference_across(&b, all, (centre.0, 3)).expect("the centre column crosses it");
+        assert_eq!(i, centre.0);
+        // Far from the disc in both, none.
+        assert_eq!(a.first_difference_across(&b, all, (5, 5)), None);
+        // Outside the rectangle's rows and columns, nothing is looked at.
+        let corner = CellRect { columns: (0, 20), rows: (0, 20) };
+        assert_eq!(a.first_difference_across(&b, corner, (ci, cj)), None);
     }
 
     #[test]
