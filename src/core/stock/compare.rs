@@ -117,14 +117,20 @@ impl Raster {
 
 #[cfg(test)]
 mod tests {
-    use super::super::Rect;
+    use super::super::{rect_signed_distance, Rect};
     use super::*;
+
+    /// A 20 × 20 mm block of material, cells of 0.1 mm.
+    fn block() -> Raster {
+        let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 20.0, y_max: 20.0 };
+        let mut a = Raster::new(rect, 0.1);
+        a.paint(true, |_, out| out.push((0.0, 20.0)), |x, y| rect_signed_distance(&rect, x, y));
+        a
+    }
 
     #[test]
     fn rasters_differ_only_where_one_of_them_was_cut() {
-        let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 20.0, y_max: 20.0 };
-        let mut a = Raster::new(rect, 0.1);
-        a.paint(true, |_, out| out.push((0.0, 20.0)), |x, y| super::super::rect_signed_distance(&rect, x, y));
+        let a = block();
         let mut b = a.clone();
         b.clear_capsule((15.0, 15.0), (15.0, 15.0), 2.0);
         let far = a.cells_read_near((5.0, 5.0), 2.0, (1.0, 0.0), 20.0);
@@ -139,9 +145,7 @@ mod tests {
 
     #[test]
     fn a_difference_is_looked_for_along_the_row_and_the_column_of_a_cell() {
-        let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 20.0, y_max: 20.0 };
-        let mut a = Raster::new(rect, 0.1);
-        a.paint(true, |_, out| out.push((0.0, 20.0)), |x, y| super::super::rect_signed_distance(&rect, x, y));
+        let a = block();
         let mut b = a.clone();
         b.clear_capsule((10.0, 10.0), (10.0, 10.0), 1.0);
         let all = CellRect { columns: (0, a.nx), rows: (0, a.ny) };
