@@ -62,9 +62,8 @@ impl Raster {
                 Some(FrontHalf::Below(x)) => (from, self.cell_range(f64::NEG_INFINITY, x + self.cell_mm).1),
                 None => (from, to),
             };
-            let behind = disc_at_a_cleared.then_some(&outer);
-            self.band_cells(j, from.max(front_from), in_from.min(front_to), &outer, r, behind);
-            self.band_cells(j, in_to.max(front_from), to.min(front_to), &outer, r, behind);
+            self.band_cells(j, from.max(front_from), in_from.min(front_to), &outer, r, disc_at_a_cleared);
+            self.band_cells(j, in_to.max(front_from), to.min(front_to), &outer, r, disc_at_a_cleared);
             let (skip_from, skip_to) = match skip_start_disc.then(|| inner.disc_chord(a, y)).flatten() {
                 Some((l, h)) => self.cell_range(l, h),
                 None => (in_from, in_from),
@@ -107,8 +106,8 @@ impl Raster {
 
     /// Cells [from, to) of row `j` in the band around the capsule `outer` (radius
     /// `r` + the clamp width) get their distance to the capsule of radius `r`, where it
-    /// is smaller; with `behind`, cells projecting before its start are left alone.
-    fn band_cells(&mut self, j: usize, from: usize, to: usize, outer: &Capsule, r: f64, behind: Option<&Capsule>) {
+    /// is smaller; with `skip_behind`, cells projecting before its start are left alone.
+    fn band_cells(&mut self, j: usize, from: usize, to: usize, outer: &Capsule, r: f64, skip_behind: bool) {
         let row = j * self.nx;
         let y = self.row_y(j);
         let mut changed = false;
@@ -120,11 +119,12 @@ impl Raster {
             }
             let q = (self.col_x(i), y);
             let old = self.f[row + i];
-            if old != -FULL && !behind.is_some_and(|c| c.behind_start(q)) {
+            let distance = if old == -FULL { None } else { outer.distance_unless_behind(q, skip_behind) };
+            if let Some(d) = distance {
                 // Material stays where it is farther than r from the segment. The cell
                 // is written whether or not it changes (no branch to mispredict); it can
                 // only lose material.
-                let v = self.encode(outer.distance(q) - r).min(old);
+                let v = self.encode(d - r).min(old);
                 self.f[row + i] = v;
                 changed |= v != old;
                 if old > 0 && v <= 0 {
@@ -222,27 +222,27 @@ impl Capsule {
         Some(if ux > 0.0 { FrontHalf::Above(x) } else { FrontHalf::Below(x) })
     }
 
-    /// `true` when `q` projects before the segment's start (its nearest point is `a`).
-    fn behind_start(&self, q: (f64, f64)) -> bool {
-        self.dir.is_some_and(|((ux, uy), _)| (q.0 - self.a.0) * ux + (q.1 - self.a.1) * uy <= 0.0)
-    }
-
     /// Distance from `q` to the segment: beside it, the distance to its line (no square
-    /// root); beyond either end, to that end.
-    fn distance(&self, q: (f64, f64)) -> f64 {
+    /// root); beyond either end, to that end. With `skip_behind`, `None` when `q` projects
+    /// before the start (its nearest point is `a`).
+    #[inline]
+    fn distance_unless_behind(&self, q: (f64, f64), skip_behind: bool) -> Option<f64> {
         let (px, py) = (q.0 - self.a.0, q.1 - self.a.1);
         match self.dir {
             Some(((ux, uy), len)) => {
                 let t = px * ux + py * uy;
-                if (0.0..=len).contains(&t) {
+                if skip_behind && t <= 0.0 {
+                    return None;
+                }
+                Some(if (0.0..=len).contains(&t) {
                     (px * uy - py * ux).abs()
                 } else {
                     let t = t.clamp(0.0, len);
                     let (ex, ey) = (px - t * ux, py - t * uy);
                     (ex * ex + ey * ey).sqrt()
-                }
+                })
             }
-            None => (px * px + py * py).sqrt(),
+            None => Some((px * px + py * py).sqrt()),
         }
     }
 
