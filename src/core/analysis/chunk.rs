@@ -6,6 +6,7 @@
 use super::recent::Corridor;
 use super::sampling::has_heading;
 use super::slices::Slice;
+use crate::core::stock::CapsuleRows;
 
 /// A chunk holds at most this many steps: straight stretches are applied in capsules
 /// this long (the search for recent centres that reach the leading half stops early on
@@ -148,9 +149,11 @@ impl Chunk {
             let mut material_near = true;
             let cut = self.cut.min(slices.len());
             self.capsules += 1;
+            // All slices share one grid: the capsule's rows are found once.
+            let rows = slices.first().map(|s| CapsuleRows::new(&s.raster, a, b, radius, self.start_cleared));
             for s in slices[..cut].iter_mut().rev() {
-                if material_near {
-                    material_near = s.take_capsule(self.capsules, a, b, radius, self.start_cleared);
+                if let (true, Some(rows)) = (material_near, &rows) {
+                    material_near = s.take_capsule(self.capsules, rows);
                 } else {
                     s.raster.skip_capsule();
                 }

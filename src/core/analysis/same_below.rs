@@ -114,9 +114,15 @@ mod tests {
     use super::*;
     use crate::core::analysis::region::{paint, StockRegion};
     use crate::core::analysis::slices::build;
-    use crate::core::stock::Rect;
+    use crate::core::stock::{CapsuleRows, Rect};
 
     const RADIUS: f64 = 2.0;
+
+    /// Capsule number `serial` of radius RADIUS from `a` to `b`, applied to slice `s`.
+    fn take(s: &mut Slice, serial: u64, a: (f64, f64), b: (f64, f64), disc_at_a_cleared: bool) -> bool {
+        let rows = CapsuleRows::new(&s.raster, a, b, RADIUS, disc_at_a_cleared);
+        s.take_capsule(serial, &rows)
+    }
 
     fn two_slices() -> Vec<Slice> {
         let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 40.0, y_max: 40.0 };
@@ -140,21 +146,21 @@ mod tests {
         let mut slices = two_slices();
         let versions = (slices[0].raster.version(), slices[1].raster.version());
         for s in &mut slices {
-            assert!(s.take_capsule(1, (0.0, 20.0), (20.0, 20.0), RADIUS, false));
+            assert!(take(s, 1, (0.0, 20.0), (20.0, 20.0), false));
         }
         assert!(both_took_one_capsule_since(versions, &slices[0], &slices[1]));
         // A second capsule since the versions, or one the upper slice alone took.
         for s in &mut slices {
-            s.take_capsule(2, (20.0, 20.0), (25.0, 20.0), RADIUS, true);
+            take(s, 2, (20.0, 20.0), (25.0, 20.0), true);
         }
         assert!(!both_took_one_capsule_since(versions, &slices[0], &slices[1]));
         let versions = (slices[0].raster.version(), slices[1].raster.version());
-        slices[0].take_capsule(3, (25.0, 20.0), (30.0, 20.0), RADIUS, true);
+        take(&mut slices[0], 3, (25.0, 20.0), (30.0, 20.0), true);
         assert!(!both_took_one_capsule_since(versions, &slices[0], &slices[1]));
         // A raster changed other than by a capsule.
         let versions = (slices[0].raster.version(), slices[1].raster.version());
         for s in &mut slices {
-            s.take_capsule(4, (30.0, 20.0), (35.0, 20.0), RADIUS, true);
+            take(s, 4, (30.0, 20.0), (35.0, 20.0), true);
         }
         slices[1].raster.clear_capsule((5.0, 5.0), (5.0, 5.0), RADIUS);
         assert!(!both_took_one_capsule_since(versions, &slices[0], &slices[1]));
@@ -171,7 +177,7 @@ mod tests {
         for step in 0..60u32 {
             let next = (at.0 + 0.6, 20.0 - 0.1 * f64::from(step));
             for s in &mut slices {
-                s.take_capsule(u64::from(step) + 1, at, next, RADIUS, step > 0);
+                take(s, u64::from(step) + 1, at, next, step > 0);
             }
             at = next;
             let fresh = SameBelow::new(slices.len()).same(&slices, 0, at, (1.0, 0.0), RADIUS);

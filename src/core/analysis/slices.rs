@@ -7,7 +7,7 @@
 //! the material of the slice below it. Above a slice with no material near the tool,
 //! none has any.
 
-use crate::core::stock::{BlockRange, Raster, Rect};
+use crate::core::stock::{BlockRange, CapsuleRows, Raster, Rect};
 use crate::core::toolpath::{Motion, Toolpath};
 
 /// z levels closer than this are one level, mm.
@@ -44,11 +44,11 @@ impl Slice {
         Slice { z_bottom, z_top, raster, empty: None, last_capsule: None }
     }
 
-    /// Applies capsule number `serial` to the raster ([`Raster::clear_capsule_after`]),
+    /// Applies capsule number `serial` to the raster ([`Raster::clear_capsule_rows`]),
     /// remembering it when it was applied. Returns `false` when no material lies near it.
-    pub fn take_capsule(&mut self, serial: u64, a: (f64, f64), b: (f64, f64), r: f64, disc_at_a_cleared: bool) -> bool {
+    pub fn take_capsule(&mut self, serial: u64, capsule: &CapsuleRows) -> bool {
         let version_before = self.raster.version();
-        let applied = self.raster.clear_capsule_after(a, b, r, disc_at_a_cleared);
+        let applied = self.raster.clear_capsule_rows(capsule);
         self.last_capsule =
             applied.then(|| TakenCapsule { serial, version_before, version_after: self.raster.version() });
         applied

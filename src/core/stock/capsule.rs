@@ -5,6 +5,7 @@
 
 use super::tiles::TILE_CELLS;
 use super::{Raster, BLOCK_CELLS, DEGENERATE_SEGMENT_MM, FULL, SDF_CLAMP_CELLS};
+use std::cell::OnceCell;
 
 /// A capsule whose direction has an x component below this is treated as parallel to
 /// the rows when its start line is located.
@@ -32,48 +33,39 @@ impl Raster {
     /// Returns `false` when no material lies near the capsule (nothing changed; see
     /// [`Raster::skip_capsule`]).
     pub fn clear_capsule_after(&mut self, a: (f64, f64), b: (f64, f64), r: f64, disc_at_a_cleared: bool) -> bool {
-        let skip_start_disc = disc_at_a_cleared && self.end_disc_cleared;
+        self.clear_capsule_rows(&CapsuleRows::new(self, a, b, r, disc_at_a_cleared))
+    }
+
+    /// As [`Raster::clear_capsule_after`] with the rows of a capsule found for a raster of
+    /// the same grid.
+    pub fn clear_capsule_rows(&mut self, capsule: &CapsuleRows) -> bool {
+        debug_assert!(capsule.grid == self.grid(), "a capsule's rows found on another grid");
+        let skip_start_disc = capsule.disc_at_a_cleared && self.end_disc_cleared;
         self.end_disc_cleared = false;
-        let reach = SDF_CLAMP_CELLS * self.cell_mm;
-        let y_lo = a.1.min(b.1) - r - reach;
-        let y_hi = a.1.max(b.1) + r + reach;
-        let (j_first, j_end) = self.index_range(y_lo, y_hi, self.y0, self.ny);
-        if j_end == 0 {
+        if capsule.off_raster {
             return false;
         }
-        let centre = ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0);
-        let half = ((b.0 - a.0).hypot(b.1 - a.1)) / 2.0 + r + reach;
-        if !self.any_material_near(centre.0, centre.1, half) {
+        let ((x, y), reach) = capsule.near;
+        if !self.any_material_near(x, y, reach) {
             return false;
         }
-        let outer = Capsule::new(a, b, r + reach);
-        let inner = Capsule::new(a, b, (r - reach).max(0.0));
-        for j in j_first..j_end {
-            let y = self.row_y(j);
-            let Some((lo, hi)) = outer.row_interval(y) else {
-                continue;
-            };
-            let (from, to) = self.cell_range(lo, hi);
-            let (in_from, in_to) = inner.row_interval(y).map_or((from, from), |(l, h)| self.cell_range(l, h));
-            let (in_from, in_to) = (in_from.max(from), in_to.max(in_from.max(from)));
-            // Band cells behind the start by more than a cell need no test.
-            let (front_from, front_to) = match disc_at_a_cleared.then(|| outer.front_half_line(y)).flatten() {
-                Some(FrontHalf::Above(x)) => (self.cell_range(x - self.cell_mm, f64::INFINITY).0, to),
-                Some(FrontHalf::Below(x)) => (from, self.cell_range(f64::NEG_INFINITY, x + self.cell_mm).1),
-                None => (from, to),
-            };
-            self.band_cells(j, from.max(front_from), in_from.min(front_to), &outer, r, disc_at_a_cleared);
-            self.band_cells(j, in_to.max(front_from), to.min(front_to), &outer, r, disc_at_a_cleared);
-            let (skip_from, skip_to) = match skip_start_disc.then(|| inner.disc_chord(a, y)).flatten() {
-                Some((l, h)) => self.cell_range(l, h),
-                None => (in_from, in_from),
-            };
-            let (skip_from, skip_to) = (skip_from.clamp(in_from, in_to), skip_to.clamp(in_from, in_to));
+        for row in capsule.rows(self) {
+            let j = row.j;
+            for (from, to) in row.bands {
+                self.band_cells(j, from, to, &capsule.outer, capsule.r, capsule.disc_at_a_cleared);
+            }
+            let (in_from, in_to) = row.inside;
+            let (skip_from, skip_to) = if skip_start_disc { row.start_disc } else { (in_from, in_from) };
             self.clear_cells(j, in_from, skip_from);
             self.clear_cells(j, skip_to.max(skip_from), in_to);
         }
         self.end_disc_cleared = true;
         true
+    }
+
+    /// The grid's origin, cell and size, which rasters sharing capsule rows must share.
+    fn grid(&self) -> (f64, f64, f64, usize, usize) {
+        (self.x0, self.y0, self.cell_mm, self.nx, self.ny)
     }
 
     /// What [`Raster::clear_capsule_after`] does to a raster with no material near the
@@ -174,6 +166,93 @@ impl Raster {
             }
             i = end;
         }
+    }
+}
+
+/// The cells of each row a capsule update touches (see [`Raster::clear_capsule_after`]),
+/// found once for every raster of one grid: the slices of a layer take the same capsules.
+/// The rows are found when first needed (not when no raster has material near).
+pub struct CapsuleRows {
+    a: (f64, f64),
+    b: (f64, f64),
+    r: f64,
+    disc_at_a_cleared: bool,
+    grid: (f64, f64, f64, usize, usize),
+    /// The capsule widened by the band.
+    outer: Capsule,
+    /// Where material near the capsule is looked for: centre and reach, mm.
+    near: ((f64, f64), f64),
+    /// Row range, and whether the capsule misses the raster's rows.
+    rows: (usize, usize),
+    off_raster: bool,
+    spans: OnceCell<Vec<RowSpans>>,
+}
+
+/// What a capsule update does in one row: band cells in two stretches, cells cleared
+/// between them, and, when the disc at the start is already cleared, the cells of that
+/// stretch that need no clearing.
+struct RowSpans {
+    j: usize,
+    bands: [(usize, usize); 2],
+    inside: (usize, usize),
+    start_disc: (usize, usize),
+}
+
+impl CapsuleRows {
+    /// The rows of the capsule swept by a disc of radius `r` from `a` to `b` on the grid
+    /// of `grid` (see [`Raster::clear_capsule_after`] for `disc_at_a_cleared`).
+    pub fn new(grid: &Raster, a: (f64, f64), b: (f64, f64), r: f64, disc_at_a_cleared: bool) -> CapsuleRows {
+        let reach = SDF_CLAMP_CELLS * grid.cell_mm;
+        let y_lo = a.1.min(b.1) - r - reach;
+        let y_hi = a.1.max(b.1) + r + reach;
+        let rows = grid.index_range(y_lo, y_hi, grid.y0, grid.ny);
+        let centre = ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0);
+        let half = ((b.0 - a.0).hypot(b.1 - a.1)) / 2.0 + r + reach;
+        CapsuleRows {
+            a,
+            b,
+            r,
+            disc_at_a_cleared,
+            grid: grid.grid(),
+            outer: Capsule::new(a, b, r + reach),
+            near: (centre, half),
+            rows,
+            off_raster: rows.1 == 0,
+            spans: OnceCell::new(),
+        }
+    }
+
+    /// The rows' spans, found on `grid` the first time.
+    fn rows(&self, grid: &Raster) -> &[RowSpans] {
+        self.spans.get_or_init(|| {
+            let (a, r, outer) = (self.a, self.r, &self.outer);
+            let reach = SDF_CLAMP_CELLS * grid.cell_mm;
+            let inner = Capsule::new(a, self.b, (r - reach).max(0.0));
+            (self.rows.0..self.rows.1)
+                .filter_map(|j| {
+                    let y = grid.row_y(j);
+                    let (lo, hi) = outer.row_interval(y)?;
+                    let (from, to) = grid.cell_range(lo, hi);
+                    let (in_from, in_to) = inner.row_interval(y).map_or((from, from), |(l, h)| grid.cell_range(l, h));
+                    let (in_from, in_to) = (in_from.max(from), in_to.max(in_from.max(from)));
+                    // Band cells behind the start by more than a cell need no test.
+                    let (front_from, front_to) =
+                        match self.disc_at_a_cleared.then(|| outer.front_half_line(y)).flatten() {
+                            Some(FrontHalf::Above(x)) => (grid.cell_range(x - grid.cell_mm, f64::INFINITY).0, to),
+                            Some(FrontHalf::Below(x)) => (from, grid.cell_range(f64::NEG_INFINITY, x + grid.cell_mm).1),
+                            None => (from, to),
+                        };
+                    let bands =
+                        [(from.max(front_from), in_from.min(front_to)), (in_to.max(front_from), to.min(front_to))];
+                    let (skip_from, skip_to) = match self.disc_at_a_cleared.then(|| inner.disc_chord(a, y)).flatten() {
+                        Some((l, h)) => grid.cell_range(l, h),
+                        None => (in_from, in_from),
+                    };
+                    let start_disc = (skip_from.clamp(in_from, in_to), skip_to.clamp(in_from, in_to));
+                    Some(RowSpans { j, bands, inside: (in_from, in_to), start_disc })
+                })
+                .collect()
+        })
     }
 }
 

@@ -9,6 +9,7 @@ mod capsule;
 mod compare;
 mod tiles;
 
+pub use capsule::CapsuleRows;
 pub use compare::CellRect;
 pub use tiles::Certified;
 use tiles::Tiles;
