@@ -48,6 +48,8 @@ pub struct Chunk {
     max_deviation_mm: f64,
     /// Capsules applied so far (numbers them for [`Slice::take_capsule`]).
     capsules: u64,
+    /// The rows of the capsule last applied (kept to reuse its memory).
+    rows: Option<CapsuleRows>,
 }
 
 impl Chunk {
@@ -66,6 +68,7 @@ impl Chunk {
             cos_turn: CHUNK_TURN_DEG.to_radians().cos(),
             max_deviation_mm: CHORD_DEVIATION_CELLS * cell_mm,
             capsules: 0,
+            rows: None,
         }
     }
 
@@ -150,9 +153,14 @@ impl Chunk {
             let cut = self.cut.min(slices.len());
             self.capsules += 1;
             // All slices share one grid: the capsule's rows are found once.
-            let rows = slices.first().map(|s| CapsuleRows::new(&s.raster, a, b, radius, self.start_cleared));
+            if let Some(first) = slices.first() {
+                match self.rows.as_mut() {
+                    Some(rows) => rows.set(&first.raster, a, b, radius, self.start_cleared),
+                    None => self.rows = Some(CapsuleRows::new(&first.raster, a, b, radius, self.start_cleared)),
+                }
+            }
             for s in slices[..cut].iter_mut().rev() {
-                if let (true, Some(rows)) = (material_near, &rows) {
+                if let (true, Some(rows)) = (material_near, self.rows.as_mut()) {
                     material_near = s.take_capsule(self.capsules, rows);
                 } else {
                     s.raster.skip_capsule();

@@ -120,8 +120,8 @@ mod tests {
 
     /// Capsule number `serial` of radius RADIUS from `a` to `b`, applied to slice `s`.
     fn take(s: &mut Slice, serial: u64, a: (f64, f64), b: (f64, f64), disc_at_a_cleared: bool) -> bool {
-        let rows = CapsuleRows::new(&s.raster, a, b, RADIUS, disc_at_a_cleared);
-        s.take_capsule(serial, &rows)
+        let mut rows = CapsuleRows::new(&s.raster, a, b, RADIUS, disc_at_a_cleared);
+        s.take_capsule(serial, &mut rows)
     }
 
     fn two_slices() -> Vec<Slice> {

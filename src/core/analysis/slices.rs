@@ -46,7 +46,7 @@ impl Slice {
 
     /// Applies capsule number `serial` to the raster ([`Raster::clear_capsule_rows`]),
     /// remembering it when it was applied. Returns `false` when no material lies near it.
-    pub fn take_capsule(&mut self, serial: u64, capsule: &CapsuleRows) -> bool {
+    pub fn take_capsule(&mut self, serial: u64, capsule: &mut CapsuleRows) -> bool {
         let version_before = self.raster.version();
         let applied = self.raster.clear_capsule_rows(capsule);
         self.last_capsule =

@@ -5,7 +5,6 @@
 
 use super::tiles::TILE_CELLS;
 use super::{Raster, BLOCK_CELLS, DEGENERATE_SEGMENT_MM, FULL, SDF_CLAMP_CELLS};
-use std::cell::OnceCell;
 
 /// A capsule whose direction has an x component below this is treated as parallel to
 /// the rows when its start line is located.
@@ -33,12 +32,12 @@ impl Raster {
     /// Returns `false` when no material lies near the capsule (nothing changed; see
     /// [`Raster::skip_capsule`]).
     pub fn clear_capsule_after(&mut self, a: (f64, f64), b: (f64, f64), r: f64, disc_at_a_cleared: bool) -> bool {
-        self.clear_capsule_rows(&CapsuleRows::new(self, a, b, r, disc_at_a_cleared))
+        self.clear_capsule_rows(&mut CapsuleRows::new(self, a, b, r, disc_at_a_cleared))
     }
 
     /// As [`Raster::clear_capsule_after`] with the rows of a capsule found for a raster of
     /// the same grid.
-    pub fn clear_capsule_rows(&mut self, capsule: &CapsuleRows) -> bool {
+    pub fn clear_capsule_rows(&mut self, capsule: &mut CapsuleRows) -> bool {
         debug_assert!(capsule.grid == self.grid(), "a capsule's rows found on another grid");
         let skip_start_disc = capsule.disc_at_a_cleared && self.end_disc_cleared;
         self.end_disc_cleared = false;
@@ -49,7 +48,8 @@ impl Raster {
         if !self.any_material_near(x, y, reach) {
             return false;
         }
-        for row in capsule.rows(self) {
+        capsule.find_rows(self);
+        for row in &capsule.spans {
             let j = row.j;
             for (from, to) in row.bands {
                 self.band_cells(j, from, to, &capsule.outer, capsule.r, capsule.disc_at_a_cleared);
@@ -171,7 +171,8 @@ impl Raster {
 
 /// The cells of each row a capsule update touches (see [`Raster::clear_capsule_after`]),
 /// found once for every raster of one grid: the slices of a layer take the same capsules.
-/// The rows are found when first needed (not when no raster has material near).
+/// The rows are found when first needed (not when no raster has material near); one
+/// value serves capsule after capsule without allocating again ([`CapsuleRows::set`]).
 pub struct CapsuleRows {
     a: (f64, f64),
     b: (f64, f64),
@@ -185,7 +186,8 @@ pub struct CapsuleRows {
     /// Row range, and whether the capsule misses the raster's rows.
     rows: (usize, usize),
     off_raster: bool,
-    spans: OnceCell<Vec<RowSpans>>,
+    spans: Vec<RowSpans>,
+    found: bool,
 }
 
 /// What a capsule update does in one row: band cells in two stretches, cells cleared
@@ -202,57 +204,70 @@ impl CapsuleRows {
     /// The rows of the capsule swept by a disc of radius `r` from `a` to `b` on the grid
     /// of `grid` (see [`Raster::clear_capsule_after`] for `disc_at_a_cleared`).
     pub fn new(grid: &Raster, a: (f64, f64), b: (f64, f64), r: f64, disc_at_a_cleared: bool) -> CapsuleRows {
+        let mut rows = CapsuleRows {
+            a,
+            b,
+            r,
+            disc_at_a_cleared,
+            grid: grid.grid(),
+            outer: Capsule::new(a, b, r),
+            near: ((0.0, 0.0), 0.0),
+            rows: (0, 0),
+            off_raster: true,
+            spans: Vec::new(),
+            found: false,
+        };
+        rows.set(grid, a, b, r, disc_at_a_cleared);
+        rows
+    }
+
+    /// Makes these the rows of another capsule, as [`CapsuleRows::new`].
+    pub fn set(&mut self, grid: &Raster, a: (f64, f64), b: (f64, f64), r: f64, disc_at_a_cleared: bool) {
         let reach = SDF_CLAMP_CELLS * grid.cell_mm;
         let y_lo = a.1.min(b.1) - r - reach;
         let y_hi = a.1.max(b.1) + r + reach;
         let rows = grid.index_range(y_lo, y_hi, grid.y0, grid.ny);
         let centre = ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0);
         let half = ((b.0 - a.0).hypot(b.1 - a.1)) / 2.0 + r + reach;
-        CapsuleRows {
-            a,
-            b,
-            r,
-            disc_at_a_cleared,
-            grid: grid.grid(),
-            outer: Capsule::new(a, b, r + reach),
-            near: (centre, half),
-            rows,
-            off_raster: rows.1 == 0,
-            spans: OnceCell::new(),
-        }
+        (self.a, self.b, self.r, self.disc_at_a_cleared, self.grid) = (a, b, r, disc_at_a_cleared, grid.grid());
+        self.outer = Capsule::new(a, b, r + reach);
+        self.near = (centre, half);
+        self.rows = rows;
+        self.off_raster = rows.1 == 0;
+        self.spans.clear();
+        self.found = false;
     }
 
-    /// The rows' spans, found on `grid` the first time.
-    fn rows(&self, grid: &Raster) -> &[RowSpans] {
-        self.spans.get_or_init(|| {
-            let (a, r, outer) = (self.a, self.r, &self.outer);
-            let reach = SDF_CLAMP_CELLS * grid.cell_mm;
-            let inner = Capsule::new(a, self.b, (r - reach).max(0.0));
-            (self.rows.0..self.rows.1)
-                .filter_map(|j| {
-                    let y = grid.row_y(j);
-                    let (lo, hi) = outer.row_interval(y)?;
-                    let (from, to) = grid.cell_range(lo, hi);
-                    let (in_from, in_to) = inner.row_interval(y).map_or((from, from), |(l, h)| grid.cell_range(l, h));
-                    let (in_from, in_to) = (in_from.max(from), in_to.max(in_from.max(from)));
-                    // Band cells behind the start by more than a cell need no test.
-                    let (front_from, front_to) =
-                        match self.disc_at_a_cleared.then(|| outer.front_half_line(y)).flatten() {
-                            Some(FrontHalf::Above(x)) => (grid.cell_range(x - grid.cell_mm, f64::INFINITY).0, to),
-                            Some(FrontHalf::Below(x)) => (from, grid.cell_range(f64::NEG_INFINITY, x + grid.cell_mm).1),
-                            None => (from, to),
-                        };
-                    let bands =
-                        [(from.max(front_from), in_from.min(front_to)), (in_to.max(front_from), to.min(front_to))];
-                    let (skip_from, skip_to) = match self.disc_at_a_cleared.then(|| inner.disc_chord(a, y)).flatten() {
-                        Some((l, h)) => grid.cell_range(l, h),
-                        None => (in_from, in_from),
-                    };
-                    let start_disc = (skip_from.clamp(in_from, in_to), skip_to.clamp(in_from, in_to));
-                    Some(RowSpans { j, bands, inside: (in_from, in_to), start_disc })
-                })
-                .collect()
-        })
+    /// Finds the rows' spans on `grid`, unless they are already found.
+    fn find_rows(&mut self, grid: &Raster) {
+        if self.found {
+            return;
+        }
+        self.found = true;
+        let (a, r, outer) = (self.a, self.r, &self.outer);
+        let reach = SDF_CLAMP_CELLS * grid.cell_mm;
+        let inner = Capsule::new(a, self.b, (r - reach).max(0.0));
+        let disc_at_a_cleared = self.disc_at_a_cleared;
+        self.spans.extend((self.rows.0..self.rows.1).filter_map(|j| {
+            let y = grid.row_y(j);
+            let (lo, hi) = outer.row_interval(y)?;
+            let (from, to) = grid.cell_range(lo, hi);
+            let (in_from, in_to) = inner.row_interval(y).map_or((from, from), |(l, h)| grid.cell_range(l, h));
+            let (in_from, in_to) = (in_from.max(from), in_to.max(in_from.max(from)));
+            // Band cells behind the start by more than a cell need no test.
+            let (front_from, front_to) = match disc_at_a_cleared.then(|| outer.front_half_line(y)).flatten() {
+                Some(FrontHalf::Above(x)) => (grid.cell_range(x - grid.cell_mm, f64::INFINITY).0, to),
+                Some(FrontHalf::Below(x)) => (from, grid.cell_range(f64::NEG_INFINITY, x + grid.cell_mm).1),
+                None => (from, to),
+            };
+            let bands = [(from.max(front_from), in_from.min(front_to)), (in_to.max(front_from), to.min(front_to))];
+            let (skip_from, skip_to) = match disc_at_a_cleared.then(|| inner.disc_chord(a, y)).flatten() {
+                Some((l, h)) => grid.cell_range(l, h),
+                None => (in_from, in_from),
+            };
+            let start_disc = (skip_from.clamp(in_from, in_to), skip_to.clamp(in_from, in_to));
+            Some(RowSpans { j, bands, inside: (in_from, in_to), start_disc })
+        }));
     }
 }
 
