@@ -25,7 +25,7 @@ pub struct Slice {
     /// Blocks last found to hold no material: material is only ever removed during a
     /// simulation, so they stay empty.
     empty: Option<BlockRange>,
-    /// The last capsule applied to the raster (see [`Slice::took_capsule`]).
+    /// The last capsule applied to the raster (see [`Slice::take_capsule`]).
     last_capsule: Option<TakenCapsule>,
 }
 

@@ -3,8 +3,9 @@
 //! in a band of the clamp width around its edge get their distance to it; along a path,
 //! only the leading crescent of each capsule changes anything.
 
+use super::capsule_rows::CapsuleRows;
 use super::tiles::TILE_CELLS;
-use super::{Raster, BLOCK_CELLS, DEGENERATE_SEGMENT_MM, FULL, SDF_CLAMP_CELLS};
+use super::{Raster, BLOCK_CELLS, DEGENERATE_SEGMENT_MM, FULL};
 
 /// A capsule whose direction has an x component below this is treated as parallel to
 /// the rows when its start line is located.
@@ -35,36 +36,8 @@ impl Raster {
         self.clear_capsule_rows(&mut CapsuleRows::new(self, a, b, r, disc_at_a_cleared))
     }
 
-    /// As [`Raster::clear_capsule_after`] with the rows of a capsule found for a raster of
-    /// the same grid.
-    pub fn clear_capsule_rows(&mut self, capsule: &mut CapsuleRows) -> bool {
-        debug_assert!(capsule.grid == self.grid(), "a capsule's rows found on another grid");
-        let skip_start_disc = capsule.disc_at_a_cleared && self.end_disc_cleared;
-        self.end_disc_cleared = false;
-        if capsule.off_raster {
-            return false;
-        }
-        let ((x, y), reach) = capsule.near;
-        if !self.any_material_near(x, y, reach) {
-            return false;
-        }
-        capsule.find_rows(self);
-        for row in &capsule.spans {
-            let j = row.j;
-            for (from, to) in row.bands {
-                self.band_cells(j, from, to, &capsule.outer, capsule.r, capsule.disc_at_a_cleared);
-            }
-            let (in_from, in_to) = row.inside;
-            let (skip_from, skip_to) = if skip_start_disc { row.start_disc } else { (in_from, in_from) };
-            self.clear_cells(j, in_from, skip_from);
-            self.clear_cells(j, skip_to.max(skip_from), in_to);
-        }
-        self.end_disc_cleared = true;
-        true
-    }
-
     /// The grid's origin, cell and size, which rasters sharing capsule rows must share.
-    fn grid(&self) -> (f64, f64, f64, usize, usize) {
+    pub(super) fn grid(&self) -> (f64, f64, f64, usize, usize) {
         (self.x0, self.y0, self.cell_mm, self.nx, self.ny)
     }
 
@@ -99,7 +72,7 @@ impl Raster {
     /// Cells [from, to) of row `j` in the band around the capsule `outer` (radius
     /// `r` + the clamp width) get their distance to the capsule of radius `r`, where it
     /// is smaller; with `skip_behind`, cells projecting before its start are left alone.
-    fn band_cells(&mut self, j: usize, from: usize, to: usize, outer: &Capsule, r: f64, skip_behind: bool) {
+    pub(super) fn band_cells(&mut self, j: usize, from: usize, to: usize, outer: &Capsule, r: f64, skip_behind: bool) {
         let row = j * self.nx;
         let y = self.row_y(j);
         let mut changed = false;
@@ -134,7 +107,7 @@ impl Raster {
     /// Sets cells [from, to) of row `j` to "far outside", a tile's width at a time: the
     /// material cells of each stretch are counted and the block and tile counts updated
     /// once.
-    fn clear_cells(&mut self, j: usize, from: usize, to: usize) {
+    pub(super) fn clear_cells(&mut self, j: usize, from: usize, to: usize) {
         let row = j * self.nx;
         let mut i = from;
         while i < to {
@@ -169,110 +142,8 @@ impl Raster {
     }
 }
 
-/// The cells of each row a capsule update touches (see [`Raster::clear_capsule_after`]),
-/// found once for every raster of one grid: the slices of a layer take the same capsules.
-/// The rows are found when first needed (not when no raster has material near); one
-/// value serves capsule after capsule without allocating again ([`CapsuleRows::set`]).
-pub struct CapsuleRows {
-    a: (f64, f64),
-    b: (f64, f64),
-    r: f64,
-    disc_at_a_cleared: bool,
-    grid: (f64, f64, f64, usize, usize),
-    /// The capsule widened by the band.
-    outer: Capsule,
-    /// Where material near the capsule is looked for: centre and reach, mm.
-    near: ((f64, f64), f64),
-    /// Row range, and whether the capsule misses the raster's rows.
-    rows: (usize, usize),
-    off_raster: bool,
-    spans: Vec<RowSpans>,
-    found: bool,
-}
-
-/// What a capsule update does in one row: band cells in two stretches, cells cleared
-/// between them, and, when the disc at the start is already cleared, the cells of that
-/// stretch that need no clearing.
-struct RowSpans {
-    j: usize,
-    bands: [(usize, usize); 2],
-    inside: (usize, usize),
-    start_disc: (usize, usize),
-}
-
-impl CapsuleRows {
-    /// The rows of the capsule swept by a disc of radius `r` from `a` to `b` on the grid
-    /// of `grid` (see [`Raster::clear_capsule_after`] for `disc_at_a_cleared`).
-    pub fn new(grid: &Raster, a: (f64, f64), b: (f64, f64), r: f64, disc_at_a_cleared: bool) -> CapsuleRows {
-        let mut rows = CapsuleRows {
-            a,
-            b,
-            r,
-            disc_at_a_cleared,
-            grid: grid.grid(),
-            outer: Capsule::new(a, b, r),
-            near: ((0.0, 0.0), 0.0),
-            rows: (0, 0),
-            off_raster: true,
-            spans: Vec::new(),
-            found: false,
-        };
-        rows.set(grid, a, b, r, disc_at_a_cleared);
-        rows
-    }
-
-    /// Makes these the rows of another capsule, as [`CapsuleRows::new`].
-    pub fn set(&mut self, grid: &Raster, a: (f64, f64), b: (f64, f64), r: f64, disc_at_a_cleared: bool) {
-        let reach = SDF_CLAMP_CELLS * grid.cell_mm;
-        let y_lo = a.1.min(b.1) - r - reach;
-        let y_hi = a.1.max(b.1) + r + reach;
-        let rows = grid.index_range(y_lo, y_hi, grid.y0, grid.ny);
-        let centre = ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0);
-        let half = ((b.0 - a.0).hypot(b.1 - a.1)) / 2.0 + r + reach;
-        (self.a, self.b, self.r, self.disc_at_a_cleared, self.grid) = (a, b, r, disc_at_a_cleared, grid.grid());
-        self.outer = Capsule::new(a, b, r + reach);
-        self.near = (centre, half);
-        self.rows = rows;
-        self.off_raster = rows.1 == 0;
-        self.spans.clear();
-        self.found = false;
-    }
-
-    /// Finds the rows' spans on `grid`, unless they are already found.
-    fn find_rows(&mut self, grid: &Raster) {
-        if self.found {
-            return;
-        }
-        self.found = true;
-        let (a, r, outer) = (self.a, self.r, &self.outer);
-        let reach = SDF_CLAMP_CELLS * grid.cell_mm;
-        let inner = Capsule::new(a, self.b, (r - reach).max(0.0));
-        let disc_at_a_cleared = self.disc_at_a_cleared;
-        self.spans.extend((self.rows.0..self.rows.1).filter_map(|j| {
-            let y = grid.row_y(j);
-            let (lo, hi) = outer.row_interval(y)?;
-            let (from, to) = grid.cell_range(lo, hi);
-            let (in_from, in_to) = inner.row_interval(y).map_or((from, from), |(l, h)| grid.cell_range(l, h));
-            let (in_from, in_to) = (in_from.max(from), in_to.max(in_from.max(from)));
-            // Band cells behind the start by more than a cell need no test.
-            let (front_from, front_to) = match disc_at_a_cleared.then(|| outer.front_half_line(y)).flatten() {
-                Some(FrontHalf::Above(x)) => (grid.cell_range(x - grid.cell_mm, f64::INFINITY).0, to),
-                Some(FrontHalf::Below(x)) => (from, grid.cell_range(f64::NEG_INFINITY, x + grid.cell_mm).1),
-                None => (from, to),
-            };
-            let bands = [(from.max(front_from), in_from.min(front_to)), (in_to.max(front_from), to.min(front_to))];
-            let (skip_from, skip_to) = match disc_at_a_cleared.then(|| inner.disc_chord(a, y)).flatten() {
-                Some((l, h)) => grid.cell_range(l, h),
-                None => (in_from, in_from),
-            };
-            let start_disc = (skip_from.clamp(in_from, in_to), skip_to.clamp(in_from, in_to));
-            Some(RowSpans { j, bands, inside: (in_from, in_to), start_disc })
-        }));
-    }
-}
-
 /// Where a row meets the half-plane ahead of a capsule's start.
-enum FrontHalf {
+pub(super) enum FrontHalf {
     /// Ahead for x above this.
     Above(f64),
     /// Ahead for x below this.
@@ -306,7 +177,7 @@ impl Capsule {
 
     /// Where the row at `y` leaves the half-plane behind the start (None: the row runs
     /// along the start line or the segment is degenerate; test each cell).
-    fn front_half_line(&self, y: f64) -> Option<FrontHalf> {
+    pub(super) fn front_half_line(&self, y: f64) -> Option<FrontHalf> {
         let ((ux, _), _) = self.dir?;
         let (slope, _) = self.along?;
         if ux.abs() < MIN_ROW_SLOPE {
@@ -341,7 +212,7 @@ impl Capsule {
     }
 
     /// The chord of the disc of radius `r` about `c` on the line at `y`.
-    fn disc_chord(&self, c: (f64, f64), y: f64) -> Option<(f64, f64)> {
+    pub(super) fn disc_chord(&self, c: (f64, f64), y: f64) -> Option<(f64, f64)> {
         let dy = y - c.1;
         let h2 = self.r * self.r - dy * dy;
         (h2 > 0.0).then(|| {
@@ -351,7 +222,7 @@ impl Capsule {
     }
 
     /// The x-interval of the capsule on the line at `y` (the capsule is convex).
-    fn row_interval(&self, y: f64) -> Option<(f64, f64)> {
+    pub(super) fn row_interval(&self, y: f64) -> Option<(f64, f64)> {
         let mut lo = f64::INFINITY;
         let mut hi = f64::NEG_INFINITY;
         for chord in [self.disc_chord(self.a, y), self.disc_chord(self.b, y)].into_iter().flatten() {
@@ -408,6 +279,26 @@ mod tests {
             |x, y| rect_signed_distance(&rect, x, y),
         );
         r
+    }
+
+    #[test]
+    fn one_capsules_rows_leave_every_raster_as_its_own_update_would() {
+        // Two rasters of one grid with different cuts, as two slices of a layer.
+        let (mut upper, mut lower) = (block(), block());
+        upper.clear_capsule((5.0, 5.0), (30.0, 12.0), 3.0);
+        lower.clear_capsule((5.0, 30.0), (12.0, 8.0), 1.5);
+        let (mut upper_alone, mut lower_alone) = (upper.clone(), lower.clone());
+        let mut rows = CapsuleRows::new(&upper, (0.0, 0.0), (1.0, 1.0), 2.0, false);
+        let mut a = (3.0, 20.0);
+        for (k, b) in [(10.0, 21.0), (18.0, 15.0), (25.0, 15.5), (25.0, 30.0)].into_iter().enumerate() {
+            // The same value serves capsule after capsule.
+            rows.set(&upper, a, b, 2.0, k > 0);
+            assert_eq!(lower.clear_capsule_rows(&mut rows), lower_alone.clear_capsule_after(a, b, 2.0, k > 0));
+            assert_eq!(upper.clear_capsule_rows(&mut rows), upper_alone.clear_capsule_after(a, b, 2.0, k > 0));
+            a = b;
+        }
+        assert!(upper.f == upper_alone.f && lower.f == lower_alone.f, "cells differ");
+        assert!(upper.blocks == upper_alone.blocks && upper.tiles == upper_alone.tiles, "counts differ");
     }
 
     proptest! {

@@ -6,10 +6,11 @@
 
 mod along;
 mod capsule;
+mod capsule_rows;
 mod compare;
 mod tiles;
 
-pub use capsule::CapsuleRows;
+pub use capsule_rows::CapsuleRows;
 pub use compare::CellRect;
 pub use tiles::Certified;
 use tiles::Tiles;
