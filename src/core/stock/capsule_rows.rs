@@ -4,10 +4,9 @@
 use super::capsule::{Capsule, FrontHalf};
 use super::{Raster, SDF_CLAMP_CELLS};
 
-/// The cells of each row a capsule update touches (see [`Raster::clear_capsule_after`]),
-/// found once for every raster of one grid: the slices of a layer take the same capsules.
-/// The rows are found when first needed (not when no raster has material near); one
-/// value serves capsule after capsule without allocating again ([`CapsuleRows::set`]).
+/// The cells of each row one capsule update touches. The rows are found when first
+/// needed (not when no raster has material near); one value serves capsule after capsule
+/// without allocating again ([`CapsuleRows::set`]).
 pub struct CapsuleRows {
     a: (f64, f64),
     b: (f64, f64),
@@ -28,7 +27,7 @@ pub struct CapsuleRows {
 /// What a capsule update does in one row: band cells in two stretches, cells cleared
 /// between them, and, when the disc at the start is already cleared, the cells of that
 /// stretch that need no clearing.
-pub(super) struct RowSpans {
+struct RowSpans {
     j: usize,
     bands: [(usize, usize); 2],
     inside: (usize, usize),
