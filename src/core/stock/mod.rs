@@ -141,24 +141,6 @@ impl Raster {
         (v + 0.5f64.copysign(v)) as i8
     }
 
-    /// Writes `v` into cell (i, j), keeping the block and tile counts.
-    #[inline]
-    fn write(&mut self, i: usize, j: usize, v: i8) {
-        let k = j * self.nx + i;
-        let old = self.f[k];
-        if (old > 0) != (v > 0) {
-            let b = (j / BLOCK_CELLS) * self.bx + i / BLOCK_CELLS;
-            if v > 0 {
-                self.blocks[b] += 1;
-            } else {
-                self.blocks[b] -= 1;
-            }
-            self.tiles.update(i, j, v > 0);
-        }
-        self.f[k] = v;
-        self.version += 1;
-    }
-
     /// Changes whenever a cell changes.
     pub fn version(&self) -> u64 {
         self.version
@@ -264,10 +246,26 @@ impl Raster {
                 } else {
                     -FULL
                 };
-                let new = if add { self.f[k].max(v) } else { self.f[k].min(-v) };
-                self.write(i, j, new);
+                self.f[k] = if add { self.f[k].max(v) } else { self.f[k].min(-v) };
             }
         }
+        self.recount();
+        self.version += 1;
+    }
+
+    /// Counts the material cells of every block and tile again, from the cells.
+    fn recount(&mut self) {
+        self.blocks.fill(0);
+        let mut tiles = Tiles::new(self.nx, self.ny);
+        for (j, row) in self.f.chunks_exact(self.nx).enumerate() {
+            let blocks = &mut self.blocks[(j / BLOCK_CELLS) * self.bx..];
+            for (bi, cells) in row.chunks(BLOCK_CELLS).enumerate() {
+                blocks[bi] += cells.iter().filter(|&&v| v > 0).count() as u32;
+            }
+            tiles.count_row(j, row);
+        }
+        tiles.spread_counts();
+        self.tiles = tiles;
     }
 
     /// `true` when the bilinearly interpolated distance at `(x, y)` is inside material.

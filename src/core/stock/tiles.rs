@@ -61,6 +61,32 @@ impl Tiles {
         Tiles { tx, ty, material: vec![0; tx * ty], mixed: vec![level; tx * ty] }
     }
 
+    /// Adds the material cells of row `j` (every cell of it, in order) to the tiles'
+    /// counts, leaving the neighbourhood counts to [`Tiles::spread_counts`].
+    pub fn count_row(&mut self, j: usize, row: &[i8]) {
+        let tiles = &mut self.material[(j / TILE_CELLS) * self.tx..];
+        for (ti, cells) in row.chunks(TILE_CELLS).enumerate() {
+            // (At most a tile's cells, which fit the count's type.)
+            tiles[ti] += cells.iter().filter(|&&v| v > 0).count() as u8;
+        }
+    }
+
+    /// Sets the neighbourhood counts from the material counts, which were counted
+    /// ([`Tiles::count_row`]) into the counts of an all-air raster.
+    pub fn spread_counts(&mut self) {
+        for tj in 0..self.ty {
+            for ti in 0..self.tx {
+                let material = self.material[tj * self.tx + ti];
+                if material > 0 {
+                    self.spread(ti, tj, 0, true);
+                }
+                if material == CELLS_PER_TILE {
+                    self.spread(ti, tj, LEVEL_RADII.len(), false);
+                }
+            }
+        }
+    }
+
     /// Records that cell (i, j) gained (`gained`) or lost its material.
     #[inline]
     pub fn update(&mut self, i: usize, j: usize, gained: bool) {
@@ -157,5 +183,34 @@ mod tests {
         assert_eq!(t.certified(40 + TILE_CELLS, 40, true), Certified::No);
         assert_eq!(t.certified(40 + 2 * TILE_CELLS, 40, true), Certified::Level(1));
         assert_eq!(t.certified(40, 40, false), Certified::No);
+    }
+
+    #[test]
+    fn counting_whole_rows_gives_the_counts_of_cell_by_cell_updates() {
+        // A disc of material with a hole, on a raster whose sides are not whole tiles.
+        let (nx, ny) = (83, 77);
+        let cells: Vec<i8> = (0..nx * ny)
+            .map(|k| {
+                let (x, y) = ((k % nx) as f64 - 40.0, (k / nx) as f64 - 38.0);
+                let r = x.hypot(y);
+                if r < 35.0 && r > 9.0 {
+                    100
+                } else {
+                    -100
+                }
+            })
+            .collect();
+        let mut by_cell = Tiles::new(nx, ny);
+        for (k, &v) in cells.iter().enumerate() {
+            if v > 0 {
+                by_cell.update(k % nx, k / nx, true);
+            }
+        }
+        let mut by_row = Tiles::new(nx, ny);
+        for (j, row) in cells.chunks_exact(nx).enumerate() {
+            by_row.count_row(j, row);
+        }
+        by_row.spread_counts();
+        assert_eq!(by_row, by_cell);
     }
 }
