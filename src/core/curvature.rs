@@ -77,12 +77,15 @@ const FIT_DEGREE: usize = 4;
 /// from a first, narrower fit (tight loops need narrow windows).
 const WINDOW_PER_RADIUS: f64 = 0.6;
 
-/// Least-squares polynomial of degree `degree` through `(s, v)` pairs (with `s` scaled by
-/// `scale`): returns the first and second derivatives at s = 0, in unscaled units.
-fn polynomial_derivatives(s: &[f64], v: &[f64], degree: usize, scale: f64) -> Option<(f64, f64)> {
+/// Least-squares polynomials of degree `degree` through the `(s, x)` and the `(s, y)`
+/// pairs (with `s` scaled by `scale`): returns the first and second derivatives of each
+/// at s = 0, in unscaled units. Both fits share the normal matrix, solved once with the
+/// two right-hand sides.
+fn polynomial_derivatives(s: &[f64], (x, y): (&[f64], &[f64]), degree: usize, scale: f64) -> Option<[(f64, f64); 2]> {
     let m = degree + 1;
-    let mut a = [[0.0f64; FIT_DEGREE + 2]; FIT_DEGREE + 1];
-    for (&si, &vi) in s.iter().zip(v) {
+    // The normal matrix, then the right-hand sides of x and of y.
+    let mut a = [[0.0f64; FIT_DEGREE + 3]; FIT_DEGREE + 1];
+    for ((&si, &xi), &yi) in s.iter().zip(x).zip(y) {
         let t = si / scale;
         let mut pw = [0.0f64; FIT_DEGREE + 1];
         let mut p = 1.0;
@@ -94,12 +97,13 @@ fn polynomial_derivatives(s: &[f64], v: &[f64], degree: usize, scale: f64) -> Op
             for c in 0..m {
                 a[r][c] += pw[r] * pw[c];
             }
-            a[r][m] += pw[r] * vi;
+            a[r][m] += pw[r] * xi;
+            a[r][m + 1] += pw[r] * yi;
         }
     }
-    // Gaussian elimination with partial pivoting on the m × (m+1) system.
+    // Gaussian elimination with partial pivoting on the m × (m+2) system.
     for col in 0..m {
-        let pivot = (col..m).max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs()))?;
+        let pivot = (col..m).max_by(|&p, &q| a[p][col].abs().total_cmp(&a[q][col].abs()))?;
         if a[pivot][col].abs() < 1e-12 * a[0][0].abs().max(f64::MIN_POSITIVE) {
             return None;
         }
@@ -108,14 +112,17 @@ fn polynomial_derivatives(s: &[f64], v: &[f64], degree: usize, scale: f64) -> Op
         for (r, row) in a.iter_mut().enumerate().take(m) {
             if r != col {
                 let f = row[col] / pivot_row[col];
-                for (v, p) in row.iter_mut().zip(pivot_row.iter()).take(m + 1).skip(col) {
+                for (v, p) in row.iter_mut().zip(pivot_row.iter()).take(m + 2).skip(col) {
                     *v -= f * p;
                 }
             }
         }
     }
-    let coef = |k: usize| a[k][m] / a[k][k];
-    Some((coef(1) / scale, 2.0 * coef(2) / (scale * scale)))
+    let derivatives = |rhs: usize| {
+        let coef = |k: usize| a[k][rhs] / a[k][k];
+        (coef(1) / scale, 2.0 * coef(2) / (scale * scale))
+    };
+    Some([derivatives(m), derivatives(m + 1)])
 }
 
 /// Curvature from fits over `lo..=hi` about vertex `i`.
@@ -137,18 +144,15 @@ fn fit_at(
         buf.ys.push(points[k].1 - points[i].1);
     }
     let scale = (s[hi] - s[i]).max(s[i] - s[lo]).max(MIN_SEGMENT_MM);
-    match (
-        polynomial_derivatives(&buf.ss, &buf.xs, degree, scale),
-        polynomial_derivatives(&buf.ss, &buf.ys, degree, scale),
-    ) {
-        (Some((x1, x2)), Some((y1, y2))) => {
+    match polynomial_derivatives(&buf.ss, (&buf.xs, &buf.ys), degree, scale) {
+        Some([(x1, x2), (y1, y2)]) => {
             let speed2 = x1 * x1 + y1 * y1;
             if speed2 < MIN_SEGMENT_MM {
                 return PointCurvature::STRAIGHT;
             }
             PointCurvature { kappa: (x1 * y2 - y1 * x2) / speed2.powf(1.5), corner: false }
         }
-        _ => PointCurvature::STRAIGHT,
+        None => PointCurvature::STRAIGHT,
     }
 }
 
