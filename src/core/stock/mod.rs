@@ -302,14 +302,14 @@ impl Raster {
     fn classify<const CERTIFY: bool>(&self, (fx, fy): (f64, f64)) -> (bool, Certified) {
         // (Also false for NaN.)
         if !(fx >= 0.0 && fy >= 0.0) {
-            return (false, Certified::No);
+            return (false, if CERTIFY { self.certified_outside((fx, fy)) } else { Certified::No });
         }
         // Through u32 (the raster has far fewer cells per side): cheap conversions.
         let (i, j) = (fx as u32, fy as u32);
         let (tx, ty) = (fx - f64::from(i), fy - f64::from(j));
         let (i, j) = (i as usize, j as usize);
         if i + 1 >= self.nx || j + 1 >= self.ny {
-            return (false, Certified::No);
+            return (false, if CERTIFY { self.certified_outside((fx, fy)) } else { Certified::No });
         }
         let k = j * self.nx + i;
         // The distance is 1-Lipschitz: a nearest cell more than half a diagonal inside or
@@ -330,6 +330,16 @@ impl Raster {
         let bottom = a + (b - a) * tx;
         let top = c + (d - c) * tx;
         (bottom + (top - bottom) * ty > 0.0, Certified::No)
+    }
+
+    /// How far around a grid position off the raster (where [`Raster::classify`] answers
+    /// air without reading a cell: below 0 or at the last cell centre or beyond, along
+    /// either axis) every position is off it too.
+    fn certified_outside(&self, (fx, fy): (f64, f64)) -> Certified {
+        let last = (f64::from(self.nx as u32 - 1), f64::from(self.ny as u32 - 1));
+        let beyond = (-fx).max(-fy).max(fx - last.0).max(fy - last.1);
+        // (NaN certifies nothing.)
+        Certified::levels().take_while(|level| beyond > level.cells()).last().unwrap_or(Certified::No)
     }
 
     /// Area holding material (cells with a positive distance), mm².
@@ -400,5 +410,22 @@ mod tests {
         r.clear_capsule((-5.0, -5.0), (15.0, -5.0), 6.0);
         assert!(!r.is_material(5.0, 0.5));
         assert!(r.is_material(5.0, 1.5));
+    }
+
+    #[test]
+    fn a_position_off_the_raster_is_air_certified_as_far_as_every_position_around_it_is_off_too() {
+        let r = square(10.0, 0.1);
+        let (last_i, last_j) = ((r.size().0 - 1) as f64, (r.size().1 - 1) as f64);
+        let levels: Vec<Certified> = Certified::levels().collect();
+        let (near, far) = (levels[0], levels[levels.len() - 1]);
+        // Half a cell short of the nearest reach, and half a cell beyond each reach.
+        for (d, expected) in [(near.cells() - 0.5, Certified::No), (near.cells() + 0.5, near), (far.cells() + 0.5, far)]
+        {
+            // Below, left of, above and right of the raster.
+            for g in [(20.0, -d), (-d, 20.0), (20.0, last_j + d), (last_i + d, 20.0)] {
+                assert_eq!(r.probe_at(g), (false, expected), "{d} cells off at {g:?}");
+            }
+        }
+        assert_eq!(r.probe_at((f64::NAN, 5.0)), (false, Certified::No));
     }
 }
