@@ -3,9 +3,9 @@
 //!
 //! A coarse scan every [`COARSE_STEP`] probe steps finds the runs of material, and a
 //! bisection places each change of state to one probe step. Coarse points need no probe
-//! where an earlier one lies in a tile neighbourhood of one state (see
-//! [`crate::core::stock::Certified`]) that reaches them: the result is the same as
-//! probing every coarse point.
+//! where an earlier one lies in a tile neighbourhood of one state, or far enough off the
+//! raster (see [`crate::core::stock::Certified`]), that reaches them: the result is the
+//! same as probing every coarse point.
 
 use super::recent::{intruders, Corridor};
 use super::scan_memory::{Line, ScanMemory, LATERAL_TOLERANCE_CELLS};
