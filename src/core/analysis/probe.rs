@@ -288,6 +288,17 @@ impl AngleTable {
                 };
                 if level != Certified::No {
                     mem.hold_disc(m, (lo, hi), *travel, material, level.cells(), &self.chord_cells);
+                    if look_ahead >= MIN_LOOK_CELLS {
+                        let g = self.grid_point(site, m * COARSE_STEP);
+                        let held = certified_ahead(
+                            raster,
+                            g,
+                            (mem.dir(), mem.travel_per_cell()),
+                            (material, level),
+                            look_ahead,
+                        );
+                        mem.hold_ahead(m, *travel, material, held);
+                    }
                 } else if look_ahead >= MIN_LOOK_CELLS && mem.should_look(m, *travel) {
                     let g = self.grid_point(site, m * COARSE_STEP);
                     let d = mem.dir();
@@ -415,6 +426,31 @@ fn longest_hold(look_ahead: f64, holds: impl Fn(f64) -> bool) -> Option<f64> {
     None
 }
 
+/// How far along its line (travel, cells; at most a step past `look_ahead`) the state
+/// `material` of a probe at grid position `g`, certified at `level`, holds: the next probe
+/// is placed at
+/// the edge of the disc certified so far, and while it has the same state, certified,
+/// its disc extends the stretch. `line` is the line's unit direction and its travel per cell
+/// of displacement along either axis (certificates reach a distance along both axes).
+pub(super) fn certified_ahead(
+    raster: &Raster,
+    g: (f64, f64),
+    line: ((f64, f64), f64),
+    (material, level): (bool, Certified),
+    look_ahead: f64,
+) -> f64 {
+    let ((dx, dy), travel_per_cell) = line;
+    let reach = |level: Certified| (level.cells() - CERTIFY_MARGIN_CELLS - LATERAL_TOLERANCE_CELLS) * travel_per_cell;
+    let mut held = reach(level);
+    while held > 0.0 && held < look_ahead {
+        match raster.probe_at((g.0 + dx * held, g.1 + dy * held)) {
+            (state, next @ Certified::Level(_)) if state == material => held += reach(next),
+            _ => break,
+        }
+    }
+    held.max(0.0)
+}
+
 /// Coarse points lo..=hi as bits.
 fn points(lo: usize, hi: usize) -> u128 {
     (u128::MAX >> (127 - hi)) & (u128::MAX << lo)
@@ -422,23 +458,8 @@ fn points(lo: usize, hi: usize) -> u128 {
 
 #[cfg(test)]
 mod tests {
+    use super::super::probe_tests::block_of_40_mm as block;
     use super::*;
-    use crate::core::stock::Rect;
-
-    fn block() -> Raster {
-        let rect = Rect { x_min: -20.0, y_min: -20.0, x_max: 20.0, y_max: 20.0 };
-        let mut r = Raster::new(rect, 0.02);
-        r.paint(
-            true,
-            |y, out| {
-                if (-20.0..20.0).contains(&y) {
-                    out.push((-20.0, 20.0))
-                }
-            },
-            |x, y| crate::core::stock::rect_signed_distance(&rect, x, y),
-        );
-        r
-    }
 
     fn site(table: &AngleTable, center: (f64, f64), heading: (f64, f64), recent: &[(f64, f64)]) -> ProbeSite {
         let mut site = ProbeSite::default();

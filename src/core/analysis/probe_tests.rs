@@ -3,10 +3,10 @@
 //! contact of the plain scan that probes every coarse point and checks every recent
 //! centre.
 
-use super::probe::{AngleTable, Contact, ProbeSite, COARSE_STEP, PROBE_STEPS_PER_TURN};
+use super::probe::{certified_ahead, AngleTable, Contact, ProbeSite, COARSE_STEP, PROBE_STEPS_PER_TURN};
 use super::recent::Corridor;
 use super::scan_memory::{Line, ScanMemory};
-use crate::core::stock::{Raster, Rect};
+use crate::core::stock::{Certified, Raster, Rect};
 use proptest::prelude::*;
 use std::f64::consts::PI;
 
@@ -193,4 +193,44 @@ proptest! {
             prop_assert!(same(&got, &want), "sample {} at {:?}: {:?} vs {:?}", n, center, got, want);
         }
     }
+}
+
+#[test]
+fn a_certified_state_holds_ahead_up_to_the_boundary_and_no_further() {
+    let r = block_of_40_mm();
+    let cell = 0.02;
+    // Along x from the air 3 mm left of the block's edge at x = −20, and from deep
+    // inside it; the state of every position on the stretch is the probe's.
+    for (x0, look_ahead) in [(-23.0, 1000.0), (-10.0, 128.0)] {
+        let g = r.grid_position(x0, 0.0);
+        let (material, level) = r.probe_at(g);
+        assert!(level != Certified::No);
+        let held = certified_ahead(&r, g, ((1.0, 0.0), 1.0), (material, level), look_ahead);
+        let steps = (held * 10.0) as usize;
+        assert!((0..=steps).all(|k| r.is_material_at((g.0 + k as f64 * 0.1, g.1)) == material));
+        if material {
+            assert!(held >= look_ahead, "deep inside, the whole look ahead holds: {held}");
+        } else {
+            // It stops short of the edge, within the two tiles (16 cells) around it
+            // that certify nothing.
+            let to_edge = 3.0 / cell;
+            assert!(held < to_edge && held > to_edge - 16.0, "{held} cells of {to_edge}");
+        }
+    }
+}
+
+/// A 40 mm square block on cells of 0.02 mm.
+pub(super) fn block_of_40_mm() -> Raster {
+    let rect = Rect { x_min: -20.0, y_min: -20.0, x_max: 20.0, y_max: 20.0 };
+    let mut r = Raster::new(rect, 0.02);
+    r.paint(
+        true,
+        |y, out| {
+            if (-20.0..20.0).contains(&y) {
+                out.push((-20.0, 20.0))
+            }
+        },
+        |x, y| crate::core::stock::rect_signed_distance(&rect, x, y),
+    );
+    r
 }

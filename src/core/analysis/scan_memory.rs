@@ -1,7 +1,8 @@
 //! What the probe of one slice remembers while the tool moves along a straight line over
 //! an unchanged raster with the same leading half: each coarse point then slides along
 //! a line of its own, and a state found to hold over a stretch of that line (a uniform
-//! tile neighbourhood, or uniform cells along it) needs no probe until the stretch ends.
+//! tile neighbourhood, a chain of them along it, or uniform cells along it) needs no
+//! probe until the stretch ends.
 
 use super::probe::COARSE_POINTS;
 
@@ -99,6 +100,11 @@ impl ScanMemory {
     /// The direction of the remembered line.
     pub fn dir(&self) -> (f64, f64) {
         self.dir
+    }
+
+    /// Travel along the line per cell of displacement along either axis.
+    pub fn travel_per_cell(&self) -> f64 {
+        self.travel_per_cell
     }
 
     /// The coarse points whose state still holds at `travel`, and the states.
