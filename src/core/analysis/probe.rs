@@ -427,11 +427,11 @@ fn longest_hold(look_ahead: f64, holds: impl Fn(f64) -> bool) -> Option<f64> {
 }
 
 /// How far along its line (travel, cells; at most a step past `look_ahead`) the state
-/// `material` of a probe at grid position `g`, certified at `level`, holds: the next probe
-/// is placed at
-/// the edge of the disc certified so far, and while it has the same state, certified,
-/// its disc extends the stretch. `line` is the line's unit direction and its travel per cell
-/// of displacement along either axis (certificates reach a distance along both axes).
+/// `material` of a probe at grid position `g`, certified at `level`, holds. The next probe
+/// is placed at the edge of the disc certified so far; while it has the same state,
+/// certified, its disc extends the stretch. `line` is the line's unit direction and its
+/// travel per cell of displacement along either axis (certificates reach a distance along
+/// both axes).
 pub(super) fn certified_ahead(
     raster: &Raster,
     g: (f64, f64),
