@@ -131,3 +131,38 @@ fn a_second_pass_over_cut_ground_engages_nothing_and_counts_as_air() {
         a.summary.removed_volume_mm3
     );
 }
+
+#[test]
+fn a_pass_below_a_roughed_layer_cuts_the_material_the_roughing_left() {
+    // A ramp ends 0.02 mm above the roughing layer at −10, outside the stock; zig-zag
+    // passes 4 mm apart then clear the block down to −10, and a last pass at −10.5 slots
+    // through the 0.5 mm the roughing left.
+    let block = Rect { x_min: 0.0, y_min: 0.0, x_max: 40.0, y_max: 40.0 };
+    let mut at = P3::new(-10.0, -10.0, 0.0);
+    let mut moves = Vec::new();
+    let mut to = |end: P3, moves: &mut Vec<Move>| {
+        moves.push(feed(Motion::Linear, at, end));
+        at = end;
+    };
+    to(P3::new(-10.0, -5.0, -9.98), &mut moves);
+    to(P3::new(-10.0, -5.0, -10.0), &mut moves);
+    for pass in 0..13 {
+        let y = -5.0 + 4.0 * f64::from(pass);
+        let (x_start, x_end) = if pass % 2 == 0 { (-10.0, 50.0) } else { (50.0, -10.0) };
+        to(P3::new(x_start, y, -10.0), &mut moves);
+        to(P3::new(x_end, y, -10.0), &mut moves);
+    }
+    to(P3::new(-10.0, 20.0, -10.0), &mut moves);
+    to(P3::new(-10.0, 20.0, -10.5), &mut moves);
+    let before_last: f64 = moves.iter().map(sampling::move_length).sum();
+    to(P3::new(50.0, 20.0, -10.5), &mut moves);
+    let mut s = spec(vec![StockRegion::Rect(block)], vec![]);
+    s.z_bottom = -12.0;
+    let a = analyze(&path(moves), &s, &NoProgress).unwrap();
+    let middle = before_last + 30.0;
+    let got = alpha_at(&a, middle);
+    assert!((got - 180.0).abs() < TOLERANCE_DEG, "α {got}° below the roughed layer");
+    let series = a.series.as_ref().unwrap();
+    let i = series.s_mm.iter().position(|&v| v >= middle).unwrap();
+    assert!((series.ad_mm[i] - 0.5).abs() < 1e-9, "Ad {} mm", series.ad_mm[i]);
+}

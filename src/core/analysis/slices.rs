@@ -1,19 +1,27 @@
 //! The stock of a layer as a stack of z slices, each a raster (MODEL.md §6): slice
 //! boundaries follow the z levels the program cuts at, so a 2.5-D program is simulated
-//! exactly and a 3-D one in steps.
+//! exactly and a 3-D one in steps. Where levels must be merged, the layers a program cuts
+//! flat (its roughing layers) are kept: a slice that a layer's passes cut only a sliver of
+//! would lose, for every later pass, the material the layer left below it.
 //!
 //! Every slice starts as the same raster, and a tool removes material from the slices
 //! above its tip, a run of slices from the top: so a slice's material always lies inside
 //! the material of the slice below it. Above a slice with no material near the tool,
 //! none has any.
 
+use super::sampling::move_length;
 use crate::core::stock::{BlockRange, CapsuleRows, Raster, Rect};
-use crate::core::toolpath::{Motion, Toolpath};
+use crate::core::toolpath::{Motion, Move, Plane, Toolpath};
 
 /// z levels closer than this are one level, mm.
 pub const MIN_SLICE_MM: f64 = 0.05;
-/// Most slices one analysis keeps (the thinnest are merged beyond it).
+/// Most slices one analysis keeps (levels are merged away beyond it, see [`slice_levels`]).
 pub const MAX_SLICES: usize = 16;
+/// A level the program cuts flat for at least this share of its feed length is a layer
+/// level (a roughing or finishing layer): it is merged away only when no other level can
+/// be. The flat stepovers of a 3-D finishing pass (a fraction of a millimetre each) stay
+/// far below it; each layer of a program that roughs in a few dozen layers reaches it.
+pub const LAYER_LEVEL_SHARE: f64 = 0.02;
 /// A tool tip this close to a slice top does not cut the slice, mm.
 pub const Z_CONTACT_EPS_MM: f64 = 1e-6;
 
@@ -78,36 +86,64 @@ impl Slice {
 }
 
 /// The slice boundaries for `path` in a layer from `z_bottom` to `z_top`, top first.
+///
+/// Candidates are the z values of the feed moves' ends. Each weighs the XY length the
+/// path cuts flat at it. Candidates closer than [`MIN_SLICE_MM`] are one level, at the
+/// heaviest of them (the highest on a tie): a layer a program roughs at stays exact
+/// beside the end of a ramp just above it. Beyond [`MAX_SLICES`] slices, inner levels are
+/// merged away one by one, always the one whose neighbours are closest, taken first
+/// among the levels that are not layer levels (see [`LAYER_LEVEL_SHARE`]). The top and
+/// the bottom are kept exact.
 pub fn slice_levels(path: &Toolpath, z_bottom: f64, z_top: f64) -> Vec<f64> {
-    let mut levels: Vec<f64> = path
-        .moves
-        .iter()
-        .filter(|m| !matches!(m.motion, Motion::Rapid))
-        .flat_map(|m| [m.start.z, m.end.z])
-        .filter(|&z| z < z_top - MIN_SLICE_MM && z > z_bottom + MIN_SLICE_MM)
+    let feeds = || path.moves.iter().filter(|m| !matches!(m.motion, Motion::Rapid));
+    let mut candidates: Vec<(f64, f64)> = feeds()
+        .flat_map(|m| {
+            let flat_mm = if cuts_flat(m) { move_length(m) } else { 0.0 };
+            [(m.start.z, flat_mm), (m.end.z, flat_mm)]
+        })
+        .filter(|&(z, _)| z < z_top - MIN_SLICE_MM && z > z_bottom + MIN_SLICE_MM)
         .collect();
-    levels.push(z_top);
-    levels.push(z_bottom);
-    levels.sort_by(|a, b| b.total_cmp(a));
-    let mut merged: Vec<f64> = Vec::with_capacity(levels.len());
-    for z in levels {
-        match merged.last() {
-            Some(&last) if last - z < MIN_SLICE_MM => {}
-            _ => merged.push(z),
+    candidates.sort_by(|a, b| b.0.total_cmp(&a.0));
+    // Top first, bottom last; neither is ever merged away.
+    let mut levels: Vec<(f64, f64)> = Vec::with_capacity(candidates.len() + 2);
+    levels.push((z_top, f64::INFINITY));
+    for (z, weight) in candidates {
+        match levels.last_mut() {
+            Some(last) if last.0 - z < MIN_SLICE_MM => {
+                if weight > last.1 {
+                    *last = (z, weight + last.1);
+                } else {
+                    last.1 += weight;
+                }
+            }
+            _ => levels.push((z, weight)),
         }
     }
-    // Keep the bottom exact.
-    if let Some(last) = merged.last_mut() {
-        *last = z_bottom;
-    }
-    while merged.len() > MAX_SLICES + 1 {
-        // Merge the thinnest slice into its neighbour by dropping an inner level.
-        let thinnest = (1..merged.len() - 1)
-            .min_by(|&a, &b| (merged[a - 1] - merged[a + 1]).total_cmp(&(merged[b - 1] - merged[b + 1])))
+    levels.push((z_bottom, f64::INFINITY));
+    let layer_weight = LAYER_LEVEL_SHARE * feeds().map(move_length).sum::<f64>();
+    while levels.len() > MAX_SLICES + 1 {
+        // The thinnest slice two neighbours would make, among the lighter levels if any.
+        let inner = 1..levels.len() - 1;
+        let light = inner.clone().any(|i| levels[i].1 < layer_weight);
+        let gap = |i: usize| levels[i - 1].0 - levels[i + 1].0;
+        let drop = inner
+            .filter(|&i| !light || levels[i].1 < layer_weight)
+            .min_by(|&a, &b| gap(a).total_cmp(&gap(b)))
             .unwrap_or(1);
-        merged.remove(thinnest);
+        levels.remove(drop);
     }
-    merged
+    levels.into_iter().map(|(z, _)| z).collect()
+}
+
+/// `true` when the move cuts at one z level: a line or an arc in the XY plane whose ends
+/// lie at the same height.
+fn cuts_flat(m: &Move) -> bool {
+    let in_xy = match m.motion {
+        Motion::Linear => true,
+        Motion::Arc { plane, .. } => plane == Plane::Xy,
+        Motion::Rapid => false,
+    };
+    in_xy && (m.end.z - m.start.z).abs() <= Z_CONTACT_EPS_MM
 }
 
 /// Builds the slices with material painted by `paint`.
@@ -125,22 +161,31 @@ pub fn slices_cut(slices: &[Slice], z: f64) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::core::toolpath::{Move, Units, P3};
+    use crate::core::nc::{parse_gcode, ParseOptions};
+    use crate::core::toolpath::{Units, P3};
 
-    fn at_z(z: &[f64]) -> Toolpath {
-        let moves = z
-            .iter()
-            .map(|&z| Move {
-                motion: Motion::Linear,
-                start: P3::new(0.0, 0.0, z),
-                end: P3::new(1.0, 0.0, z),
-                feed_mm_min: Some(100.0),
-                spindle_rpm: None,
-                tool: None,
-                line: 1,
-            })
-            .collect();
+    /// A feed move along x from `start` to `end`, mm.
+    fn line(start: P3, end: P3) -> Move {
+        Move { motion: Motion::Linear, start, end, feed_mm_min: Some(100.0), spindle_rpm: None, tool: None, line: 1 }
+    }
+
+    fn program(moves: Vec<Move>) -> Toolpath {
         Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] }
+    }
+
+    /// A 1 mm flat cut at each of `z`.
+    fn at_z(z: &[f64]) -> Toolpath {
+        program(z.iter().map(|&z| line(P3::new(0.0, 0.0, z), P3::new(1.0, 0.0, z))).collect())
+    }
+
+    /// A ramp down from z = 0 in steps of `step` mm, one 0.5 mm move per step, `steps` long.
+    fn ramp(steps: usize, step: f64) -> Vec<Move> {
+        (0..steps)
+            .map(|i| {
+                let (z0, z1) = (-step * i as f64, -step * (i + 1) as f64);
+                line(P3::new(0.5 * i as f64, 0.0, z0), P3::new(0.5 * (i + 1) as f64, 0.0, z1))
+            })
+            .collect()
     }
 
     #[test]
@@ -155,5 +200,49 @@ mod tests {
         let levels = slice_levels(&at_z(&z), -25.0, 0.0);
         assert_eq!(levels.len(), MAX_SLICES + 1);
         assert!((levels[0] - 0.0).abs() < 1e-12 && (levels[MAX_SLICES] + 25.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_layer_the_program_roughs_at_stays_exact_beside_the_end_of_a_ramp_just_above_it() {
+        // A ramp that ends 0.02 mm above the layer, then 100 mm of roughing at −10.
+        let mut moves = vec![line(P3::new(0.0, 0.0, 0.0), P3::new(5.0, 0.0, -9.98))];
+        moves.extend((0..10).map(|i| {
+            let y = f64::from(i);
+            line(P3::new(0.0, y, -10.0), P3::new(10.0, y, -10.0))
+        }));
+        assert_eq!(slice_levels(&program(moves), -12.0, 0.0), vec![0.0, -10.0, -12.0]);
+    }
+
+    #[test]
+    fn beyond_the_slice_limit_ramp_levels_are_merged_before_layer_levels() {
+        // 200 ramp levels 0.1 mm apart, and three layers roughed 50 mm each between them.
+        let mut moves = ramp(200, 0.1);
+        for z in [-5.03, -10.03, -15.07] {
+            moves.push(line(P3::new(0.0, 0.0, z), P3::new(50.0, 0.0, z)));
+        }
+        let levels = slice_levels(&program(moves), -25.0, 0.0);
+        assert_eq!(levels.len(), MAX_SLICES + 1);
+        for z in [-5.03, -10.03, -15.07] {
+            assert!(levels.iter().any(|&l| (l - z).abs() < 1e-12), "layer {z} merged away: {levels:?}");
+        }
+        assert!((levels[0] - 0.0).abs() < 1e-12 && (levels[MAX_SLICES] + 25.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_layers_tiger_nc_roughs_at_are_slice_levels() {
+        // tiger.nc roughs at −10, −20, −30 and −31.5 and finishes a relief in 3-D between.
+        let file = format!("{}/../shared/data/tiger.nc", env!("CARGO_MANIFEST_DIR"));
+        let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{file}: {e}"));
+        let path = parse_gcode(&text, &ParseOptions::default()).expect("tiger.nc parses");
+        let levels = slice_levels(&path, -32.0, 0.0);
+        assert_eq!(levels.len(), MAX_SLICES + 1);
+        for z in [-10.0, -20.0, -30.0, -31.5] {
+            assert!(levels.iter().any(|&l| (l - z).abs() < 1e-9), "{z} is not a level: {levels:?}");
+        }
+    }
+
+    #[test]
+    fn a_layer_thinner_than_the_smallest_slice_is_one_slice() {
+        assert_eq!(slice_levels(&at_z(&[-0.01]), -0.02, 0.0), vec![0.0, -0.02]);
     }
 }
