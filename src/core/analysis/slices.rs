@@ -98,8 +98,9 @@ pub fn slice_levels(path: &Toolpath, z_bottom: f64, z_top: f64) -> Vec<f64> {
     let feeds = || path.moves.iter().filter(|m| !matches!(m.motion, Motion::Rapid));
     let mut candidates: Vec<(f64, f64)> = feeds()
         .flat_map(|m| {
+            // A flat move's length counts once, at its level.
             let flat_mm = if cuts_flat(m) { move_length(m) } else { 0.0 };
-            [(m.start.z, flat_mm), (m.end.z, flat_mm)]
+            [(m.start.z, flat_mm), (m.end.z, 0.0)]
         })
         .filter(|&(z, _)| z < z_top - MIN_SLICE_MM && z > z_bottom + MIN_SLICE_MM)
         .collect();
