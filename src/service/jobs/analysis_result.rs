@@ -29,7 +29,8 @@ pub struct HistogramBinDto {
     pub length_mm: f64,
 }
 
-/// One z slice of the simulated stock.
+/// One z slice of the simulated stock. The slices follow the z levels the program cuts
+/// (at most 16; where levels are merged, the layers the program cuts flat stay exact).
 #[derive(Debug, Clone, Copy, Serialize, ToSchema)]
 pub struct SliceDto {
     pub z_top: f64,
