@@ -164,6 +164,7 @@ mod tests {
     use super::*;
     use crate::core::nc::{parse_gcode, ParseOptions};
     use crate::core::toolpath::{Units, P3};
+    use proptest::prelude::*;
 
     /// A feed move along x from `start` to `end`, mm.
     fn line(start: P3, end: P3) -> Move {
@@ -245,5 +246,39 @@ mod tests {
     #[test]
     fn a_layer_thinner_than_the_smallest_slice_is_one_slice() {
         assert_eq!(slice_levels(&at_z(&[-0.01]), -0.02, 0.0), vec![0.0, -0.02]);
+    }
+
+    proptest! {
+        #[test]
+        fn levels_run_from_top_to_bottom_apart_within_the_limit_and_keep_every_layer(
+            // Up to 15 layers, each at least 0.05 mm from the next, cut 100 mm flat …
+            steps in proptest::collection::vec(0.05f64..3.0, 0..15),
+            // … among ramps anywhere in the layer, each at most 1 mm deep.
+            ramps in proptest::collection::vec((0.0f64..1.0, 0.0f64..1.0), 0..120),
+        ) {
+            let (z_top, z_bottom) = (0.0, -50.0);
+            let mut layers = Vec::new();
+            let mut z = z_top - MIN_SLICE_MM;
+            for step in steps {
+                z -= step;
+                layers.push(z);
+            }
+            prop_assume!(layers.last().is_none_or(|&l| l > z_bottom + MIN_SLICE_MM));
+            let mut moves: Vec<Move> =
+                layers.iter().map(|&z| line(P3::new(0.0, 0.0, z), P3::new(100.0, 0.0, z))).collect();
+            let depth = |f: f64| z_top + f * (z_bottom - z_top);
+            moves.extend(ramps.iter().map(|&(at, deep)| {
+                line(P3::new(0.0, 0.0, depth(at)), P3::new(0.5, 0.0, depth(at) - deep))
+            }));
+            let levels = slice_levels(&program(moves), z_bottom, z_top);
+            prop_assert!(levels.len() >= 2 && levels.len() <= MAX_SLICES + 1, "{} levels", levels.len());
+            prop_assert!((levels[0] - z_top).abs() < 1e-12 && (levels[levels.len() - 1] - z_bottom).abs() < 1e-12);
+            for pair in levels.windows(2) {
+                prop_assert!(pair[0] - pair[1] >= MIN_SLICE_MM - 1e-9, "{pair:?} closer than the smallest slice");
+            }
+            for z in layers {
+                prop_assert!(levels.iter().any(|&l| (l - z).abs() < 1e-12), "layer {z} merged away: {levels:?}");
+            }
+        }
     }
 }
