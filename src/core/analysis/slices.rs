@@ -89,7 +89,7 @@ impl Slice {
 ///
 /// Candidates are the z values of the feed moves' ends. Each weighs the XY length the
 /// path cuts flat at it. Candidates closer than [`MIN_SLICE_MM`] are one level, at the
-/// heaviest of them (the highest on a tie): a layer a program roughs at stays exact
+/// heaviest of them (the highest on a tie), weighing all of them: a layer a program roughs at stays exact
 /// beside the end of a ramp just above it. Beyond [`MAX_SLICES`] slices, inner levels are
 /// merged away one by one, always the one whose neighbours are closest, taken first
 /// among the levels that are not layer levels (see [`LAYER_LEVEL_SHARE`]). The top and
@@ -105,35 +105,41 @@ pub fn slice_levels(path: &Toolpath, z_bottom: f64, z_top: f64) -> Vec<f64> {
         .filter(|&(z, _)| z < z_top - MIN_SLICE_MM && z > z_bottom + MIN_SLICE_MM)
         .collect();
     candidates.sort_by(|a, b| b.0.total_cmp(&a.0));
-    // Top first, bottom last; neither is ever merged away.
-    let mut levels: Vec<(f64, f64)> = Vec::with_capacity(candidates.len() + 2);
-    levels.push((z_top, f64::INFINITY));
-    for (z, weight) in candidates {
-        match levels.last_mut() {
-            Some(last) if last.0 - z < MIN_SLICE_MM => {
-                if weight > last.1 {
-                    *last = (z, weight + last.1);
-                } else {
-                    last.1 += weight;
-                }
-            }
-            _ => levels.push((z, weight)),
+    // Candidates at one height are one, their lengths summed.
+    let mut heights: Vec<(f64, f64)> = Vec::with_capacity(candidates.len());
+    for (z, flat_mm) in candidates {
+        match heights.last_mut() {
+            Some(last) if last.0 - z <= Z_CONTACT_EPS_MM => last.1 += flat_mm,
+            _ => heights.push((z, flat_mm)),
         }
     }
-    levels.push((z_bottom, f64::INFINITY));
-    let layer_weight = LAYER_LEVEL_SHARE * feeds().map(move_length).sum::<f64>();
+    // Levels as (z, the flat length at z, the flat length of the heights merged into it);
+    // top first, bottom last, and neither is ever merged away.
+    let mut levels: Vec<(f64, f64, f64)> = Vec::with_capacity(heights.len() + 2);
+    levels.push((z_top, f64::INFINITY, f64::INFINITY));
+    for (z, flat_mm) in heights {
+        match levels.last_mut() {
+            Some(last) if last.0 - z < MIN_SLICE_MM => {
+                if flat_mm > last.1 {
+                    (last.0, last.1) = (z, flat_mm);
+                }
+                last.2 += flat_mm;
+            }
+            _ => levels.push((z, flat_mm, flat_mm)),
+        }
+    }
+    levels.push((z_bottom, f64::INFINITY, f64::INFINITY));
+    let layer_mm = LAYER_LEVEL_SHARE * feeds().map(move_length).sum::<f64>();
     while levels.len() > MAX_SLICES + 1 {
         // The thinnest slice two neighbours would make, among the lighter levels if any.
         let inner = 1..levels.len() - 1;
-        let light = inner.clone().any(|i| levels[i].1 < layer_weight);
+        let light = inner.clone().any(|i| levels[i].2 < layer_mm);
         let gap = |i: usize| levels[i - 1].0 - levels[i + 1].0;
-        let drop = inner
-            .filter(|&i| !light || levels[i].1 < layer_weight)
-            .min_by(|&a, &b| gap(a).total_cmp(&gap(b)))
-            .unwrap_or(1);
+        let drop =
+            inner.filter(|&i| !light || levels[i].2 < layer_mm).min_by(|&a, &b| gap(a).total_cmp(&gap(b))).unwrap_or(1);
         levels.remove(drop);
     }
-    levels.into_iter().map(|(z, _)| z).collect()
+    levels.into_iter().map(|(z, _, _)| z).collect()
 }
 
 /// `true` when the move cuts at one z level: a line or an arc in the XY plane whose ends
@@ -213,6 +219,17 @@ mod tests {
             line(P3::new(0.0, y, -10.0), P3::new(10.0, y, -10.0))
         }));
         assert_eq!(slice_levels(&program(moves), -12.0, 0.0), vec![0.0, -10.0, -12.0]);
+    }
+
+    #[test]
+    fn of_two_close_layers_the_one_cut_longer_is_the_level_however_many_moves_cut_it() {
+        // 50 mm at −5 in one move, 100 mm at −5.03 in ten.
+        let mut moves = vec![line(P3::new(0.0, 0.0, -5.0), P3::new(50.0, 0.0, -5.0))];
+        moves.extend((0..10).map(|i| {
+            let x = 10.0 * f64::from(i);
+            line(P3::new(x, 1.0, -5.03), P3::new(x + 10.0, 1.0, -5.03))
+        }));
+        assert_eq!(slice_levels(&program(moves), -10.0, 0.0), vec![0.0, -5.03, -10.0]);
     }
 
     #[test]
