@@ -89,11 +89,11 @@ impl Slice {
 ///
 /// Candidates are the z values of the feed moves' ends. Each weighs the XY length the
 /// path cuts flat at it. Candidates closer than [`MIN_SLICE_MM`] are one level, at the
-/// heaviest of them (the highest on a tie), weighing all of them: a layer a program roughs at stays exact
-/// beside the end of a ramp just above it. Beyond [`MAX_SLICES`] slices, inner levels are
-/// merged away one by one, always the one whose neighbours are closest, taken first
-/// among the levels that are not layer levels (see [`LAYER_LEVEL_SHARE`]). The top and
-/// the bottom are kept exact.
+/// heaviest of them (the highest on a tie), weighing all of them: a layer a program
+/// roughs at stays exact beside the end of a ramp just above it. Beyond [`MAX_SLICES`]
+/// slices, inner levels are merged away one by one, always the one whose neighbours are
+/// closest, taken first among the levels that are not layer levels (see
+/// [`LAYER_LEVEL_SHARE`]). The top and the bottom are kept exact.
 pub fn slice_levels(path: &Toolpath, z_bottom: f64, z_top: f64) -> Vec<f64> {
     let feeds = || path.moves.iter().filter(|m| !matches!(m.motion, Motion::Rapid));
     let mut candidates: Vec<(f64, f64)> = feeds()
@@ -172,7 +172,7 @@ mod tests {
     use crate::core::toolpath::{Units, P3};
     use proptest::prelude::*;
 
-    /// A feed move along x from `start` to `end`, mm.
+    /// A feed move in a straight line from `start` to `end`, mm.
     fn line(start: P3, end: P3) -> Move {
         Move { motion: Motion::Linear, start, end, feed_mm_min: Some(100.0), spindle_rpm: None, tool: None, line: 1 }
     }
