@@ -181,6 +181,12 @@ mod tests {
         Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] }
     }
 
+    /// Levels are the z values of the program, copied: equal to a rounding error at most.
+    fn assert_levels(got: Vec<f64>, want: &[f64]) {
+        let close = got.len() == want.len() && got.iter().zip(want).all(|(g, w)| (g - w).abs() < 1e-12);
+        assert!(close, "levels {got:?}, expected {want:?}");
+    }
+
     /// A 1 mm flat cut at each of `z`.
     fn at_z(z: &[f64]) -> Toolpath {
         program(z.iter().map(|&z| line(P3::new(0.0, 0.0, z), P3::new(1.0, 0.0, z))).collect())
@@ -199,7 +205,7 @@ mod tests {
     #[test]
     fn slices_follow_the_cutting_levels_of_a_layered_program() {
         let levels = slice_levels(&at_z(&[-10.0, -20.0, -30.0, -20.01]), -32.0, 0.0);
-        assert_eq!(levels, vec![0.0, -10.0, -20.0, -30.0, -32.0]);
+        assert_levels(levels, &[0.0, -10.0, -20.0, -30.0, -32.0]);
     }
 
     #[test]
@@ -218,7 +224,7 @@ mod tests {
             let y = f64::from(i);
             line(P3::new(0.0, y, -10.0), P3::new(10.0, y, -10.0))
         }));
-        assert_eq!(slice_levels(&program(moves), -12.0, 0.0), vec![0.0, -10.0, -12.0]);
+        assert_levels(slice_levels(&program(moves), -12.0, 0.0), &[0.0, -10.0, -12.0]);
     }
 
     #[test]
@@ -229,7 +235,7 @@ mod tests {
             let x = 10.0 * f64::from(i);
             line(P3::new(x, 1.0, -5.03), P3::new(x + 10.0, 1.0, -5.03))
         }));
-        assert_eq!(slice_levels(&program(moves), -10.0, 0.0), vec![0.0, -5.03, -10.0]);
+        assert_levels(slice_levels(&program(moves), -10.0, 0.0), &[0.0, -5.03, -10.0]);
     }
 
     #[test]
@@ -262,7 +268,7 @@ mod tests {
 
     #[test]
     fn a_layer_thinner_than_the_smallest_slice_is_one_slice() {
-        assert_eq!(slice_levels(&at_z(&[-0.01]), -0.02, 0.0), vec![0.0, -0.02]);
+        assert_levels(slice_levels(&at_z(&[-0.01]), -0.02, 0.0), &[0.0, -0.02]);
     }
 
     proptest! {
