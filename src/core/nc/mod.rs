@@ -68,8 +68,13 @@ pub enum UnknownWords {
     Warn,
 }
 
+/// Most moves one program may make (canned cycles expanded) unless [`ParseOptions`] says
+/// otherwise: more than a 64 MB program of CAM output holds, so only a program that
+/// expands its cycles beyond reason reaches it (a few hundred MB of moves).
+pub const MAX_MOVES: usize = 4_000_000;
+
 /// How to read a G-code program.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ParseOptions {
     /// Expand or refuse canned cycles (default: expand).
     pub canned_cycles: CannedCycles,
@@ -78,6 +83,20 @@ pub struct ParseOptions {
     /// Where the tool is before the first line, mm (default: the origin); the start of the
     /// first move for the axes it does not program.
     pub initial_position: P3,
+    /// Most moves the program may make, canned cycles expanded (default [`MAX_MOVES`]);
+    /// the line that makes more is an error.
+    pub max_moves: usize,
+}
+
+impl Default for ParseOptions {
+    fn default() -> Self {
+        ParseOptions {
+            canned_cycles: CannedCycles::default(),
+            unknown_words: UnknownWords::default(),
+            initial_position: P3::default(),
+            max_moves: MAX_MOVES,
+        }
+    }
 }
 
 #[cfg(test)]

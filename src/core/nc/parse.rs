@@ -102,6 +102,11 @@ pub fn parse_gcode(text: &str, options: &ParseOptions) -> Result<Toolpath, NcErr
         if !line.failed {
             machine.run_line(&block, &mut line);
         }
+        if machine.moves.len() > options.max_moves {
+            let reason = format!("the program makes more than {} moves (canned cycles expanded)", options.max_moves);
+            line.error_near(None, reason).ignore();
+            break;
+        }
     }
     let warnings = diagnostics.finish()?;
     Ok(Toolpath { moves: machine.moves, events: machine.events, source_units: machine.modal.units, warnings })

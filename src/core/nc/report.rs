@@ -32,6 +32,8 @@ pub(crate) struct Line<'a> {
     unknown: UnknownWords,
     /// An error was reported on this line.
     pub failed: bool,
+    /// The last byte offset whose column was found, and the characters before it.
+    counted: (u32, usize),
 }
 
 impl<'a> Line<'a> {
@@ -43,7 +45,7 @@ impl<'a> Line<'a> {
         diagnostics: &'a mut Diagnostics,
         unknown: UnknownWords,
     ) -> Self {
-        Line { number, text, words, diagnostics, unknown, failed: false }
+        Line { number, text, words, diagnostics, unknown, failed: false, counted: (0, 0) }
     }
 
     /// The text of word `i` as written.
@@ -56,15 +58,23 @@ impl<'a> Line<'a> {
         String::from_utf8_lossy(&self.text[start as usize..end as usize]).into_owned()
     }
 
-    /// 1-based column (in characters) of byte offset `start`.
-    fn column(&self, start: u32) -> u32 {
-        let before = &self.text[..start as usize];
-        let chars = before.iter().filter(|&&b| !is_utf8_continuation(b)).count();
+    /// 1-based column (in characters) of byte offset `start`. Counting resumes from the
+    /// last column asked for when `start` lies after it, so a line's errors (found in
+    /// order) cost one walk over the line.
+    fn column(&mut self, start: u32) -> u32 {
+        let (from, mut chars) = if start >= self.counted.0 { self.counted } else { (0, 0) };
+        let between = &self.text[from as usize..start as usize];
+        chars += between.iter().filter(|&&b| !is_utf8_continuation(b)).count();
+        self.counted = (start, chars);
         u32::try_from(chars + 1).unwrap_or(u32::MAX)
     }
 
     fn error_span(&mut self, start: u32, end: u32, reason: String) -> Failed {
         self.failed = true;
+        if self.diagnostics.full() {
+            // No more errors are kept: none is worth locating.
+            return Failed;
+        }
         let error = NcError { line: self.number, column: self.column(start), word: self.span_text(start, end), reason };
         self.diagnostics.error(error);
         Failed

@@ -351,6 +351,32 @@ mod gcode {
     }
 
     #[test]
+    fn a_line_of_many_bad_words_keeps_the_first_errors_with_their_columns() {
+        // 200 000 repeated words on one line: each is an error, and locating each anew
+        // used to walk the line from its start.
+        let line = format!("G1 F100 {}", "X1 ".repeat(200_000));
+        let e = errors(&line);
+        assert_eq!(e.len(), MAX_NC_ERRORS);
+        let columns: Vec<u32> = e.iter().take(3).map(|e| e.column).collect();
+        assert_eq!(columns, [12, 15, 18], "{:?}", e[0]);
+        assert!(e.iter().all(|e| e.line == 1 && e.word == "X1"));
+    }
+
+    #[test]
+    fn a_program_whose_cycles_make_too_many_moves_is_refused_at_the_line_that_passes_the_limit() {
+        // Each hole pecks 0.1 mm at a time through 10 mm: about 300 moves a hole.
+        let holes: String = (0..20).map(|k| format!("X{k} Y1\n")).collect();
+        let text = format!("G0 Z5\nG83 X0 Y0 Z-10 R1 Q0.1 F100\n{holes}G80\n");
+        let options = ParseOptions { max_moves: 2_000, ..ParseOptions::default() };
+        let e = parse_gcode(&text, &options).unwrap_err().0;
+        assert_eq!(e.len(), 1, "{e:?}");
+        assert!(e[0].reason.contains("more than 2000 moves"), "{}", e[0].reason);
+        // About 300 moves a hole: the seventh hole (line 8) passes 2 000.
+        assert_eq!(e[0].line, 8);
+        assert!(parse_gcode(&text, &ParseOptions::default()).is_ok());
+    }
+
+    #[test]
     fn the_errors_become_one_core_error_on_the_gcode_field() {
         let e = parse_gcode("G41\nG42", &ParseOptions::default()).unwrap_err();
         let CoreError::InvalidInput { field, reason } = CoreError::from(e) else {
