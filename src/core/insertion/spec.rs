@@ -2,8 +2,11 @@
 //! the limits and the strategy choices, with their defaults (seed 004 §2, MODEL.md §7–8).
 
 use crate::core::conditions::CuttingConditions;
+use crate::core::cycles::arcs::helix_turns;
+use crate::core::cycles::levels::{z_levels, MAX_LEVELS};
 use crate::core::cycles::{CutDirection, DEFAULT_ZCUT_AD_MM};
 use crate::core::error::{require_finite, require_positive};
+use crate::core::insertion::pitch::MIN_PITCH_MM;
 use crate::core::medial::{CLASS_A_RATIO_DEFAULT, CLASS_A_RATIO_MAX, CLASS_A_RATIO_MIN};
 use crate::core::tool::{EndMill, ToolType};
 use crate::core::CoreError;
@@ -181,9 +184,22 @@ impl InsertionSpec {
         if let Some(p) = self.pitch_mm {
             require_positive("pitch_mm", p)?;
         }
-        require_positive("zcut_ad_mm", self.zcut_ad_mm)?;
+        let max_pitch = self.max_pitch_mm();
+        if max_pitch < MIN_PITCH_MM {
+            let field = if self.pitch_mm.is_some() { "pitch_mm" } else { "grooving.rd_mm" };
+            return Err(CoreError::invalid(
+                field,
+                format!("the largest trochoid pitch must be at least {MIN_PITCH_MM} mm, got {max_pitch} mm"),
+            ));
+        }
+        let depth = top - bottom;
+        for (field, ad) in [("zcut_ad_mm", self.zcut_ad_mm), ("roughing.ad_mm", self.roughing.ad_mm)] {
+            z_levels(top, bottom, require_positive(field, ad)?).map_err(|_| {
+                CoreError::invalid(field, format!("divides the {depth} mm depth into more than {MAX_LEVELS} levels"))
+            })?;
+        }
         if let Some(p) = self.ramp_pitch_mm {
-            require_positive("ramp_pitch_mm", p)?;
+            helix_turns("ramp_pitch_mm", depth, p)?;
         }
         require_positive("rapid_mm_min", self.rapid_mm_min)?;
         if let Some(s) = self.sample_spacing_mm {

@@ -123,6 +123,27 @@ fn a_ball_end_mill_or_an_unordered_layer_is_refused_naming_the_field() {
 }
 
 #[test]
+fn steps_so_small_the_plan_would_never_end_are_refused_before_planning_naming_the_field() {
+    let tiny = 1e-9;
+    let grooving = CuttingConditions { rd_mm: tiny, ..spec(-10.0).grooving };
+    let roughing = CuttingConditions { ad_mm: tiny, ..spec(-10.0).roughing };
+    let cases = [
+        (InsertionSpec { pitch_mm: Some(tiny), ..spec(-10.0) }, "pitch_mm:"),
+        (InsertionSpec { grooving, ..spec(-10.0) }, "grooving.rd_mm:"),
+        (InsertionSpec { zcut_ad_mm: tiny, ..spec(-10.0) }, "zcut_ad_mm:"),
+        (InsertionSpec { roughing, ..spec(-10.0) }, "roughing.ad_mm:"),
+        (InsertionSpec { ramp_pitch_mm: Some(tiny), ..spec(-10.0) }, "ramp_pitch_mm:"),
+    ];
+    for (spec, field) in cases {
+        let err = check_plan(&box_with_slot(12.0), &spec, None).unwrap_err().to_string();
+        assert!(err.starts_with(field), "{field} {err}");
+    }
+    // The smallest pitch the planner writes is accepted.
+    let smallest = InsertionSpec { pitch_mm: Some(pitch::MIN_PITCH_MM), ..spec(-10.0) };
+    assert!(smallest.validate().is_ok());
+}
+
+#[test]
 fn a_pocket_with_an_island_is_cleared_round_it_within_the_limit_widening_the_trochoids_where_needed() {
     let island = Loop::rectangle(35.0, 30.0, 65.0, 50.0).reversed();
     let ring = Pocket::new(Loop::rectangle(0.0, 0.0, 100.0, 80.0), vec![island]).unwrap();
