@@ -24,6 +24,9 @@ const PROGRESS_FLUSH: Duration = Duration::from_millis(250);
 pub const MAX_ATTEMPTS: i64 = 3;
 /// Capacity of the channel that announces finished jobs.
 const FINISHED_CHANNEL: usize = 256;
+/// Largest result, program or scene one job stores, bytes: SQLite refuses a text of 1 GB
+/// (its default `SQLITE_MAX_LENGTH`), and no client could use one this large.
+pub const MAX_STORED_BYTES: usize = 256 * 1024 * 1024;
 
 /// Cancellation flags and progress of one running job; handed to the core as its
 /// [`Progress`].
@@ -155,6 +158,19 @@ async fn run_one(inner: &Arc<Inner>, row: store::JobRow) {
     let _ = inner.finished.send(id);
 }
 
+/// The problem of a job whose output has a part (name, bytes) larger than
+/// [`MAX_STORED_BYTES`], if any.
+fn oversized(parts: &[(&str, usize)]) -> Option<crate::service::error::Problem> {
+    let &(name, bytes) = parts.iter().find(|(_, bytes)| *bytes > MAX_STORED_BYTES)?;
+    const MB: f64 = 1024.0 * 1024.0;
+    let detail = format!(
+        "the job finished, but its {name} ({:.0} MB) is larger than the {:.0} MB a job may store: ask for less (fewer layers or candidates, a shorter program, a coarser sampling)",
+        bytes as f64 / MB,
+        MAX_STORED_BYTES as f64 / MB
+    );
+    Some(ApiError::Status { status: axum::http::StatusCode::PAYLOAD_TOO_LARGE, detail }.problem())
+}
+
 async fn execute(inner: &Arc<Inner>, row: &store::JobRow) -> Result<(), sqlx::Error> {
     let pool = &inner.pool;
     let id = row.id.as_str();
@@ -204,7 +220,23 @@ async fn execute(inner: &Arc<Inner>, row: &store::JobRow) -> Result<(), sqlx::Er
     match joined {
         Ok(Ok(output)) => {
             let text = serde_json::to_string(&output.result).unwrap_or_default();
-            store::succeed(pool, id, &text, output.program.as_deref(), output.scene.as_deref()).await
+            let (program, scene) = (output.program.as_deref(), output.scene.as_deref());
+            let sizes = [
+                ("result", text.len()),
+                ("program", program.map_or(0, str::len)),
+                ("scene", scene.map_or(0, str::len)),
+            ];
+            if let Some(problem) = oversized(&sizes) {
+                return store::fail(pool, id, &problem).await;
+            }
+            match store::succeed(pool, id, &text, program, scene).await {
+                Ok(()) => Ok(()),
+                Err(e) => {
+                    // The job must not stay `running` with its outcome lost.
+                    tracing::error!(job = %id, error = %e, "could not store the result of a job");
+                    store::fail(pool, id, &ApiError::Internal(e.to_string()).problem()).await
+                }
+            }
         }
         Ok(Err(CoreError::Cancelled)) => {
             if control.cancel.load(Ordering::Relaxed) {
@@ -219,5 +251,18 @@ async fn execute(inner: &Arc<Inner>, row: &store::JobRow) -> Result<(), sqlx::Er
             tracing::error!(job = %id, error = %join_error, "job panicked");
             store::fail(pool, id, &ApiError::Internal(join_error.to_string()).problem()).await
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_output_part_too_large_to_store_fails_the_job_naming_the_part_and_its_size() {
+        assert!(oversized(&[("result", MAX_STORED_BYTES), ("program", 10)]).is_none());
+        let problem = oversized(&[("result", 10), ("program", MAX_STORED_BYTES + 1), ("scene", 0)]).expect("too large");
+        assert_eq!(problem.status, 413);
+        assert!(problem.detail.contains("its program (256 MB)"), "{}", problem.detail);
     }
 }
