@@ -44,7 +44,7 @@ fn serve(config: Config) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    runtime.block_on(async move {
+    let code = runtime.block_on(async move {
         match app::start(config).await {
             Ok(server) => {
                 app::shutdown_signal().await;
@@ -57,5 +57,9 @@ fn serve(config: Config) -> ExitCode {
                 ExitCode::FAILURE
             }
         }
-    })
+    });
+    // A job that did not stop within the grace period runs on a blocking thread; dropping
+    // the runtime would wait for it. It resumes at the next start.
+    runtime.shutdown_background();
+    code
 }
