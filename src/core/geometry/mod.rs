@@ -14,6 +14,7 @@ pub mod intersect;
 pub mod pocket;
 pub mod point;
 pub mod segment;
+pub mod segment_index;
 pub mod validate;
 
 pub use contour::{Loop, Vertex};
@@ -22,6 +23,7 @@ pub use intersect::{Intersection, Intersections};
 pub use pocket::{pocket_from_loops, Pocket};
 pub use point::{Bounds, Point};
 pub use segment::{ArcGeometry, Segment};
+pub use segment_index::SegmentIndex;
 
 /// Points closer than this are the same point, and two segments closer than this touch (mm).
 pub const POINT_EPS_MM: f64 = crate::core::tolerance::LENGTH_EPS_MM;

@@ -4,6 +4,7 @@
 use super::contour::Loop;
 use super::point::{Bounds, Point};
 use super::segment::{Segment, STRAIGHT_BULGE};
+use super::segment_index::SegmentIndex;
 use super::{fmt_point, MIN_LOOP_AREA_MM2, MIN_SEGMENT_LENGTH_MM, POINT_EPS_MM};
 use crate::core::error::CoreError;
 
@@ -71,31 +72,31 @@ pub fn validate_loop(lp: &Loop, field: &str) -> Result<(), CoreError> {
 }
 
 /// The first pair `(i, j)`, `i < j`, of segments of `lp` that meet where they should not,
-/// with the meeting point and whether they overlap. Pairs whose boxes are apart are skipped
-/// (sweep over the boxes sorted by `x_min`).
+/// with the meeting point and whether they overlap. Only pairs whose boxes come within
+/// [`POINT_EPS_MM`] are tested, found through a tree of the boxes.
 pub fn first_self_intersection(lp: &Loop) -> Option<(usize, usize, Point, bool)> {
     let n = lp.vertices.len();
-    let segs: Vec<Segment> = lp.segments().collect();
+    // Boxes widened by the margin on each side meet whenever the boxes come within it.
+    let index = SegmentIndex::new(std::iter::once(lp), POINT_EPS_MM);
+    let segs = index.segments();
     let boxes: Vec<Bounds> = segs.iter().map(Segment::bounds).collect();
-    let mut order: Vec<usize> = (0..n).collect();
-    order.sort_unstable_by(|&a, &b| boxes[a].x_min.total_cmp(&boxes[b].x_min));
     let mut worst: Option<(usize, usize, Point, bool)> = None;
-    for (k, &a) in order.iter().enumerate() {
-        for &b in &order[k + 1..] {
-            if boxes[b].x_min > boxes[a].x_max + POINT_EPS_MM {
-                break;
+    for i in 0..segs.len() {
+        if worst.is_some() {
+            // Pairs are visited by their first segment: none later comes first.
+            break;
+        }
+        index.visit(index.bounds(i), |j| {
+            if j <= i || !boxes[i].overlaps(&boxes[j], POINT_EPS_MM) {
+                return;
             }
-            if !boxes[a].overlaps(&boxes[b], POINT_EPS_MM) {
-                continue;
-            }
-            let (i, j) = (a.min(b), a.max(b));
-            if worst.is_some_and(|(wi, wj, _, _)| (wi, wj) <= (i, j)) {
-                continue;
+            if worst.is_some_and(|(_, wj, _, _)| wj <= j) {
+                return;
             }
             if let Some((point, overlap)) = pair_problem(n, i, j, &segs[i], &segs[j]) {
                 worst = Some((i, j, point, overlap));
             }
-        }
+        });
     }
     worst
 }
@@ -126,17 +127,23 @@ pub fn first_contact(a: &Loop, b: &Loop) -> Option<(usize, usize, Point)> {
     if !a.bounds().overlaps(&b.bounds(), POINT_EPS_MM) {
         return None;
     }
-    let b_segs: Vec<(Segment, Bounds)> = b.segments().map(|s| (s, s.bounds())).collect();
+    // Boxes of b widened by the margin meet a's box whenever they come within it.
+    let index = SegmentIndex::new(std::iter::once(b), POINT_EPS_MM);
+    let b_segs = index.segments();
     for (i, sa) in a.segments().enumerate() {
         let box_a = sa.bounds();
-        for (j, (sb, box_b)) in b_segs.iter().enumerate() {
-            if !box_a.overlaps(box_b, POINT_EPS_MM) {
-                continue;
+        // The first segment of b (in order) that a's segment meets.
+        let mut first: Option<(usize, Point)> = None;
+        index.visit(&box_a, |j| {
+            if first.is_some_and(|(k, _)| k <= j) || !box_a.overlaps(&b_segs[j].bounds(), POINT_EPS_MM) {
+                return;
             }
-            let hits = sa.intersections(sb);
-            if let Some(h) = hits.points.first() {
-                return Some((i, j, h.point));
+            if let Some(h) = sa.intersections(&b_segs[j]).points.first() {
+                first = Some((j, h.point));
             }
+        });
+        if let Some((j, point)) = first {
+            return Some((i, j, point));
         }
     }
     None
@@ -156,6 +163,29 @@ mod tests {
 
     fn lp(points: &[(f64, f64, f64)]) -> Loop {
         Loop::new(points.iter().map(|&(x, y, b)| Vertex::new(x, y, b)).collect())
+    }
+
+    /// A comb of `teeth` teeth 99 mm long and 0.5 mm wide, 0.5 mm apart (4 vertices a tooth):
+    /// every long edge spans the same x range.
+    fn comb(teeth: usize) -> Vec<(f64, f64, f64)> {
+        let mut v = Vec::with_capacity(4 * teeth + 2);
+        for k in 0..teeth {
+            let y = k as f64;
+            v.extend([(100.0, y, 0.0), (100.0, y + 0.5, 0.0), (1.0, y + 0.5, 0.0), (1.0, y + 1.0, 0.0)]);
+        }
+        v.extend([(0.0, teeth as f64, 0.0), (0.0, 0.0, 0.0)]);
+        v
+    }
+
+    #[test]
+    fn a_comb_of_forty_thousand_vertices_is_checked_and_a_crossing_in_it_is_found() {
+        let mut points = comb(10_000);
+        assert!(lp(&points).validate("outer").is_ok());
+        // Tooth 7 000's tip rises through the next tooth's lower edge.
+        points[4 * 7_000 + 1].1 += 1.2;
+        let (field, reason) = field_and_reason(lp(&points).validate("outer").unwrap_err());
+        assert_eq!(field, "outer.vertices[28000]");
+        assert!(reason.contains("segment 28000 "), "{reason}");
     }
 
     #[test]

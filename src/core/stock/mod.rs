@@ -342,6 +342,12 @@ impl Raster {
         Certified::levels().take_while(|level| beyond > level.cells()).last().unwrap_or(Certified::No)
     }
 
+    /// Every cell's stored value, row by row (tests compare rasters by them).
+    #[cfg(test)]
+    pub(crate) fn cell_values(&self) -> &[i8] {
+        &self.f
+    }
+
     /// Area holding material (cells with a positive distance), mm².
     pub fn material_area_mm2(&self) -> f64 {
         self.blocks.iter().map(|&n| f64::from(n)).sum::<f64>() * self.cell_mm * self.cell_mm
