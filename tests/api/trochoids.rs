@@ -137,6 +137,21 @@ async fn bad_trochoid_requests_are_refused_naming_the_field() {
         (with("loop_radius_mm", json!(1)), "loop_radius_mm"),
         // 3 m × 3 m at 0.05 mm is far more than one analysis may take.
         (with("contour", json!({"outer": [[0, 0], [3000, 0], [3000, 3000], [0, 3000]]})), "sample_spacing_mm"),
+        // Steps so small the plan would never end.
+        (with("pitch_mm", json!(1e-9)), "pitch_mm"),
+        (with("grooving", json!({"spindle_rpm": 4800, "fz_mm": 0.1, "rd_mm": 1e-9, "ad_mm": 10})), "grooving.rd_mm"),
+        (with("zcut_ad_mm", json!(1e-9)), "zcut_ad_mm"),
+        (with("ramp_pitch_mm", json!(1e-9)), "ramp_pitch_mm"),
+        // Beyond the machine (20 000 min⁻¹, 15 000 mm/min).
+        (
+            with("roughing", json!({"spindle_rpm": 1e12, "fz_mm": 0.1, "rd_mm": 0.5, "ad_mm": 5})),
+            "roughing.spindle_rpm",
+        ),
+        (with("grooving", json!({"spindle_rpm": 9600, "fz_mm": 1000, "rd_mm": 0.5, "ad_mm": 5})), "grooving.fz_mm"),
+        // Numbers no control reads.
+        (with("output", json!({"tool_number": 4294967295u32})), "output.tool_number"),
+        (with("output", json!({"line_numbers": {"start": 4294967295u32, "step": 10}})), "output.line_numbers.start"),
+        (with("output", json!({"line_numbers": {"step": 100000}})), "output.line_numbers.step"),
     ];
     for (body, field) in cases {
         let a = app.post("/v1/trochoids", body).await;

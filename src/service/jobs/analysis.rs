@@ -139,6 +139,8 @@ pub struct Resolved {
     pub standard: Option<StandardConditions>,
     /// The machine's largest feed, mm/min.
     pub machine_max_feed_mm_min: f64,
+    /// The machine's largest spindle speed, min⁻¹.
+    pub machine_max_spindle_rpm: f64,
 }
 
 /// Resolves the material, tool, force model, machine and standard conditions of a path
@@ -170,7 +172,12 @@ pub async fn resolve(pool: &SqlitePool, refs: &PathJobRefs<'_>) -> Result<Resolv
         rapid_mm_min: machine.data.rapid_mm_min,
         default_spindle_rpm,
     };
-    Ok(Resolved { prepared, standard, machine_max_feed_mm_min: machine.data.max_feed_mm_min })
+    Ok(Resolved {
+        prepared,
+        standard,
+        machine_max_feed_mm_min: machine.data.max_feed_mm_min,
+        machine_max_spindle_rpm: machine.data.max_spindle_rpm,
+    })
 }
 
 /// Runs the analysis.

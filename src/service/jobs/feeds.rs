@@ -202,7 +202,7 @@ pub async fn prepare(pool: &SqlitePool, request: FeedsRequest) -> Result<FeedsPr
         machine_id: request.machine_id,
         spindle_rpm: request.spindle_rpm,
     };
-    let Resolved { prepared: base, standard, machine_max_feed_mm_min } = resolve(pool, &refs).await?;
+    let Resolved { prepared: base, standard, machine_max_feed_mm_min, .. } = resolve(pool, &refs).await?;
     let strategy = request.strategy.unwrap_or(match request.mode {
         CutMode::SideMilling => FeedStrategy::ConstantForce,
         CutMode::SurfaceFinishing => FeedStrategy::CuttingPoint,

@@ -2,7 +2,9 @@
 //! core writer's options.
 
 use super::analysis::AnalysisPrepared;
-use crate::core::nc::{Dialect, LineNumbers, WriterOptions, DEFAULT_DECIMALS, DEFAULT_FEED_DECIMALS, MAX_DECIMALS};
+use crate::core::nc::{
+    Dialect, LineNumbers, WriterOptions, DEFAULT_DECIMALS, DEFAULT_FEED_DECIMALS, MAX_DECIMALS, MAX_SEQUENCE_NUMBER,
+};
 use crate::service::error::Validator;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
@@ -11,6 +13,9 @@ use utoipa::ToSchema;
 pub const MAX_PROGRAM_NUMBER: u32 = 9999;
 /// Longest title, characters.
 pub const MAX_TITLE_CHARS: usize = 120;
+/// Largest tool number written in the header's `T… M6` and `H…` (four digits, as most
+/// controls read).
+pub const MAX_TOOL_NUMBER: u32 = 9999;
 
 /// The control a program is written for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
@@ -70,8 +75,21 @@ impl OutputOptions {
                 format!("1 to {MAX_PROGRAM_NUMBER}"),
             );
         }
-        if let Some(step) = self.line_numbers.and_then(|l| l.step) {
-            v.check(step >= 1, "output.line_numbers.step", "at least 1");
+        if let Some(l) = self.line_numbers {
+            for (field, value, least) in
+                [("output.line_numbers.start", l.start, 0), ("output.line_numbers.step", l.step, 1)]
+            {
+                if let Some(n) = value {
+                    v.check(
+                        (least..=MAX_SEQUENCE_NUMBER).contains(&n),
+                        field,
+                        format!("{least} to {MAX_SEQUENCE_NUMBER} (N numbers have at most five digits)"),
+                    );
+                }
+            }
+        }
+        if let Some(t) = self.tool_number {
+            v.check((1..=MAX_TOOL_NUMBER).contains(&t), "output.tool_number", format!("1 to {MAX_TOOL_NUMBER}"));
         }
         if let Some(t) = &self.title {
             v.check(

@@ -238,7 +238,7 @@ async fn resolve_candidate(
         machine_id: Some(machine_id),
         spindle_rpm: None,
     };
-    let Resolved { prepared: base, standard, machine_max_feed_mm_min } = resolve(pool, &refs).await?;
+    let Resolved { prepared: base, standard, machine_max_feed_mm_min, .. } = resolve(pool, &refs).await?;
     let name = base.tool.name.clone();
     let row = |op: Operation| async move { lookup::standard_conditions(pool, tool_id, material_id, op).await };
     let (Some(standard), Some(model)) = (standard, base.force_model.as_ref()) else {

@@ -7,7 +7,7 @@ use super::analysis::{resolve, AnalysisPrepared, PathJobRefs, Resolved};
 use super::inputs::{read_contour, read_dxf, read_program, ContourInput, ProgramInput};
 use super::output::OutputOptions;
 use super::trochoids_result::TrochoidsResult;
-use crate::core::conditions::CuttingConditions;
+use crate::core::conditions::{feed_mm_min, CuttingConditions};
 use crate::core::cycles::trochoid::default_loop_radius_mm;
 use crate::core::cycles::CutDirection;
 use crate::core::drawing::insertion_scene::insertion_scene;
@@ -200,7 +200,8 @@ pub async fn prepare(pool: &SqlitePool, request: TrochoidsRequest) -> Result<Tro
         machine_id: request.machine_id,
         spindle_rpm: None,
     };
-    let Resolved { prepared: base, standard, .. } = resolve(pool, &refs).await?;
+    let Resolved { prepared: base, standard, machine_max_feed_mm_min, machine_max_spindle_rpm } =
+        resolve(pool, &refs).await?;
     let (tool_id, material_id) = (base.tool.id, base.material.id);
     let row = |op: Operation| async move { lookup::standard_conditions(pool, tool_id, material_id, op).await };
     let rough_row = row(Operation::RoughSideCutting).await?;
@@ -223,6 +224,10 @@ pub async fn prepare(pool: &SqlitePool, request: TrochoidsRequest) -> Result<Tro
         (None, Some(r)) => (r.data.conditions(), format!("standard conditions {} (trochoidal_grooving)", r.id)),
         (None, None) => (roughing, roughing_source.clone()),
     };
+    let flutes = base.tool.geometry.flutes;
+    for (name, c, source) in [("roughing", roughing, &roughing_source), ("grooving", grooving, &grooving_source)] {
+        within_machine(name, &c, source, flutes, (machine_max_spindle_rpm, machine_max_feed_mm_min))?;
+    }
     let prepared = TrochoidsPrepared { base, roughing, roughing_source, grooving, grooving_source };
     let checked = prepared.clone();
     tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
@@ -233,6 +238,29 @@ pub async fn prepare(pool: &SqlitePool, request: TrochoidsRequest) -> Result<Tro
     .await
     .map_err(|e| ApiError::Internal(e.to_string()))??;
     Ok(prepared)
+}
+
+/// Refuses conditions (`name`, from `source`) whose spindle speed or feed
+/// (fz · flutes · S) is above the machine's `(max rpm, max feed mm/min)`.
+fn within_machine(
+    name: &str,
+    c: &CuttingConditions,
+    source: &str,
+    flutes: u32,
+    (max_rpm, max_feed): (f64, f64),
+) -> Result<(), ApiError> {
+    let from = if source == "request" { String::new() } else { format!(" (from {source})") };
+    if c.spindle_rpm > max_rpm {
+        let reason = format!("{} min⁻¹{from} is above the machine's maximum of {max_rpm} min⁻¹", c.spindle_rpm);
+        return Err(ApiError::field(format!("{name}.spindle_rpm"), reason));
+    }
+    let feed = feed_mm_min(c.fz_mm, flutes, c.spindle_rpm);
+    if feed > max_feed {
+        let reason =
+            format!("gives a feed of {feed:.0} mm/min{from}, above the machine's maximum of {max_feed} mm/min");
+        return Err(ApiError::field(format!("{name}.fz_mm"), reason));
+    }
+    Ok(())
 }
 
 type Built = (Pocket, InsertionSpec, Option<crate::core::toolpath::Toolpath>);
