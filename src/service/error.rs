@@ -200,17 +200,25 @@ impl Validator {
 
     /// The value must be finite and > 0.
     pub fn positive(&mut self, field: &str, value: f64) {
-        self.check(value.is_finite() && value > 0.0, field, format!("must be a finite number > 0, got {value}"));
+        self.check(
+            value.is_finite() && value > 0.0,
+            field,
+            format!("must be a finite number > 0, got {}", shown(value)),
+        );
     }
 
     /// The value must be finite and ≥ 0.
     pub fn non_negative(&mut self, field: &str, value: f64) {
-        self.check(value.is_finite() && value >= 0.0, field, format!("must be a finite number >= 0, got {value}"));
+        self.check(
+            value.is_finite() && value >= 0.0,
+            field,
+            format!("must be a finite number >= 0, got {}", shown(value)),
+        );
     }
 
     /// The value must be finite.
     pub fn finite(&mut self, field: &str, value: f64) {
-        self.check(value.is_finite(), field, format!("must be a finite number, got {value}"));
+        self.check(value.is_finite(), field, format!("must be a finite number, got {}", shown(value)));
     }
 
     /// The value must be finite, above `lo` (not equal to it) and at most `hi`.
@@ -218,7 +226,7 @@ impl Validator {
         self.check(
             value.is_finite() && value > lo && value <= hi,
             field,
-            format!("must be above {lo} and at most {hi}, got {value}"),
+            format!("must be above {lo} and at most {hi}, got {}", shown(value)),
         );
     }
 
@@ -227,7 +235,7 @@ impl Validator {
         self.check(
             value.is_finite() && value >= lo && value <= hi,
             field,
-            format!("must be between {lo} and {hi}, got {value}"),
+            format!("must be between {lo} and {hi}, got {}", shown(value)),
         );
     }
 
@@ -249,9 +257,37 @@ impl Validator {
     }
 }
 
+/// Magnitudes from this on, or below the next (but not 0), are shown in scientific notation
+/// in error messages.
+const SCIENTIFIC_FROM: f64 = 1e9;
+const SCIENTIFIC_BELOW: f64 = 1e-6;
+
+/// A number as an error message shows it: as written when short, else in scientific
+/// notation (`1e308` and `1e-300`, not 300 digits).
+fn shown(value: f64) -> String {
+    let magnitude = value.abs();
+    if value.is_finite() && (magnitude >= SCIENTIFIC_FROM || (magnitude > 0.0 && magnitude < SCIENTIFIC_BELOW)) {
+        format!("{value:e}")
+    } else {
+        value.to_string()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn huge_numbers_are_shown_short_in_the_reasons() {
+        let mut v = Validator::new();
+        v.within("price", 1e308, 0.0, 1e6);
+        v.positive("diameter_mm", -2.5);
+        v.within("life_m", 1e-300, 1e-3, 1e7);
+        let Err(ApiError::Validation(errors)) = v.finish() else { panic!("no errors") };
+        assert_eq!(errors[0].reason, "must be between 0 and 1000000, got 1e308");
+        assert_eq!(errors[1].reason, "must be a finite number > 0, got -2.5");
+        assert_eq!(errors[2].reason, "must be between 0.001 and 10000000, got 1e-300");
+    }
 
     #[test]
     fn a_validation_problem_names_every_field_and_summarizes_the_first() {

@@ -75,6 +75,8 @@ async fn bad_costing_requests_are_refused_naming_the_field() {
     assert_problem(&app.post("/v1/costing", no_program).await, 422, Some("job_id"));
     let price = json!({"program": {"gcode": STANDARD_CUT}, "tool_type": "square", "diameter_mm": 10, "stock": concave_stock(), "tool_price": -5});
     assert_problem(&app.post("/v1/costing", price).await, 422, Some("tool_price"));
+    let price = json!({"program": {"gcode": STANDARD_CUT}, "tool_type": "square", "diameter_mm": 10, "stock": concave_stock(), "tool_price": 1e308});
+    assert_problem(&app.post("/v1/costing", price).await, 422, Some("tool_price"));
     app.stop().await;
 }
 

@@ -128,6 +128,15 @@ async fn refused_writes_name_the_field_and_change_nothing() {
         (json!({"name": "a", "tool_type": "square", "diameter_mm": 10, "flutes": -4}), 422, Some("flutes")),
         (json!({"name": "a", "tool_type": "ball", "diameter_mm": 10, "flutes": 2}), 422, Some("corner_radius_mm")),
         (json!({"name": "a", "tool_type": "square", "diameter_mm": 10, "flutes": 4, "spin": 1}), 422, Some("spin")),
+        // Values no end mill has.
+        (json!({"name": "a", "tool_type": "square", "diameter_mm": 1e308, "flutes": 4}), 422, Some("diameter_mm")),
+        (json!({"name": "a", "tool_type": "square", "diameter_mm": 1e-300, "flutes": 4}), 422, Some("diameter_mm")),
+        (json!({"name": "a", "tool_type": "square", "diameter_mm": 10, "flutes": 4000000000u32}), 422, Some("flutes")),
+        (
+            json!({"name": "a", "tool_type": "square", "diameter_mm": 10, "flutes": 4, "price": 1e308}),
+            422,
+            Some("price"),
+        ),
         (json!({"name": "square D10", "tool_type": "square", "diameter_mm": 10, "flutes": 4}), 409, None),
     ];
     for (body, status, field) in bad {
@@ -151,6 +160,13 @@ async fn refused_writes_name_the_field_and_change_nothing() {
     assert_problem(&patch, 422, Some("diameter_mm"));
     let cond = app.post("/v1/conditions/standard", json!({"tool_id": 9999, "material_id": 1, "operation": "rough_side_cutting", "spindle_rpm": 1000, "fz_mm": 0.1, "fz_min_mm": 0.01, "rd_mm": 0.5, "ad_mm": 5})).await;
     assert_problem(&cond, 422, Some("tool_id"));
+    let life = app.get("/v1/tool-life").await;
+    let id = life.body["items"][0]["id"].as_i64().expect("a seeded tool-life row");
+    for (field, value, shown) in [("life_m", 1e-300, "got 1e-300"), ("force_exponent", 1e300, "got 1e300")] {
+        let patch = app.patch(&format!("/v1/tool-life/{id}"), json!({ field: value })).await;
+        assert_problem(&patch, 422, Some(field));
+        assert!(patch.body["detail"].as_str().unwrap().contains(shown), "{}", patch.text);
+    }
     assert_eq!(app.get("/v1/tools?limit=500").await.body, before, "nothing changed");
     app.stop().await;
 }

@@ -128,6 +128,19 @@ async fn bad_plan_requests_are_refused_naming_the_field() {
                            {"contour": case_study_contour(), "z_top": -5, "z_bottom": -20}]}),
             "layers[1].z_top",
         ),
+        (
+            json!({"contour": case_study_contour(), "z_top": 0, "z_bottom": -10, "diameters_mm": [10, 8, 10]}),
+            "diameters_mm[2]",
+        ),
+        (
+            json!({"contour": case_study_contour(), "z_top": 0, "z_bottom": -10, "diameters_mm": vec![10; 17]}),
+            "diameters_mm",
+        ),
+        (
+            json!({"layers": (0..101).map(|i| json!({"contour": case_study_contour(),
+                "z_top": -0.01 * f64::from(i), "z_bottom": -0.01 * f64::from(i + 1)})).collect::<Vec<_>>()}),
+            "layers",
+        ),
     ];
     for (body, field) in cases {
         let a = app.post("/v1/plans", body).await;

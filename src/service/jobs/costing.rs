@@ -120,7 +120,7 @@ pub async fn prepare(pool: &SqlitePool, request: CostingRequest) -> Result<Costi
     let mut v = Validator::new();
     v.check(request.program.is_some() != request.job_id.is_some(), "program", "give exactly one of program and job_id");
     if let Some(p) = request.tool_price {
-        v.non_negative("tool_price", p);
+        v.within("tool_price", p, 0.0, crate::service::resources::tools::MAX_PRICE);
     }
     for (field, value) in [
         ("spindle_rpm", request.spindle_rpm),

@@ -141,6 +141,14 @@ pub struct PlanPrepared {
     pub writer_base: super::analysis::AnalysisPrepared,
 }
 
+/// Most layers one plan may have: a die's process has a handful; each layer is planned
+/// for every candidate diameter.
+pub const MAX_PLAN_LAYERS: usize = 100;
+/// Most candidate diameters one plan may compare.
+pub const MAX_PLAN_CANDIDATES: usize = 16;
+/// Diameters closer than this are the same candidate, mm.
+const DIAMETER_TOLERANCE_MM: f64 = 1e-6;
+
 fn validate(r: &PlanRequest) -> Result<(), ApiError> {
     let mut v = Validator::new();
     let single = r.contour.is_some() || r.dxf.is_some();
@@ -158,6 +166,11 @@ fn validate(r: &PlanRequest) -> Result<(), ApiError> {
     }
     if let Some(layers) = &r.layers {
         v.check(!layers.is_empty(), "layers", "needs at least one layer");
+        v.check(
+            layers.len() <= MAX_PLAN_LAYERS,
+            "layers",
+            format!("at most {MAX_PLAN_LAYERS} layers, got {}", layers.len()),
+        );
         for (i, l) in layers.iter().enumerate() {
             v.finite(&format!("layers[{i}].z_top"), l.z_top);
             v.finite(&format!("layers[{i}].z_bottom"), l.z_bottom);
@@ -171,8 +184,16 @@ fn validate(r: &PlanRequest) -> Result<(), ApiError> {
     );
     if let Some(ds) = &r.diameters_mm {
         v.check(!ds.is_empty(), "diameters_mm", "needs at least one diameter");
+        v.check(
+            ds.len() <= MAX_PLAN_CANDIDATES,
+            "diameters_mm",
+            format!("at most {MAX_PLAN_CANDIDATES} candidate diameters, got {}", ds.len()),
+        );
         for (i, d) in ds.iter().enumerate() {
             v.positive(&format!("diameters_mm[{i}]"), *d);
+            if let Some(k) = ds[..i].iter().position(|e| (e - d).abs() <= DIAMETER_TOLERANCE_MM) {
+                v.check(false, &format!("diameters_mm[{i}]"), format!("repeats diameters_mm[{k}]"));
+            }
         }
     }
     if let Some(a) = r.alpha_limit_deg {

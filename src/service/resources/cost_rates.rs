@@ -1,5 +1,6 @@
 //! Cost rates of seed 002 Eq. 4: `/v1/cost-rates`.
 
+use super::tools::MAX_PRICE;
 use super::{NameFilter, Resource, Source, SqlValue};
 use crate::service::error::Validator;
 use serde::{Deserialize, Serialize};
@@ -43,8 +44,8 @@ impl Resource for CostRatesData {
     fn validate(&self, v: &mut Validator) {
         v.not_blank("name", &self.name);
         v.not_blank("currency", &self.currency);
-        v.non_negative("machine_rate_per_hour", self.machine_rate_per_hour);
-        v.non_negative("default_tool_price", self.default_tool_price);
+        v.within("machine_rate_per_hour", self.machine_rate_per_hour, 0.0, MAX_PRICE);
+        v.within("default_tool_price", self.default_tool_price, 0.0, MAX_PRICE);
     }
 }
 

@@ -5,6 +5,12 @@ use crate::service::error::Validator;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
+/// Tool life the consumption model accepts, m of cut (a millimetre to 10 000 km).
+const MIN_LIFE_M: f64 = 1e-3;
+const MAX_LIFE_M: f64 = 1e7;
+/// Largest exponent of the force in the life model.
+const MAX_FORCE_EXPONENT: f64 = 20.0;
+
 /// Largest engagement angle, deg.
 const MAX_ENGAGEMENT_DEG: f64 = 180.0;
 
@@ -76,8 +82,8 @@ impl Resource for ToolLifeData {
     }
 
     fn validate(&self, v: &mut Validator) {
-        v.positive("life_m", self.life_m);
-        v.non_negative("force_exponent", self.force_exponent);
+        v.within("life_m", self.life_m, MIN_LIFE_M, MAX_LIFE_M);
+        v.within("force_exponent", self.force_exponent, 0.0, MAX_FORCE_EXPONENT);
         v.check(!self.gamma_table.is_empty(), "gamma_table", "needs at least one point");
         let mut previous = f64::NEG_INFINITY;
         for (i, GammaPoint(angle, factor)) in self.gamma_table.iter().enumerate() {

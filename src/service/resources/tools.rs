@@ -9,6 +9,15 @@ use utoipa::{IntoParams, ToSchema};
 
 /// How far a ball end mill's corner radius may differ from D/2, mm.
 const BALL_RADIUS_TOLERANCE_MM: f64 = 1e-6;
+/// The end mills the models are meant for, mm (0.1 mm micro end mills to 100 mm).
+const MIN_DIAMETER_MM: f64 = 0.1;
+const MAX_DIAMETER_MM: f64 = 100.0;
+/// Most flutes an end mill has.
+const MAX_FLUTES: u32 = 16;
+/// Longest flute, mm.
+const MAX_FLUTE_LENGTH_MM: f64 = 1000.0;
+/// Highest price of one tool (any currency): beyond it a cost is no longer meaningful.
+pub const MAX_PRICE: f64 = 1e7;
 
 /// An end mill's data.
 #[derive(Debug, Clone, Serialize, Deserialize, sqlx::FromRow, ToSchema)]
@@ -94,14 +103,14 @@ impl Resource for ToolData {
 
     fn validate(&self, v: &mut Validator) {
         v.not_blank("name", &self.name);
-        v.positive("diameter_mm", self.diameter_mm);
-        v.check(self.flutes >= 1, "flutes", "must be at least 1");
+        v.within("diameter_mm", self.diameter_mm, MIN_DIAMETER_MM, MAX_DIAMETER_MM);
+        v.check((1..=MAX_FLUTES).contains(&self.flutes), "flutes", format!("must be 1 to {MAX_FLUTES}"));
         v.non_negative("corner_radius_mm", self.corner_radius_mm);
         if let Some(l) = self.flute_length_mm {
-            v.positive("flute_length_mm", l);
+            v.above_and_at_most("flute_length_mm", l, 0.0, MAX_FLUTE_LENGTH_MM);
         }
         if let Some(p) = self.price {
-            v.non_negative("price", p);
+            v.within("price", p, 0.0, MAX_PRICE);
         }
         if v.has_errors() {
             return;
