@@ -44,11 +44,20 @@ pub async fn tool(
     diameter_mm: Option<f64>,
 ) -> Result<Tool, ApiError> {
     if let Some(id) = id {
-        return sqlx::query_as::<_, Tool>("SELECT * FROM tools WHERE id = ?")
+        let tool = sqlx::query_as::<_, Tool>("SELECT * FROM tools WHERE id = ?")
             .bind(id)
             .fetch_optional(pool)
             .await?
-            .ok_or_else(|| ApiError::field("tool_id", format!("no tool with id {id}")));
+            .ok_or_else(|| ApiError::field("tool_id", format!("no tool with id {id}")))?;
+        // A type or diameter given beside the id must describe that tool.
+        let what = format!("tool {id} is a {} end mill of {} mm", tool.data.tool_type.as_str(), tool.data.diameter_mm);
+        if tool_type.is_some_and(|t| t != tool.data.tool_type) {
+            return Err(ApiError::field("tool_type", format!("{what}: give tool_id or tool_type, not both")));
+        }
+        if diameter_mm.is_some_and(|d| (d - tool.data.diameter_mm).abs() > DIAMETER_FILTER_TOLERANCE_MM) {
+            return Err(ApiError::field("diameter_mm", format!("{what}: give tool_id or diameter_mm, not both")));
+        }
+        return Ok(tool);
     }
     let (Some(tool_type), Some(d)) = (tool_type, diameter_mm) else {
         return Err(ApiError::field("tool_id", "give tool_id, or tool_type and diameter_mm"));

@@ -150,6 +150,16 @@ async fn bad_nc_and_bad_contours_are_refused_naming_the_line_or_vertex() {
 
     let no_stock = json!({"program": {"gcode": "G1 X1 F100\n"}, "tool_type": "square", "diameter_mm": 10, "stock": {}});
     assert_problem(&app.post("/v1/analysis", no_stock).await, 422, Some("stock"));
+
+    // A tool id with the diameter or type of another tool.
+    let six = app.tool_id("square", 6.0).await;
+    let program = json!({"gcode": "G1 X1 F100\n"});
+    let other = json!({"program": program, "tool_id": six, "diameter_mm": 10, "stock": stock.clone()});
+    let a = app.post("/v1/analysis", other).await;
+    assert_problem(&a, 422, Some("diameter_mm"));
+    assert!(a.body["detail"].as_str().unwrap().contains("square end mill of 6 mm"), "{}", a.text);
+    let ball = json!({"program": program, "tool_id": six, "tool_type": "ball", "stock": stock.clone()});
+    assert_problem(&app.post("/v1/analysis", ball).await, 422, Some("tool_type"));
     assert_eq!(app.get("/v1/jobs").await.body["total"], 0);
     app.stop().await;
 }
