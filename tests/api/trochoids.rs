@@ -160,6 +160,10 @@ async fn bad_trochoid_requests_are_refused_naming_the_field() {
             a.body["errors"].as_array().unwrap().iter().map(|e| e["field"].as_str().unwrap()).collect();
         assert!(fields.iter().any(|f| f.starts_with(field)), "{field}: {}", a.text);
     }
+    // A layer too thin to cut, named by the request's field.
+    let thin = app.post("/v1/trochoids", with("z_bottom", json!(-1e-9))).await;
+    assert_problem(&thin, 422, Some("z_bottom"));
+    assert!(thin.text.contains("thinner"), "{}", thin.text);
     let ball = app.post("/v1/trochoids", with("tool_type", json!("ball"))).await;
     assert_problem(&ball, 422, None);
     let jobs = app.get("/v1/jobs").await;

@@ -8,6 +8,7 @@ use crate::core::cycles::{CutDirection, DEFAULT_ZCUT_AD_MM};
 use crate::core::error::{require_finite, require_positive};
 use crate::core::insertion::pitch::MIN_PITCH_MM;
 use crate::core::medial::{CLASS_A_RATIO_DEFAULT, CLASS_A_RATIO_MAX, CLASS_A_RATIO_MIN};
+use crate::core::tolerance::LENGTH_EPS_MM;
 use crate::core::tool::{EndMill, ToolType};
 use crate::core::CoreError;
 
@@ -193,6 +194,12 @@ impl InsertionSpec {
             ));
         }
         let depth = top - bottom;
+        if depth <= LENGTH_EPS_MM {
+            return Err(CoreError::invalid(
+                "z_bottom_mm",
+                format!("the layer from {top} mm down to {bottom} mm is thinner than {LENGTH_EPS_MM} mm"),
+            ));
+        }
         for (field, ad) in [("zcut_ad_mm", self.zcut_ad_mm), ("roughing.ad_mm", self.roughing.ad_mm)] {
             z_levels(top, bottom, require_positive(field, ad)?).map_err(|_| {
                 CoreError::invalid(field, format!("divides the {depth} mm depth into more than {MAX_LEVELS} levels"))

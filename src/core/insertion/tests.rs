@@ -138,6 +138,8 @@ fn steps_so_small_the_plan_would_never_end_are_refused_before_planning_naming_th
         let err = check_plan(&box_with_slot(12.0), &spec, None).unwrap_err().to_string();
         assert!(err.starts_with(field), "{field} {err}");
     }
+    let thin = check_plan(&box_with_slot(12.0), &spec(-1e-9), None).unwrap_err().to_string();
+    assert!(thin.starts_with("z_bottom_mm: the layer from 0 mm down to") && thin.contains("thinner"), "{thin}");
     // The smallest pitch the planner writes is accepted.
     let smallest = InsertionSpec { pitch_mm: Some(pitch::MIN_PITCH_MM), ..spec(-10.0) };
     assert!(smallest.validate().is_ok());
