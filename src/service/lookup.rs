@@ -52,10 +52,10 @@ pub async fn tool(
         // A type or diameter given beside the id must describe that tool.
         let what = format!("tool {id} is a {} end mill of {} mm", tool.data.tool_type.as_str(), tool.data.diameter_mm);
         if tool_type.is_some_and(|t| t != tool.data.tool_type) {
-            return Err(ApiError::field("tool_type", format!("{what}: give tool_id or tool_type, not both")));
+            return Err(ApiError::field("tool_type", format!("{what}: leave tool_type out, or give that tool's")));
         }
         if diameter_mm.is_some_and(|d| (d - tool.data.diameter_mm).abs() > DIAMETER_FILTER_TOLERANCE_MM) {
-            return Err(ApiError::field("diameter_mm", format!("{what}: give tool_id or diameter_mm, not both")));
+            return Err(ApiError::field("diameter_mm", format!("{what}: leave diameter_mm out, or give that tool's")));
         }
         return Ok(tool);
     }
