@@ -130,14 +130,7 @@ mod tests {
 
     #[test]
     fn a_pocket_painted_through_its_segment_index_has_the_cells_of_the_pocket_itself() {
-        let outer = Loop::new(vec![
-            Vertex::new(0.0, 0.0, 0.0),
-            Vertex::new(40.0, 0.0, 0.4),
-            Vertex::new(40.0, 30.0, 0.0),
-            Vertex::new(0.0, 30.0, -0.3),
-        ]);
-        let island = Loop::rectangle(15.0, 10.0, 25.0, 20.0).reversed();
-        let ring = Pocket::new(outer, vec![island]).expect("valid");
+        let ring = crate::core::geometry::test_support::rounded_ring();
         let border = crate::core::pocketing::test_support::border_dxf();
         for (p, cell) in [(ring, 0.1), (border, 0.2)] {
             let region = StockRegion::Pocket(p.clone());

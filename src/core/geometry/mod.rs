@@ -51,10 +51,23 @@ pub(crate) fn fmt_point(p: Point) -> String {
     format!("({}, {})", fmt_mm(p.x), fmt_mm(p.y))
 }
 
-/// Comparisons with explicit tolerances for the tests of this module.
+/// Comparisons with explicit tolerances, and shapes, for the tests of the crate.
 #[cfg(test)]
 pub(crate) mod test_support {
-    use super::{Bounds, Loop};
+    use super::{Bounds, Loop, Pocket, Vertex};
+
+    /// A 40 × 30 mm pocket whose right and left sides bulge out as arcs, with a 10 × 10 mm
+    /// square island.
+    pub fn rounded_ring() -> Pocket {
+        let outer = Loop::new(vec![
+            Vertex::new(0.0, 0.0, 0.0),
+            Vertex::new(40.0, 0.0, 0.4),
+            Vertex::new(40.0, 30.0, 0.0),
+            Vertex::new(0.0, 30.0, -0.3),
+        ]);
+        let island = Loop::rectangle(15.0, 10.0, 25.0, 20.0).reversed();
+        Pocket::new(outer, vec![island]).expect("valid")
+    }
 
     /// `true` when every side of `a` is within `tol_mm` of the same side of `b`.
     pub fn bounds_near(a: &Bounds, b: &Bounds, tol_mm: f64) -> bool {

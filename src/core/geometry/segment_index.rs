@@ -96,28 +96,11 @@ impl SegmentIndex {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::core::geometry::{Pocket, Vertex};
-
-    fn ring() -> Pocket {
-        // A rounded outer loop (arcs) with a square island.
-        let outer = Loop::new(vec![
-            Vertex::new(0.0, 0.0, 0.0),
-            Vertex::new(40.0, 0.0, 0.4),
-            Vertex::new(40.0, 30.0, 0.0),
-            Vertex::new(0.0, 30.0, -0.3),
-        ]);
-        let island = Loop::new(vec![
-            Vertex::new(15.0, 10.0, 0.0),
-            Vertex::new(15.0, 20.0, 0.0),
-            Vertex::new(25.0, 20.0, 0.0),
-            Vertex::new(25.0, 10.0, 0.0),
-        ]);
-        Pocket::new(outer, vec![island]).expect("valid")
-    }
+    use crate::core::geometry::test_support::rounded_ring;
 
     #[test]
     fn the_index_answers_as_the_pocket_does_inside_and_near_the_boundary() {
-        let p = ring();
+        let p = rounded_ring();
         let index = SegmentIndex::new(std::iter::once(&p.outer).chain(&p.islands), 0.0);
         let reach = 0.7;
         for i in 0..130 {
