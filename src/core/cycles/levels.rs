@@ -12,10 +12,9 @@ pub const DEFAULT_ZCUT_AD_MM: f64 = 2.5;
 /// Most levels one depth is divided into.
 pub const MAX_LEVELS: usize = 100_000;
 
-/// The tool-tip heights of the passes from `z_top_mm` down to `z_bottom_mm`, each at most
-/// `max_ad_mm` below the one before (the first below `z_top_mm`): `n = ⌈depth / max_ad⌉`
-/// equal steps, top first, the last exactly `z_bottom_mm`.
-pub fn z_levels(z_top_mm: f64, z_bottom_mm: f64, max_ad_mm: f64) -> Result<Vec<f64>, CoreError> {
+/// How many passes [`z_levels`] makes: `⌈depth / max_ad⌉`, at least 1; an error naming
+/// `max_ad_mm` when that is more than [`MAX_LEVELS`].
+pub fn level_count(z_top_mm: f64, z_bottom_mm: f64, max_ad_mm: f64) -> Result<usize, CoreError> {
     require_finite("z_top_mm", z_top_mm)?;
     require_finite("z_bottom_mm", z_bottom_mm)?;
     require_positive("max_ad_mm", max_ad_mm)?;
@@ -29,7 +28,15 @@ pub fn z_levels(z_top_mm: f64, z_bottom_mm: f64, max_ad_mm: f64) -> Result<Vec<f
     if n > MAX_LEVELS as f64 {
         return Err(CoreError::invalid("max_ad_mm", format!("divides the depth into more than {MAX_LEVELS} levels")));
     }
-    let n = n as usize;
+    Ok(n as usize)
+}
+
+/// The tool-tip heights of the passes from `z_top_mm` down to `z_bottom_mm`, each at most
+/// `max_ad_mm` below the one before (the first below `z_top_mm`): `n = ⌈depth / max_ad⌉`
+/// equal steps, top first, the last exactly `z_bottom_mm`.
+pub fn z_levels(z_top_mm: f64, z_bottom_mm: f64, max_ad_mm: f64) -> Result<Vec<f64>, CoreError> {
+    let n = level_count(z_top_mm, z_bottom_mm, max_ad_mm)?;
+    let depth = z_top_mm - z_bottom_mm;
     let step = depth / n as f64;
     let mut levels: Vec<f64> = (1..n).map(|k| z_top_mm - step * k as f64).collect();
     levels.push(z_bottom_mm);

@@ -3,7 +3,7 @@
 
 use crate::core::conditions::CuttingConditions;
 use crate::core::cycles::arcs::helix_turns;
-use crate::core::cycles::levels::{z_levels, MAX_LEVELS};
+use crate::core::cycles::levels::{level_count, MAX_LEVELS};
 use crate::core::cycles::{CutDirection, DEFAULT_ZCUT_AD_MM};
 use crate::core::error::{require_finite, require_positive};
 use crate::core::insertion::pitch::MIN_PITCH_MM;
@@ -201,7 +201,7 @@ impl InsertionSpec {
             ));
         }
         for (field, ad) in [("zcut_ad_mm", self.zcut_ad_mm), ("roughing.ad_mm", self.roughing.ad_mm)] {
-            z_levels(top, bottom, require_positive(field, ad)?).map_err(|_| {
+            level_count(top, bottom, require_positive(field, ad)?).map_err(|_| {
                 CoreError::invalid(field, format!("divides the {depth} mm depth into more than {MAX_LEVELS} levels"))
             })?;
         }
