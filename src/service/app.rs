@@ -166,7 +166,7 @@ pub async fn start(config: Config) -> Result<RunningServer, StartError> {
         .await
         .map_err(|source| StartError::Database { path: config.database.display().to_string(), source })?;
     let workers = config.worker_count();
-    let jobs = JobQueue::start(pool.clone(), workers)
+    let jobs = JobQueue::start(pool.clone(), workers, config.job_time_limit())
         .await
         .map_err(|source| StartError::Database { path: config.database.display().to_string(), source })?;
     let listener =

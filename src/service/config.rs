@@ -46,7 +46,16 @@ pub struct Config {
     /// Seconds running jobs get to stop at shutdown before the process exits.
     #[arg(long, env = "DIEPLAN_SHUTDOWN_GRACE", default_value_t = 10)]
     pub shutdown_grace_s: u64,
+    /// Longest a job may run, seconds; a job still running then is stopped and fails.
+    /// 0: no limit.
+    #[arg(long, env = "DIEPLAN_JOB_TIME_LIMIT", default_value_t = DEFAULT_JOB_TIME_LIMIT_S)]
+    pub job_time_limit_s: u64,
 }
+
+/// Default for [`Config::job_time_limit_s`]: an hour, far more than any job of the
+/// benchmarks takes, and short enough that a runaway request frees its worker the same
+/// shift.
+pub const DEFAULT_JOB_TIME_LIMIT_S: u64 = 3600;
 
 impl Config {
     /// A configuration with every default, for `database` (tests, embedding).
@@ -62,7 +71,13 @@ impl Config {
             max_wait_s: 60,
             cors_origins: Vec::new(),
             shutdown_grace_s: 10,
+            job_time_limit_s: DEFAULT_JOB_TIME_LIMIT_S,
         }
+    }
+
+    /// The longest a job may run, if limited.
+    pub fn job_time_limit(&self) -> Option<std::time::Duration> {
+        (self.job_time_limit_s > 0).then(|| std::time::Duration::from_secs(self.job_time_limit_s))
     }
 
     /// The number of workers to start.

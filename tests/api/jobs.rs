@@ -112,3 +112,23 @@ async fn a_conditions_job_has_no_program_and_a_finished_job_cannot_be_cancelled(
     assert_problem(&app.get("/v1/jobs/00000000-0000-0000-0000-000000000000").await, 404, None);
     app.stop().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_job_that_runs_past_the_time_limit_is_stopped_and_fails_saying_so() {
+    let app = TestApp::start_with(|c| c.job_time_limit_s = 1).await;
+    let gcode = std::fs::read_to_string(format!("{}/../shared/data/tiger.nc", env!("CARGO_MANIFEST_DIR")))
+        .expect("tiger.nc is in the shared data");
+    // tiger.nc at 0.005 mm: some 30 million samples, far more than one second of work.
+    let body = json!({
+        "program": {"gcode": gcode}, "tool_type": "square", "diameter_mm": 6,
+        "stock": {"box": {"x_min": -2, "y_min": -1, "z_min": -32, "x_max": 92, "y_max": 89, "z_max": 0}},
+        "sample_spacing_mm": 0.005
+    });
+    let a = app.send(reqwest::Method::POST, "/v1/analysis", Some(body), &[("prefer", "wait=50")]).await;
+    assert_eq!(a.body["status"], "failed", "{}", &a.text[..a.text.len().min(2000)]);
+    let error = &a.body["error"];
+    assert_eq!(error["status"], 413, "{error}");
+    let detail = error["detail"].as_str().unwrap();
+    assert!(detail.contains("1 s") && detail.contains("DIEPLAN_JOB_TIME_LIMIT"), "{detail}");
+    app.stop().await;
+}

@@ -11,7 +11,7 @@ use sqlx::SqlitePool;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 use tokio::sync::{broadcast, Notify};
 use tokio::task::JoinHandle;
 
@@ -28,12 +28,14 @@ const FINISHED_CHANNEL: usize = 256;
 /// (its default `SQLITE_MAX_LENGTH`), and no client could use one this large.
 pub const MAX_STORED_BYTES: usize = 256 * 1024 * 1024;
 
-/// Cancellation flags and progress of one running job; handed to the core as its
-/// [`Progress`].
+/// Cancellation flags, time limit and progress of one running job; handed to the core
+/// as its [`Progress`].
 pub struct JobControl {
     cancel: AtomicBool,
     shutdown: Arc<AtomicBool>,
     progress_bits: AtomicU64,
+    /// When the job has run for as long as a job may (none: no limit).
+    deadline: Option<Instant>,
 }
 
 impl Progress for JobControl {
@@ -42,14 +44,50 @@ impl Progress for JobControl {
     }
 
     fn cancelled(&self) -> bool {
-        self.cancel.load(Ordering::Relaxed) || self.shutdown.load(Ordering::Relaxed)
+        self.cancel.load(Ordering::Relaxed) || self.shutdown.load(Ordering::Relaxed) || self.timed_out()
     }
 }
 
 impl JobControl {
+    fn new(cancel: bool, shutdown: Arc<AtomicBool>, time_limit: Option<Duration>) -> JobControl {
+        JobControl {
+            cancel: AtomicBool::new(cancel),
+            shutdown,
+            progress_bits: AtomicU64::new(0f64.to_bits()),
+            deadline: time_limit.and_then(|limit| Instant::now().checked_add(limit)),
+        }
+    }
+
     fn progress(&self) -> f64 {
         f64::from_bits(self.progress_bits.load(Ordering::Relaxed))
     }
+
+    /// `true` once the job has run past its time limit.
+    fn timed_out(&self) -> bool {
+        self.deadline.is_some_and(|deadline| Instant::now() >= deadline)
+    }
+
+    /// Why a computation that stopped as cancelled stopped.
+    fn stop_reason(&self) -> StopReason {
+        if self.cancel.load(Ordering::Relaxed) {
+            StopReason::Cancelled
+        } else if self.shutdown.load(Ordering::Relaxed) {
+            StopReason::Shutdown
+        } else {
+            StopReason::TimedOut
+        }
+    }
+}
+
+/// Why a job's computation stopped before it finished.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum StopReason {
+    /// A client cancelled the job.
+    Cancelled,
+    /// The service is stopping: the job runs again at the next start.
+    Shutdown,
+    /// The job ran past the configured time limit.
+    TimedOut,
 }
 
 struct Inner {
@@ -59,6 +97,8 @@ struct Inner {
     running: Mutex<HashMap<String, Arc<JobControl>>>,
     shutdown: Arc<AtomicBool>,
     workers: Mutex<Vec<JoinHandle<()>>>,
+    /// Longest a job may run (none: no limit).
+    time_limit: Option<Duration>,
 }
 
 /// Handle to the worker pool.
@@ -68,8 +108,13 @@ pub struct JobQueue {
 }
 
 impl JobQueue {
-    /// Recovers jobs a previous run left behind and starts `workers` workers.
-    pub async fn start(pool: SqlitePool, workers: usize) -> Result<JobQueue, sqlx::Error> {
+    /// Recovers jobs a previous run left behind and starts `workers` workers; a job that
+    /// runs longer than `time_limit` is stopped and fails.
+    pub async fn start(
+        pool: SqlitePool,
+        workers: usize,
+        time_limit: Option<Duration>,
+    ) -> Result<JobQueue, sqlx::Error> {
         let requeued = store::recover_interrupted(&pool).await?;
         if requeued > 0 {
             tracing::info!(requeued, "re-queued jobs interrupted by the previous run");
@@ -83,6 +128,7 @@ impl JobQueue {
                 running: Mutex::new(HashMap::new()),
                 shutdown: Arc::new(AtomicBool::new(false)),
                 workers: Mutex::new(Vec::new()),
+                time_limit,
             }),
         };
         let handles: Vec<_> = (0..workers)
@@ -171,6 +217,16 @@ fn oversized(parts: &[(&str, usize)]) -> Option<crate::service::error::Problem> 
     Some(ApiError::Status { status: axum::http::StatusCode::PAYLOAD_TOO_LARGE, detail }.problem())
 }
 
+/// The problem of a job stopped after running for `limit`, `progress` of the way.
+fn timed_out(limit: Duration, progress: f64) -> crate::service::error::Problem {
+    let detail = format!(
+        "the job was stopped after running for {} s, the longest a job may run here (DIEPLAN_JOB_TIME_LIMIT), {:.0} % of the way: ask for less (a coarser sampling, fewer layers or candidates, a shorter program) or ask the operator for a longer limit",
+        limit.as_secs(),
+        progress * 100.0
+    );
+    ApiError::Status { status: axum::http::StatusCode::PAYLOAD_TOO_LARGE, detail }.problem()
+}
+
 async fn execute(inner: &Arc<Inner>, row: &store::JobRow) -> Result<(), sqlx::Error> {
     let pool = &inner.pool;
     let id = row.id.as_str();
@@ -192,11 +248,7 @@ async fn execute(inner: &Arc<Inner>, row: &store::JobRow) -> Result<(), sqlx::Er
             return store::fail(pool, id, &problem).await;
         }
     };
-    let control = Arc::new(JobControl {
-        cancel: AtomicBool::new(row.cancel_requested),
-        shutdown: inner.shutdown.clone(),
-        progress_bits: AtomicU64::new(0f64.to_bits()),
-    });
+    let control = Arc::new(JobControl::new(row.cancel_requested, inner.shutdown.clone(), inner.time_limit));
     inner.running.lock().unwrap_or_else(|p| p.into_inner()).insert(id.to_string(), control.clone());
 
     let (input, prepared) = (row.input.clone(), row.prepared.clone());
@@ -238,14 +290,18 @@ async fn execute(inner: &Arc<Inner>, row: &store::JobRow) -> Result<(), sqlx::Er
                 }
             }
         }
-        Ok(Err(CoreError::Cancelled)) => {
-            if control.cancel.load(Ordering::Relaxed) {
-                store::cancelled(pool, id).await
-            } else {
+        Ok(Err(CoreError::Cancelled)) => match control.stop_reason() {
+            StopReason::Cancelled => store::cancelled(pool, id).await,
+            StopReason::Shutdown => {
                 tracing::info!(job = %id, "job interrupted by shutdown; it resumes at the next start");
                 store::requeue(pool, id).await
             }
-        }
+            StopReason::TimedOut => {
+                let limit = inner.time_limit.unwrap_or_default();
+                tracing::warn!(job = %id, limit_s = limit.as_secs_f64(), "job stopped at its time limit");
+                store::fail(pool, id, &timed_out(limit, control.progress())).await
+            }
+        },
         Ok(Err(err)) => store::fail(pool, id, &ApiError::from(err).problem()).await,
         Err(join_error) => {
             tracing::error!(job = %id, error = %join_error, "job panicked");
@@ -264,5 +320,36 @@ mod tests {
         let problem = oversized(&[("result", 10), ("program", MAX_STORED_BYTES + 1), ("scene", 0)]).expect("too large");
         assert_eq!(problem.status, 413);
         assert!(problem.detail.contains("its program (256 MB)"), "{}", problem.detail);
+    }
+
+    #[test]
+    fn a_job_past_its_time_limit_reads_as_cancelled_and_says_it_timed_out() {
+        let shutdown = Arc::new(AtomicBool::new(false));
+        let unlimited = JobControl::new(false, shutdown.clone(), None);
+        assert!(!unlimited.cancelled());
+        let expired = JobControl::new(false, shutdown.clone(), Some(Duration::ZERO));
+        assert!(expired.cancelled());
+        assert_eq!(expired.stop_reason(), StopReason::TimedOut);
+        let later = JobControl::new(false, shutdown, Some(Duration::from_secs(3600)));
+        assert!(!later.cancelled());
+    }
+
+    #[test]
+    fn a_cancel_or_a_shutdown_outranks_the_time_limit() {
+        let shutdown = Arc::new(AtomicBool::new(false));
+        let cancelled = JobControl::new(true, shutdown.clone(), Some(Duration::ZERO));
+        assert_eq!(cancelled.stop_reason(), StopReason::Cancelled);
+        shutdown.store(true, Ordering::SeqCst);
+        let stopping = JobControl::new(false, shutdown, Some(Duration::ZERO));
+        assert_eq!(stopping.stop_reason(), StopReason::Shutdown);
+    }
+
+    #[test]
+    fn the_time_limit_problem_names_the_limit_the_setting_and_the_progress() {
+        let problem = timed_out(Duration::from_secs(90), 0.374);
+        assert_eq!(problem.status, 413);
+        assert!(problem.detail.contains("90 s"), "{}", problem.detail);
+        assert!(problem.detail.contains("DIEPLAN_JOB_TIME_LIMIT"), "{}", problem.detail);
+        assert!(problem.detail.contains("37 %"), "{}", problem.detail);
     }
 }
