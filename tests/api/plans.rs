@@ -141,6 +141,8 @@ async fn bad_plan_requests_are_refused_naming_the_field() {
                 "z_top": -0.01 * f64::from(i), "z_bottom": -0.01 * f64::from(i + 1)})).collect::<Vec<_>>()}),
             "layers",
         ),
+        // 100 km deep: thousands of layers for every candidate, refused before any is built.
+        (json!({"contour": case_study_contour(), "z_top": 0, "z_bottom": -1e5}), "z_bottom"),
     ];
     for (body, field) in cases {
         let a = app.post("/v1/plans", body).await;

@@ -108,13 +108,28 @@ pub enum CavityInput {
     Depth { pocket: Pocket, z_top_mm: f64, z_bottom_mm: f64 },
 }
 
+/// Most layers one cavity may have, given or cut to a depth: a die's process has a
+/// handful, and each layer is planned for every candidate tool.
+pub const MAX_CAVITY_LAYERS: usize = 100;
+
 impl CavityInput {
     /// The layers a tool of rough axial depth `rough_ad_mm` and last-layer depth
-    /// `last_ad_mm` cuts.
+    /// `last_ad_mm` cuts. A depth that would take more than [`MAX_CAVITY_LAYERS`] layers
+    /// is refused before any layer is built.
     pub fn layers_for(&self, rough_ad_mm: f64, last_ad_mm: f64) -> Result<Cavity, CoreError> {
         match self {
             CavityInput::Layers(c) => Ok(c.clone()),
             CavityInput::Depth { pocket, z_top_mm, z_bottom_mm } => {
+                let n = layer_count_by_depth(*z_top_mm, *z_bottom_mm, rough_ad_mm, last_ad_mm)?;
+                if n > MAX_CAVITY_LAYERS {
+                    return Err(CoreError::invalid(
+                        "z_bottom",
+                        format!(
+                            "{} mm deep at a rough axial depth of {rough_ad_mm} mm is {n} layers; at most {MAX_CAVITY_LAYERS}",
+                            z_top_mm - z_bottom_mm
+                        ),
+                    ));
+                }
                 layers_by_depth(pocket, *z_top_mm, *z_bottom_mm, rough_ad_mm, last_ad_mm)
             }
         }
@@ -129,6 +144,21 @@ impl CavityInput {
             },
         }
     }
+}
+
+/// How many layers [`layers_by_depth`] makes, without making them.
+pub fn layer_count_by_depth(
+    z_top_mm: f64,
+    z_bottom_mm: f64,
+    rough_ad_mm: f64,
+    last_ad_mm: f64,
+) -> Result<usize, CoreError> {
+    require_finite("z_top_mm", z_top_mm)?;
+    require_finite("z_bottom_mm", z_bottom_mm)?;
+    if z_top_mm - z_bottom_mm <= last_ad_mm + LENGTH_EPS_MM {
+        return Ok(1);
+    }
+    Ok(crate::core::cycles::levels::level_count(z_top_mm, z_bottom_mm + last_ad_mm, rough_ad_mm)? + 1)
 }
 
 /// One contour cut to a depth: layers of the rough axial depth `rough_ad_mm` (equal, at
@@ -247,6 +277,26 @@ mod tests {
         assert!(t.len() == 4 && t[..3].iter().all(|x| (x - 9.0).abs() < 1e-9), "{t:?}");
         let one = layers_by_depth(&rounded_box(90.0, 70.0, 8.0), 0.0, -4.0, 10.0, 5.0).unwrap();
         assert_eq!(one.layers.len(), 1);
+    }
+
+    #[test]
+    fn the_layer_count_by_depth_is_the_number_of_layers_made() {
+        let pocket = rounded_box(90.0, 70.0, 8.0);
+        for depth in [1.0, 5.0, 5.0 + 1e-12, 7.5, 15.0, 32.0, 35.0, 35.1, 250.0] {
+            let made = layers_by_depth(&pocket, 0.0, -depth, 10.0, 5.0).unwrap().layers.len();
+            assert_eq!(layer_count_by_depth(0.0, -depth, 10.0, 5.0).unwrap(), made, "{depth} mm deep");
+        }
+    }
+
+    #[test]
+    fn a_depth_that_takes_more_than_the_most_layers_is_refused_before_they_are_made() {
+        let pocket = rounded_box(90.0, 70.0, 8.0);
+        let deepest = 10.0 * (MAX_CAVITY_LAYERS - 1) as f64 + 5.0;
+        let fits = CavityInput::Depth { pocket: pocket.clone(), z_top_mm: 0.0, z_bottom_mm: -deepest };
+        assert_eq!(fits.layers_for(10.0, 5.0).unwrap().layers.len(), MAX_CAVITY_LAYERS);
+        let too_deep = CavityInput::Depth { pocket, z_top_mm: 0.0, z_bottom_mm: -1e5 };
+        let e = too_deep.layers_for(10.0, 5.0).unwrap_err().to_string();
+        assert!(e.starts_with("z_bottom") && e.contains("10001 layers"), "{e}");
     }
 
     #[test]

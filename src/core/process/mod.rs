@@ -29,7 +29,10 @@ pub mod tune;
 mod tests;
 
 pub use baseline::{plan_baseline, Baseline, BaselineSpec};
-pub use cavity::{layers_by_depth, min_concave_radius_mm, Cavity, CavityInput, CavityLayer, LayerRole};
+pub use cavity::{
+    layer_count_by_depth, layers_by_depth, min_concave_radius_mm, Cavity, CavityInput, CavityLayer, LayerRole,
+    MAX_CAVITY_LAYERS,
+};
 pub use evaluate::{Evaluation, Figures, LayerFigures, StepFigures};
 pub use layer::{LayerPlan, Step};
 pub use report::{CandidateReport, CandidateStatus, Comparison, LayerReport, ProcessPlan};

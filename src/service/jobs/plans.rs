@@ -19,7 +19,7 @@ use crate::core::nc::write_program;
 use crate::core::operation::Operation;
 use crate::core::process::{
     check_process, plan_process, BaselineSpec, Cavity, CavityInput, CavityLayer, ProcessOptions, ToolCandidate,
-    DEFAULT_MAX_FORCE_FACTOR, DEFAULT_TARGET_CONSUMPTION,
+    DEFAULT_MAX_FORCE_FACTOR, DEFAULT_TARGET_CONSUMPTION, MAX_CAVITY_LAYERS,
 };
 use crate::core::progress::Progress;
 use crate::core::tool::{EndMill, ToolType};
@@ -48,7 +48,7 @@ pub struct LayerInput {
 
 /// A cavity to rough: `layers` (z range and contour each, top first), or one `contour` (or
 /// `dxf`) from `z_top` to `z_bottom`, which is cut in layers of the rough axial depth and a
-/// last intermediate-rough layer.
+/// last intermediate-rough layer. At most 100 layers, given or made for any candidate.
 #[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 #[schema(example = json!({
@@ -141,9 +141,6 @@ pub struct PlanPrepared {
     pub writer_base: super::analysis::AnalysisPrepared,
 }
 
-/// Most layers one plan may have: a die's process has a handful; each layer is planned
-/// for every candidate diameter.
-pub const MAX_PLAN_LAYERS: usize = 100;
 /// Most candidate diameters one plan may compare.
 pub const MAX_PLAN_CANDIDATES: usize = 16;
 /// Diameters closer than this are the same candidate, mm.
@@ -167,9 +164,9 @@ fn validate(r: &PlanRequest) -> Result<(), ApiError> {
     if let Some(layers) = &r.layers {
         v.check(!layers.is_empty(), "layers", "needs at least one layer");
         v.check(
-            layers.len() <= MAX_PLAN_LAYERS,
+            layers.len() <= MAX_CAVITY_LAYERS,
             "layers",
-            format!("at most {MAX_PLAN_LAYERS} layers, got {}", layers.len()),
+            format!("at most {MAX_CAVITY_LAYERS} layers, got {}", layers.len()),
         );
         for (i, l) in layers.iter().enumerate() {
             v.finite(&format!("layers[{i}].z_top"), l.z_top);
