@@ -46,10 +46,21 @@ pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
 
 /// Converts an already-parsed JSON value into `T` with path-aware errors (422).
 pub fn from_value<T: DeserializeOwned>(value: serde_json::Value) -> Result<T, ApiError> {
-    serde_path_to_error::deserialize(value).map_err(|e| {
-        let field = field_of(e.path().to_string());
-        ApiError::Validation(vec![FieldError { field, reason: e.inner().to_string() }])
-    })
+    serde_path_to_error::deserialize(value)
+        .map_err(|e| ApiError::Validation(vec![field_error(e.path().to_string(), &e.inner().to_string())]))
+}
+
+/// The field a deserialisation error at `path` is about, and why: a missing field is named
+/// itself ("diameter_mm: is required"), not its parent object.
+fn field_error(path: String, message: &str) -> FieldError {
+    let missing = message.strip_prefix("missing field `").and_then(|rest| rest.split_once('`')).map(|(name, _)| name);
+    match missing {
+        Some(name) if path == "." || path.is_empty() => {
+            FieldError { field: name.to_string(), reason: "is required".into() }
+        }
+        Some(name) => FieldError { field: format!("{path}.{name}"), reason: "is required".into() },
+        None => FieldError { field: field_of(path), reason: message.to_string() },
+    }
 }
 
 fn field_of(path: String) -> String {
@@ -65,10 +76,9 @@ fn path_error(e: serde_path_to_error::Error<serde_json::Error>) -> ApiError {
     let inner = e.inner();
     match inner.classify() {
         Category::Syntax | Category::Eof | Category::Io => ApiError::BadRequest(format!("malformed JSON: {inner}")),
-        Category::Data => ApiError::Validation(vec![FieldError {
-            field: field_of(e.path().to_string()),
-            reason: strip_position(&inner.to_string()),
-        }]),
+        Category::Data => {
+            ApiError::Validation(vec![field_error(e.path().to_string(), &strip_position(&inner.to_string()))])
+        }
     }
 }
 
@@ -118,5 +128,46 @@ where
             .await
             .map(|axum::extract::Path(v)| ApiPath(v))
             .map_err(|rejection| ApiError::BadRequest(format!("path: {}", rejection.body_text())))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde::Deserialize;
+
+    #[derive(Debug, Deserialize)]
+    #[allow(dead_code)]
+    struct Tool {
+        diameter_mm: f64,
+        holder: Holder,
+    }
+
+    #[derive(Debug, Deserialize)]
+    #[allow(dead_code)]
+    struct Holder {
+        gauge_mm: f64,
+    }
+
+    fn only_error(e: ApiError) -> FieldError {
+        match e {
+            ApiError::Validation(mut errors) if errors.len() == 1 => errors.remove(0),
+            other => panic!("not one field error: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_missing_field_is_named_itself_and_said_to_be_required() {
+        let e = only_error(from_value::<Tool>(serde_json::json!({"holder": {"gauge_mm": 60}})).unwrap_err());
+        assert_eq!((e.field.as_str(), e.reason.as_str()), ("diameter_mm", "is required"));
+        let e = only_error(parse_json::<Tool>(br#"{"diameter_mm": 10, "holder": {}}"#).unwrap_err());
+        assert_eq!((e.field.as_str(), e.reason.as_str()), ("holder.gauge_mm", "is required"));
+    }
+
+    #[test]
+    fn a_value_of_the_wrong_type_is_named_by_its_path_without_the_json_position() {
+        let e = only_error(parse_json::<Tool>(br#"{"diameter_mm": "ten", "holder": {"gauge_mm": 60}}"#).unwrap_err());
+        assert_eq!(e.field, "diameter_mm");
+        assert!(e.reason.starts_with("invalid type") && !e.reason.contains("line"), "{}", e.reason);
     }
 }

@@ -158,6 +158,12 @@ async fn refused_writes_name_the_field_and_change_nothing() {
     assert!(conflict.body["detail"].as_str().unwrap().contains("standard conditions"));
     let patch = app.patch(&format!("/v1/tools/{seeded}"), json!({"diameter_mm": 0})).await;
     assert_problem(&patch, 422, Some("diameter_mm"));
+    let removal = app.patch(&format!("/v1/tools/{seeded}"), json!({"flutes": null})).await;
+    assert_problem(&removal, 422, Some("flutes"));
+    assert!(removal.body["detail"].as_str().unwrap().contains("cannot remove it with null"), "{}", removal.text);
+    let missing = app.post("/v1/tools", json!({"name": "a", "tool_type": "square", "flutes": 4})).await;
+    assert_problem(&missing, 422, Some("diameter_mm"));
+    assert!(missing.body["detail"].as_str().unwrap().contains("is required"), "{}", missing.text);
     let cond = app.post("/v1/conditions/standard", json!({"tool_id": 9999, "material_id": 1, "operation": "rough_side_cutting", "spindle_rpm": 1000, "fz_mm": 0.1, "fz_min_mm": 0.01, "rd_mm": 0.5, "ad_mm": 5})).await;
     assert_problem(&cond, 422, Some("tool_id"));
     let life = app.get("/v1/tool-life").await;

@@ -153,9 +153,29 @@ pub async fn patch<R: Record>(pool: &SqlitePool, id: i64, patch: Value) -> Resul
     if patch.get("source").is_none() {
         merged["source"] = Value::from("user");
     }
+    let removed: Vec<String> =
+        patch.as_object().into_iter().flatten().filter(|(_, v)| v.is_null()).map(|(k, _)| k.clone()).collect();
     merge(&mut merged, patch);
-    let data: R::Data = from_value(merged)?;
+    let data: R::Data = from_value(merged).map_err(|e| required_not_removable(e, &removed))?;
     replace::<R>(pool, id, data).await
+}
+
+/// A patch that sets a required field to `null` (which removes it) is told so.
+fn required_not_removable(error: ApiError, removed: &[String]) -> ApiError {
+    match error {
+        ApiError::Validation(errors) => ApiError::Validation(
+            errors
+                .into_iter()
+                .map(|mut e| {
+                    if removed.contains(&e.field) {
+                        e.reason = "is required: a merge patch cannot remove it with null".to_string();
+                    }
+                    e
+                })
+                .collect(),
+        ),
+        other => other,
+    }
 }
 
 /// RFC 7396 JSON merge patch.
