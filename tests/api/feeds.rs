@@ -176,6 +176,13 @@ async fn bad_feed_requests_are_refused_naming_the_field() {
     let mut normals = concave_request();
     normals.as_object_mut().unwrap().remove("stock");
     normals["mode"] = json!("surface_finishing");
+    let square = app.post("/v1/feeds", normals.clone()).await;
+    assert_problem(&square, 422, Some("tool_type"));
+    assert!(square.body["detail"].as_str().unwrap().contains("needs a ball end mill"), "{}", square.text);
+    normals["tool_type"] = json!("ball");
+    normals["diameter_mm"] = json!(6);
+    normals["min_feed_mm_min"] = json!(100);
+    normals["max_feed_mm_min"] = json!(4000);
     normals["contact_normals"] = json!([[0, 0, -1]]);
     assert_problem(&app.post("/v1/feeds", normals.clone()).await, 422, Some("contact_normals"));
     normals.as_object_mut().unwrap().remove("contact_normals");

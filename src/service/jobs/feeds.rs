@@ -76,7 +76,7 @@ pub struct FeedsRequest {
     pub material: Option<String>,
     /// The stock of the layer (required for side milling).
     pub stock: Option<StockInput>,
-    /// `side_milling` (default) or `surface_finishing`.
+    /// `side_milling` (default) or `surface_finishing` (a ball end mill only).
     #[serde(default)]
     pub mode: CutMode,
     /// `cutting_point`, `constant_force` or `both` (constant force capped by the
@@ -208,6 +208,17 @@ pub async fn prepare(pool: &SqlitePool, request: FeedsRequest) -> Result<FeedsPr
         CutMode::SurfaceFinishing => FeedStrategy::CuttingPoint,
     });
     let tool = base.tool.geometry;
+    if request.mode == CutMode::SurfaceFinishing && tool.tool_type != ToolType::Ball {
+        return Err(ApiError::field(
+            if request.tool_id.is_some() { "tool_id" } else { "tool_type" },
+            format!(
+                "surface finishing holds the feed where a ball touches the surface (seed 000 Eq. 1) and needs a ball end mill; tool {} ({}) is a {} end mill",
+                base.tool.id,
+                base.tool.name,
+                tool.tool_type.as_str()
+            ),
+        ));
+    }
     if strategy.needs_force_model() && base.force_model.is_none() {
         return Err(ApiError::field(
             "strategy",
