@@ -94,7 +94,7 @@ fn stock(discs: &[(f64, f64, f64)], slots: &[Slot], ribs: &[Rib]) -> Raster {
                 out.push((0.0, SIDE))
             }
         },
-        |x, y| crate::core::stock::rect_signed_distance(&rect, x, y),
+        |x, y, _| crate::core::stock::rect_signed_distance(&rect, x, y),
     );
     for &(x, y, radius) in discs {
         r.clear_capsule((x, y), (x, y), radius);
@@ -230,7 +230,7 @@ pub(super) fn block_of_40_mm() -> Raster {
                 out.push((-20.0, 20.0))
             }
         },
-        |x, y| crate::core::stock::rect_signed_distance(&rect, x, y),
+        |x, y, _| crate::core::stock::rect_signed_distance(&rect, x, y),
     );
     r
 }

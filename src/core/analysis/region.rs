@@ -91,7 +91,7 @@ pub fn paint(raster: &mut Raster, stock: &[StockRegion], open: &[StockRegion]) {
     for (add, region) in regions {
         match region {
             StockRegion::Pocket(p) => paint_pocket(raster, add, p),
-            _ => raster.paint(add, |y, out| region.row_intervals(y, out), |x, y| region.signed_distance(x, y)),
+            _ => raster.paint(add, |y, out| region.row_intervals(y, out), |x, y, _| region.signed_distance(x, y)),
         }
     }
 }
@@ -104,12 +104,15 @@ fn paint_pocket(raster: &mut Raster, add: bool, p: &Pocket) {
     let reach_mm = (SDF_CLAMP_CELLS + 1.0) * raster.cell_mm();
     let intervals = |y: f64, out: &mut Vec<(f64, f64)>| {
         out.clear();
-        index.row_crossings_from(f64::NEG_INFINITY, y, |x| out.push((x, x)));
+        index.row_crossings(y, |x| out.push((x, x)));
         pair_crossings(out);
     };
-    let distance = |x: f64, y: f64| {
-        let d = index.distance_within(Point::new(x, y), reach_mm);
-        if index.contains(x, y) {
+    // Inside or outside comes from the row's crossings, which the painter has: a ray
+    // cast per band cell would cross every segment to its right on the row.
+    let mut nearest = index.nearest_within(reach_mm);
+    let distance = |x: f64, y: f64, inside: bool| {
+        let d = nearest.distance(Point::new(x, y));
+        if inside {
             d
         } else {
             -d
@@ -137,7 +140,7 @@ mod tests {
             let mut indexed = raster_over(&p, cell);
             paint(&mut indexed, std::slice::from_ref(&region), &[]);
             let mut direct = raster_over(&p, cell);
-            direct.paint(true, |y, out| region.row_intervals(y, out), |x, y| region.signed_distance(x, y));
+            direct.paint(true, |y, out| region.row_intervals(y, out), |x, y, _| region.signed_distance(x, y));
             assert!(indexed.cell_values() == direct.cell_values(), "cells differ");
             assert!(indexed.material_area_mm2() > 0.0);
         }

@@ -60,10 +60,9 @@ impl SegmentIndex {
     }
 
     /// Calls `emit(x)` for each crossing of the row at `y` with the segments (in no
-    /// particular order), under the half-open rule of [`Segment::row_crossings`], from `x`
-    /// on (crossings left of `x_from` may be left out).
-    pub fn row_crossings_from(&self, x_from: f64, y: f64, mut emit: impl FnMut(f64)) {
-        let row = Bounds { x_min: x_from.max(self.x_range.0), y_min: y, x_max: self.x_range.1, y_max: y };
+    /// particular order), under the half-open rule of [`Segment::row_crossings`].
+    pub fn row_crossings(&self, y: f64, mut emit: impl FnMut(f64)) {
+        let row = Bounds { x_min: self.x_range.0, y_min: y, x_max: self.x_range.1, y_max: y };
         // (Also nothing for a NaN bound, or no segments.)
         if row.x_min.partial_cmp(&row.x_max).is_none_or(|o| o == std::cmp::Ordering::Greater) {
             return;
@@ -71,25 +70,75 @@ impl SegmentIndex {
         self.visit(&row, |i| self.segments[i].row_crossings(y, &mut emit));
     }
 
-    /// `true` when `(x, y)` lies inside the loops by the even–odd rule (for a validated
-    /// pocket: inside the outer loop and inside no island, as [`super::Pocket::contains`]).
-    pub fn contains(&self, x: f64, y: f64) -> bool {
-        let mut inside = false;
-        self.row_crossings_from(x, y, |xc| {
-            if xc > x {
-                inside = !inside;
+    /// A query of the distance to the nearest segment within `reach_mm`, fastest for
+    /// points asked for row after row along x (as a raster is painted).
+    pub fn nearest_within(&self, reach_mm: f64) -> NearestWithin<'_> {
+        NearestWithin {
+            index: self,
+            reach_mm,
+            row_y_bits: None,
+            near: Vec::new(),
+            next: 0,
+            active: Vec::new(),
+            last_x: 0.0,
+        }
+    }
+}
+
+/// Distances to the nearest segment of an index, up to a reach. The segments near the
+/// row of the last point are gathered once and slid through in order of x, so a point
+/// costs the segments within reach of it, not a search of the tree: on a contour with
+/// tens of thousands of segments crossing every row, painting's band cells cost a few
+/// segments each.
+pub struct NearestWithin<'a> {
+    index: &'a SegmentIndex,
+    reach_mm: f64,
+    /// The row gathered (the bits of its y), if any.
+    row_y_bits: Option<u64>,
+    /// The segments whose boxes reach the row's band, by the left edge of their box.
+    near: Vec<(f64, usize)>,
+    /// The first of `near` not yet entered.
+    next: usize,
+    /// Entered segments whose box may still reach the points ahead.
+    active: Vec<usize>,
+    /// The x of the last point of the row.
+    last_x: f64,
+}
+
+impl NearestWithin<'_> {
+    /// Distance from `q` to the nearest segment, or the reach when none is nearer.
+    pub fn distance(&mut self, q: Point) -> f64 {
+        let reach = self.reach_mm;
+        // A point on another row, or back along this one, gathers its row afresh.
+        if self.row_y_bits != Some(q.y.to_bits()) || q.x < self.last_x {
+            self.gather_row(q.y);
+        }
+        self.last_x = q.x;
+        let boxes = &self.index.boxes;
+        while let Some(&(x_min, i)) = self.near.get(self.next) {
+            if x_min > q.x + reach {
+                break;
             }
-        });
-        inside
+            self.active.push(i);
+            self.next += 1;
+        }
+        // A box wholly left of the reach stays so for every point ahead on the row.
+        self.active.retain(|&i| boxes[i].x_max >= q.x - reach);
+        // Segments outside the reach's box are farther than the reach: leaving them out
+        // changes no minimum.
+        self.active.iter().fold(reach, |nearest, &i| nearest.min(self.index.segments[i].distance_mm(q)))
     }
 
-    /// Distance from `q` to the nearest segment, or `reach_mm` when none is nearer.
-    pub fn distance_within(&self, q: Point, reach_mm: f64) -> f64 {
-        let around =
-            Bounds { x_min: q.x - reach_mm, y_min: q.y - reach_mm, x_max: q.x + reach_mm, y_max: q.y + reach_mm };
-        let mut nearest = reach_mm;
-        self.visit(&around, |i| nearest = nearest.min(self.segments[i].distance_mm(q)));
-        nearest
+    fn gather_row(&mut self, y: f64) {
+        let reach = self.reach_mm;
+        let (index, near) = (self.index, &mut self.near);
+        near.clear();
+        let band = Bounds { x_min: index.x_range.0, y_min: y - reach, x_max: index.x_range.1, y_max: y + reach };
+        index.visit(&band, |i| near.push((index.boxes[i].x_min, i)));
+        near.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        self.next = 0;
+        self.active.clear();
+        self.row_y_bits = Some(y.to_bits());
     }
 }
 
@@ -99,20 +148,45 @@ mod tests {
     use crate::core::geometry::test_support::rounded_ring;
 
     #[test]
-    fn the_index_answers_as_the_pocket_does_inside_and_near_the_boundary() {
+    fn the_nearest_segment_within_reach_is_found_as_among_all_segments_row_after_row() {
         let p = rounded_ring();
         let index = SegmentIndex::new(std::iter::once(&p.outer).chain(&p.islands), 0.0);
         let reach = 0.7;
-        for i in 0..130 {
-            for j in 0..110 {
+        let mut nearest = index.nearest_within(reach);
+        for j in 0..110 {
+            for i in 0..130 {
                 let (x, y) = (-10.0 + 0.4637 * f64::from(i), -10.0 + 0.4663 * f64::from(j));
-                assert_eq!(index.contains(x, y), p.contains(x, y), "({x}, {y})");
                 let q = Point::new(x, y);
                 let every = p.outer.segments().chain(p.islands.iter().flat_map(Loop::segments));
                 let exact = every.map(|s| s.distance_mm(q)).fold(f64::INFINITY, f64::min);
-                let near = index.distance_within(q, reach);
+                let near = nearest.distance(q);
                 assert!((near - exact.min(reach)).abs() < 1e-12, "({x}, {y}): {near} vs {exact}");
             }
         }
+    }
+
+    #[test]
+    fn points_asked_in_any_order_get_the_same_distances() {
+        let p = rounded_ring();
+        let index = SegmentIndex::new(std::iter::once(&p.outer).chain(&p.islands), 0.0);
+        let reach = 0.7;
+        let (nx, ny) = (60, 50);
+        let point = |k: usize| Point::new(-10.0 + 1.01 * (k % nx) as f64, -10.0 + 1.03 * (k / nx) as f64);
+        let mut rows = index.nearest_within(reach);
+        let along_rows: Vec<f64> = (0..nx * ny).map(|k| rows.distance(point(k))).collect();
+        let mut columns = index.nearest_within(reach);
+        let mut along_columns = vec![0.0; nx * ny];
+        for i in 0..nx {
+            for j in 0..ny {
+                along_columns[j * nx + i] = columns.distance(point(j * nx + i));
+            }
+        }
+        let mut backwards = index.nearest_within(reach);
+        let mut from_the_end = vec![0.0; nx * ny];
+        for k in (0..nx * ny).rev() {
+            from_the_end[k] = backwards.distance(point(k));
+        }
+        assert_eq!(along_rows, along_columns);
+        assert_eq!(along_rows, from_the_end);
     }
 }

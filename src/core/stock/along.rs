@@ -183,7 +183,7 @@ mod tests {
         ) {
             let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 20.0, y_max: 20.0 };
             let mut r = Raster::new(rect, 0.1);
-            r.paint(true, |y, out| if (0.0..20.0).contains(&y) { out.push((0.0, 20.0)) }, |x, y| rect_signed_distance(&rect, x, y));
+            r.paint(true, |y, out| if (0.0..20.0).contains(&y) { out.push((0.0, 20.0)) }, |x, y, _| rect_signed_distance(&rect, x, y));
             for (x, y, radius) in holes {
                 r.clear_capsule((x, y), (x, y), radius);
             }
@@ -210,7 +210,7 @@ mod tests {
         ) {
             let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 20.0, y_max: 20.0 };
             let mut r = Raster::new(rect, 0.1);
-            r.paint(true, |y, out| if (0.0..20.0).contains(&y) { out.push((0.0, 20.0)) }, |x, y| rect_signed_distance(&rect, x, y));
+            r.paint(true, |y, out| if (0.0..20.0).contains(&y) { out.push((0.0, 20.0)) }, |x, y, _| rect_signed_distance(&rect, x, y));
             // Slots along the axes leave walls that are constant along them.
             for (at, half, horizontal) in slots {
                 let (a, b) = if horizontal { ((-5.0, at), (25.0, at)) } else { ((at, -5.0), (at, 25.0)) };

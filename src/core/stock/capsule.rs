@@ -276,7 +276,7 @@ mod tests {
                     out.push((0.0, SIDE))
                 }
             },
-            |x, y| rect_signed_distance(&rect, x, y),
+            |x, y, _| rect_signed_distance(&rect, x, y),
         );
         r
     }

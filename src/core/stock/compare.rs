@@ -124,7 +124,7 @@ mod tests {
     fn block() -> Raster {
         let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 20.0, y_max: 20.0 };
         let mut a = Raster::new(rect, 0.1);
-        a.paint(true, |_, out| out.push((0.0, 20.0)), |x, y| rect_signed_distance(&rect, x, y));
+        a.paint(true, |_, out| out.push((0.0, 20.0)), |x, y, _| rect_signed_distance(&rect, x, y));
         a
     }
 

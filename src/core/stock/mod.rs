@@ -201,14 +201,16 @@ impl Raster {
     }
 
     /// Paints a region as material (`add`) or as removed. `intervals(y, out)` gives the
-    /// sorted, disjoint x-intervals inside the region on the line at `y`; `distance(x, y)`
-    /// its signed distance (positive inside), evaluated only in the band of cells near the
-    /// boundary, so the boundary is placed exactly.
+    /// sorted, disjoint x-intervals inside the region on the line at `y`;
+    /// `distance(x, y, inside)` its signed distance (positive inside), evaluated only in
+    /// the band of cells near the boundary, so the boundary is placed exactly. `inside`
+    /// says whether the intervals hold `(x, y)`: the sign, for a region whose own inside
+    /// test is dear. It is asked row after row (y increasing), along x within a row.
     pub fn paint(
         &mut self,
         add: bool,
         mut intervals: impl FnMut(f64, &mut Vec<(f64, f64)>),
-        distance: impl Fn(f64, f64) -> f64,
+        mut distance: impl FnMut(f64, f64, bool) -> f64,
     ) {
         self.end_disc_cleared = false;
         let (nx, ny) = (self.nx, self.ny);
@@ -240,7 +242,7 @@ impl Raster {
             for i in 0..nx {
                 let k = j * nx + i;
                 let v = if near[k] {
-                    self.encode(distance(self.col_x(i), self.row_y(j)))
+                    self.encode(distance(self.col_x(i), self.row_y(j), inside[k]))
                 } else if inside[k] {
                     FULL
                 } else {
@@ -367,7 +369,7 @@ mod tests {
                     out.push((0.0, side))
                 }
             },
-            |x, y| rect_signed_distance(&Rect { x_min: 0.0, y_min: 0.0, x_max: side, y_max: side }, x, y),
+            |x, y, _| rect_signed_distance(&Rect { x_min: 0.0, y_min: 0.0, x_max: side, y_max: side }, x, y),
         );
         r
     }
