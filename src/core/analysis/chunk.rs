@@ -179,6 +179,7 @@ impl Chunk {
 mod tests {
     use super::*;
     use crate::core::analysis::region::{paint, StockRegion};
+    use crate::core::progress::NoProgress;
     use crate::core::stock::{Raster, Rect};
 
     const RADIUS: f64 = 5.0;
@@ -188,7 +189,7 @@ mod tests {
     fn block() -> Vec<Slice> {
         let rect = Rect { x_min: -20.0, y_min: -20.0, x_max: 20.0, y_max: 20.0 };
         let mut raster = Raster::new(rect, CELL);
-        paint(&mut raster, &[StockRegion::Rect(rect)], &[]);
+        paint(&mut raster, &[StockRegion::Rect(rect)], &[], &NoProgress).expect("nothing cancels the painting");
         vec![Slice::new(0.0, -10.0, raster)]
     }
 

@@ -261,7 +261,9 @@ mod tests {
         }
         let path = Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] };
         let levels = slice_levels(&path, -6.0, 0.0);
-        let mut slices = build(&levels, rect, 0.1, |raster| paint(raster, &[StockRegion::Rect(rect)], &[]));
+        let mut slices =
+            build(&levels, rect, 0.1, |raster| paint(raster, &[StockRegion::Rect(rect)], &[], &NoProgress))
+                .expect("nothing cancels the painting");
         assert!(slices.len() > 4, "{} slices", slices.len());
         let cutter = Cutter {
             radius_mm: 2.0,

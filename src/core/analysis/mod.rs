@@ -202,7 +202,8 @@ pub fn analyze_with(
     let bounds = region::union_bounds(&spec.stock);
     let levels = slices::slice_levels(path, spec.z_bottom, spec.z_top);
     let (spacing, cell) = resolution(spec, bounds, levels.len() - 1);
-    let mut slices = slices::build(&levels, bounds, cell, |raster| region::paint(raster, &spec.stock, &spec.open));
+    let mut slices =
+        slices::build(&levels, bounds, cell, |raster| region::paint(raster, &spec.stock, &spec.open, progress))?;
     let initial: Vec<f64> = slices.iter().map(|s| s.raster.material_area_mm2()).collect();
 
     let total_length: f64 = path.moves.iter().map(sampling::move_length).sum();

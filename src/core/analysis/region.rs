@@ -2,7 +2,9 @@
 
 use crate::core::geometry::contour::pair_crossings;
 use crate::core::geometry::{Pocket, Point, SegmentIndex};
+use crate::core::progress::Progress;
 use crate::core::stock::{rect_signed_distance, Raster, Rect, SDF_CLAMP_CELLS};
+use crate::core::CoreError;
 
 /// A region of the XY plane.
 #[derive(Debug, Clone, PartialEq)]
@@ -85,21 +87,38 @@ pub fn union_bounds(regions: &[StockRegion]) -> Rect {
     )
 }
 
-/// Paints `stock` as material and clears `open`.
-pub fn paint(raster: &mut Raster, stock: &[StockRegion], open: &[StockRegion]) {
+/// Paints `stock` as material and clears `open`; stops (`Err(Cancelled)`) as soon as
+/// `progress` is cancelled, since a contour of many segments on a large raster takes
+/// seconds.
+pub fn paint(
+    raster: &mut Raster,
+    stock: &[StockRegion],
+    open: &[StockRegion],
+    progress: &dyn Progress,
+) -> Result<(), CoreError> {
     let regions = stock.iter().map(|r| (true, r)).chain(open.iter().map(|r| (false, r)));
     for (add, region) in regions {
-        match region {
-            StockRegion::Pocket(p) => paint_pocket(raster, add, p),
-            _ => raster.paint(add, |y, out| region.row_intervals(y, out), |x, y, _| region.signed_distance(x, y)),
+        let stopped = || progress.cancelled();
+        let painted = match region {
+            StockRegion::Pocket(p) => paint_pocket(raster, add, p, stopped),
+            _ => raster.paint_until(
+                add,
+                |y, out| region.row_intervals(y, out),
+                |x, y, _| region.signed_distance(x, y),
+                stopped,
+            ),
+        };
+        if !painted {
+            return Err(CoreError::Cancelled);
         }
     }
+    Ok(())
 }
 
 /// Paints a pocket through an index of its segments: each row and each band cell visits
 /// only the segments near it. The same cells as [`StockRegion::signed_distance`] gives:
 /// distances beyond the raster's clamp are stored as the clamp either way.
-fn paint_pocket(raster: &mut Raster, add: bool, p: &Pocket) {
+fn paint_pocket(raster: &mut Raster, add: bool, p: &Pocket, stopped: impl FnMut() -> bool) -> bool {
     let index = SegmentIndex::new(std::iter::once(&p.outer).chain(&p.islands), 0.0);
     let reach_mm = (SDF_CLAMP_CELLS + 1.0) * raster.cell_mm();
     let intervals = |y: f64, out: &mut Vec<(f64, f64)>| {
@@ -118,13 +137,41 @@ fn paint_pocket(raster: &mut Raster, add: bool, p: &Pocket) {
             -d
         }
     };
-    raster.paint(add, intervals, distance);
+    raster.paint_until(add, intervals, distance, stopped)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::core::geometry::{Loop, Vertex};
+    use crate::core::progress::NoProgress;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// Cancelled once it has been asked `after` times.
+    struct CancelledAfter {
+        asked: AtomicUsize,
+        after: usize,
+    }
+
+    impl Progress for CancelledAfter {
+        fn report(&self, _fraction: f64) {}
+        fn cancelled(&self) -> bool {
+            self.asked.fetch_add(1, Ordering::Relaxed) >= self.after
+        }
+    }
+
+    #[test]
+    fn painting_stops_part_of_the_way_when_the_job_is_cancelled() {
+        let p = crate::core::geometry::test_support::rounded_ring();
+        let mut raster = raster_over(&p, 0.05);
+        let cancel = CancelledAfter { asked: AtomicUsize::new(0), after: 10 };
+        let stopped = paint(&mut raster, &[StockRegion::Pocket(p.clone())], &[], &cancel);
+        assert!(matches!(stopped, Err(CoreError::Cancelled)), "{stopped:?}");
+        assert_eq!(cancel.asked.load(Ordering::Relaxed), 11, "asked once a row until cancelled");
+        let mut whole = raster_over(&p, 0.05);
+        paint(&mut whole, &[StockRegion::Pocket(p.clone())], &[], &NoProgress).expect("nothing cancels it");
+        assert!((whole.material_area_mm2() - p.area()).abs() < 0.01 * p.area());
+    }
 
     fn raster_over(p: &Pocket, cell_mm: f64) -> Raster {
         let b = p.bounds();
@@ -138,7 +185,7 @@ mod tests {
         for (p, cell) in [(ring, 0.1), (border, 0.2)] {
             let region = StockRegion::Pocket(p.clone());
             let mut indexed = raster_over(&p, cell);
-            paint(&mut indexed, std::slice::from_ref(&region), &[]);
+            paint(&mut indexed, std::slice::from_ref(&region), &[], &NoProgress).expect("nothing cancels it");
             let mut direct = raster_over(&p, cell);
             direct.paint(true, |y, out| region.row_intervals(y, out), |x, y, _| region.signed_distance(x, y));
             assert!(indexed.cell_values() == direct.cell_values(), "cells differ");
@@ -160,7 +207,7 @@ mod tests {
         let outer = Loop::new(v.into_iter().map(|(x, y)| Vertex::new(x, y, 0.0)).collect());
         let comb = Pocket::new(outer, vec![]).expect("valid");
         let mut raster = raster_over(&comb, 0.25);
-        paint(&mut raster, &[StockRegion::Pocket(comb.clone())], &[]);
+        paint(&mut raster, &[StockRegion::Pocket(comb.clone())], &[], &NoProgress).expect("nothing cancels it");
         let (painted, exact) = (raster.material_area_mm2(), comb.area());
         assert!((painted - exact).abs() < 0.01 * exact, "{painted} vs {exact} mm²");
     }

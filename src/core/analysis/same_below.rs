@@ -114,6 +114,7 @@ mod tests {
     use super::*;
     use crate::core::analysis::region::{paint, StockRegion};
     use crate::core::analysis::slices::build;
+    use crate::core::progress::NoProgress;
     use crate::core::stock::{CapsuleRows, Rect};
 
     const RADIUS: f64 = 2.0;
@@ -126,7 +127,8 @@ mod tests {
 
     fn two_slices() -> Vec<Slice> {
         let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 40.0, y_max: 40.0 };
-        build(&[0.0, -5.0, -10.0], rect, 0.1, |raster| paint(raster, &[StockRegion::Rect(rect)], &[]))
+        build(&[0.0, -5.0, -10.0], rect, 0.1, |raster| paint(raster, &[StockRegion::Rect(rect)], &[], &NoProgress))
+            .expect("nothing cancels the painting")
     }
 
     #[test]

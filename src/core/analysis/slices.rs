@@ -12,6 +12,7 @@
 use super::sampling::move_length;
 use crate::core::stock::{BlockRange, CapsuleRows, Raster, Rect};
 use crate::core::toolpath::{Motion, Move, Plane, Toolpath};
+use crate::core::CoreError;
 
 /// z levels closer than this are one level, mm.
 pub const MIN_SLICE_MM: f64 = 0.05;
@@ -153,11 +154,16 @@ fn cuts_flat(m: &Move) -> bool {
     in_xy && (m.end.z - m.start.z).abs() <= Z_CONTACT_EPS_MM
 }
 
-/// Builds the slices with material painted by `paint`.
-pub fn build(levels: &[f64], bounds: Rect, cell_mm: f64, paint: impl Fn(&mut Raster)) -> Vec<Slice> {
+/// Builds the slices with material painted by `paint` (whose error it returns).
+pub fn build(
+    levels: &[f64],
+    bounds: Rect,
+    cell_mm: f64,
+    paint: impl FnOnce(&mut Raster) -> Result<(), CoreError>,
+) -> Result<Vec<Slice>, CoreError> {
     let mut first = Raster::new(bounds, cell_mm);
-    paint(&mut first);
-    levels.windows(2).map(|w| Slice::new(w[0], w[1], first.clone())).collect()
+    paint(&mut first)?;
+    Ok(levels.windows(2).map(|w| Slice::new(w[0], w[1], first.clone())).collect())
 }
 
 /// How many slices (from the top) a tool tip at `z` cuts.

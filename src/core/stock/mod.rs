@@ -209,14 +209,30 @@ impl Raster {
     pub fn paint(
         &mut self,
         add: bool,
+        intervals: impl FnMut(f64, &mut Vec<(f64, f64)>),
+        distance: impl FnMut(f64, f64, bool) -> f64,
+    ) {
+        // Never stopped, so always painted whole.
+        let _painted = self.paint_until(add, intervals, distance, || false);
+    }
+
+    /// As [`Raster::paint`], asking `stopped` before each row: `false` when it stopped
+    /// part of the way (the raster is then partly painted, for dropping).
+    pub fn paint_until(
+        &mut self,
+        add: bool,
         mut intervals: impl FnMut(f64, &mut Vec<(f64, f64)>),
         mut distance: impl FnMut(f64, f64, bool) -> f64,
-    ) {
+        mut stopped: impl FnMut() -> bool,
+    ) -> bool {
         self.end_disc_cleared = false;
         let (nx, ny) = (self.nx, self.ny);
         let mut inside = vec![false; nx * ny];
         let mut out = Vec::new();
         for j in 0..ny {
+            if stopped() {
+                return false;
+            }
             out.clear();
             intervals(self.row_y(j), &mut out);
             for &(lo, hi) in &out {
@@ -239,6 +255,9 @@ impl Raster {
             }
         }
         for j in 0..ny {
+            if stopped() {
+                return false;
+            }
             for i in 0..nx {
                 let k = j * nx + i;
                 let v = if near[k] {
@@ -253,6 +272,7 @@ impl Raster {
         }
         self.recount();
         self.version += 1;
+        true
     }
 
     /// Counts the material cells of every block and tile again, from the cells.
