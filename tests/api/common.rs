@@ -162,3 +162,13 @@ pub fn assert_problem(a: &Answer, status: u16, field: Option<&str>) {
 pub fn close(actual: &Value, expected: f64, tol: f64) -> bool {
     actual.as_f64().is_some_and(|a| (a - expected).abs() <= tol)
 }
+
+/// A polygon of `n` vertices on a circle of radius 40 mm.
+pub fn many_sided(n: usize) -> Vec<[f64; 2]> {
+    (0..n)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / n as f64;
+            [40.0 * a.cos(), 40.0 * a.sin()]
+        })
+        .collect()
+}

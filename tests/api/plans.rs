@@ -2,7 +2,7 @@
 //! candidate tools, layers, constant-force feeds, time, tool life, cost, tuning and the
 //! conventional baseline; the program parses, gouges nothing and clears the cavity.
 
-use crate::common::{assert_problem, TestApp};
+use crate::common::{assert_problem, many_sided, TestApp};
 use dieplan::core::nc::{parse_gcode, ParseOptions};
 use serde_json::{json, Value};
 
@@ -143,6 +143,11 @@ async fn bad_plan_requests_are_refused_naming_the_field() {
         ),
         // 100 km deep: thousands of layers for every candidate, refused before any is built.
         (json!({"contour": case_study_contour(), "z_top": 0, "z_bottom": -1e5}), "z_bottom"),
+        (json!({"contour": {"outer": many_sided(10_001)}, "z_top": 0, "z_bottom": -10}), "contour"),
+        (
+            json!({"layers": [{"contour": {"outer": many_sided(10_001)}, "z_top": 0, "z_bottom": -10}]}),
+            "layers[0].contour",
+        ),
     ];
     for (body, field) in cases {
         let a = app.post("/v1/plans", body).await;

@@ -1,7 +1,7 @@
 //! `POST /v1/trochoids`: trochoids and z-cut division inserted where a pocket's path
 //! overloads the tool, checked by the full simulation, written as G-code our parser reads.
 
-use crate::common::{assert_problem, TestApp};
+use crate::common::{assert_problem, many_sided, TestApp};
 use dieplan::core::analysis::sampling::move_length;
 use dieplan::core::nc::{parse_gcode, toolpath_from_json, ParseOptions};
 use dieplan::core::toolpath::Motion;
@@ -132,6 +132,7 @@ async fn bad_trochoid_requests_are_refused_naming_the_field() {
         (with("dxf", json!("0\nEOF\n")), "contour"),
         (with("contour", json!({"outer": [[0, 0], [10, 10], [10, 0], [0, 10]]})), "contour.outer"),
         (with("contour", json!({"outer": [[0, 0], [8, 0], [8, 8], [0, 8]]})), "tool_radius_mm"),
+        (with("contour", json!({"outer": many_sided(10_001)})), "contour"),
         (with("roughing", json!({"spindle_rpm": 4800, "fz_mm": 0.1, "rd_mm": -1, "ad_mm": 10})), "roughing.rd_mm"),
         (with("diameter_mm", json!(-3)), "diameter_mm"),
         (with("loop_radius_mm", json!(1)), "loop_radius_mm"),

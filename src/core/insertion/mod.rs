@@ -87,10 +87,33 @@ pub fn base_path(pocket: &Pocket, spec: &InsertionSpec) -> Result<Toolpath, Core
     Ok(program(moves))
 }
 
-/// Checks what can be checked before planning: the spec, and (without a given path) that
-/// the tool fits in the pocket at all.
+/// Most segments a pocket may have (outer loop and islands together) to be planned. The
+/// planners offset the contour dozens of times, and each offset loop can keep as many
+/// segments: a saw-tooth edge of 8 000 segments takes 20 s for one contour-parallel path,
+/// and the plan and its check take several. **Assumed**: far above a die's contour
+/// (`border.dxf` has 8 segments), and low enough that the check before a job is queued
+/// stays well within a request.
+pub const MAX_PLANNED_SEGMENTS: usize = 10_000;
+
+/// Refuses (naming `field`) a pocket with more segments than the planners take.
+pub fn check_pocket_size(pocket: &Pocket, field: &str) -> Result<(), CoreError> {
+    let segments: usize = std::iter::once(&pocket.outer).chain(&pocket.islands).map(|l| l.vertices.len()).sum();
+    if segments > MAX_PLANNED_SEGMENTS {
+        return Err(CoreError::invalid(
+            field,
+            format!(
+                "has {segments} segments (outer loop and islands); the planners take at most {MAX_PLANNED_SEGMENTS}: simplify the contour (fewer, longer lines, or arcs)"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Checks what can be checked before planning: the spec, the size of the pocket, and
+/// (without a given path) that the tool fits in the pocket at all.
 pub fn check_plan(pocket: &Pocket, spec: &InsertionSpec, existing: Option<&Toolpath>) -> Result<(), CoreError> {
     spec.validate()?;
+    check_pocket_size(pocket, "contour")?;
     let generated;
     let base = match existing {
         Some(path) => path,

@@ -167,3 +167,21 @@ fn a_circular_pocket_is_opened_from_its_centre_by_a_helix_and_a_limit_keeping_sp
     assert!(opening.pitch_min_mm.unwrap() < 0.3 && opening.pitch_max_mm.unwrap() <= 0.5 + 1e-12, "{opening:?}");
     assert!(plan.verification.passed, "{:?}", plan.verification);
 }
+
+/// A polygon of `n` vertices on a circle of radius 40 mm.
+fn polygon(n: usize) -> Pocket {
+    let vertices = (0..n)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / n as f64;
+            Vertex::new(40.0 * a.cos(), 40.0 * a.sin(), 0.0)
+        })
+        .collect();
+    Pocket::new(Loop::new(vertices), vec![]).expect("a convex polygon is a valid pocket")
+}
+
+#[test]
+fn a_pocket_of_more_segments_than_the_planners_take_is_refused_naming_the_field() {
+    assert!(check_pocket_size(&polygon(MAX_PLANNED_SEGMENTS), "contour").is_ok());
+    let e = check_pocket_size(&polygon(MAX_PLANNED_SEGMENTS + 1), "layers[2].contour").unwrap_err().to_string();
+    assert!(e.starts_with("layers[2].contour") && e.contains("10001 segments"), "{e}");
+}

@@ -60,6 +60,13 @@ pub fn check_process(
 ) -> Result<(), CoreError> {
     let cavity = input.whole();
     cavity.validate()?;
+    for (i, layer) in cavity.layers.iter().enumerate() {
+        let field = match input {
+            CavityInput::Layers(_) => format!("layers[{i}].contour"),
+            CavityInput::Depth { .. } => "contour".to_string(),
+        };
+        crate::core::insertion::check_pocket_size(&layer.pocket, &field)?;
+    }
     options.validate()?;
     if candidates.is_empty() {
         return Err(CoreError::invalid("diameters_mm", "no candidate tool to plan with"));
