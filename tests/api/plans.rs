@@ -143,6 +143,7 @@ async fn bad_plan_requests_are_refused_naming_the_field() {
         ),
         // 100 km deep: thousands of layers for every candidate, refused before any is built.
         (json!({"contour": case_study_contour(), "z_top": 0, "z_bottom": -1e5}), "z_bottom"),
+        (json!({"contour": case_study_contour(), "z_top": 0, "z_bottom": -1e9}), "z_bottom"),
         (json!({"contour": {"outer": many_sided(10_001)}, "z_top": 0, "z_bottom": -10}), "contour"),
         (
             json!({"layers": [{"contour": {"outer": many_sided(10_001)}, "z_top": 0, "z_bottom": -10}]}),

@@ -120,15 +120,23 @@ impl CavityInput {
         match self {
             CavityInput::Layers(c) => Ok(c.clone()),
             CavityInput::Depth { pocket, z_top_mm, z_bottom_mm } => {
-                let n = layer_count_by_depth(*z_top_mm, *z_bottom_mm, rough_ad_mm, last_ad_mm)?;
-                if n > MAX_CAVITY_LAYERS {
-                    return Err(CoreError::invalid(
+                let too_deep = |layers: String| {
+                    let depth = z_top_mm - z_bottom_mm;
+                    CoreError::invalid(
                         "z_bottom",
                         format!(
-                            "{} mm deep at a rough axial depth of {rough_ad_mm} mm is {n} layers; at most {MAX_CAVITY_LAYERS}",
-                            z_top_mm - z_bottom_mm
+                            "{depth} mm deep at a rough axial depth of {rough_ad_mm} mm is {layers} layers; at most {MAX_CAVITY_LAYERS}"
                         ),
-                    ));
+                    )
+                };
+                match layer_count_by_depth(*z_top_mm, *z_bottom_mm, rough_ad_mm, last_ad_mm) {
+                    Ok(n) if n > MAX_CAVITY_LAYERS => return Err(too_deep(n.to_string())),
+                    Ok(_) => {}
+                    // Past the most levels a depth may be cut in: the count itself is refused.
+                    Err(_) if (z_top_mm - z_bottom_mm) > last_ad_mm => {
+                        return Err(too_deep(format!("more than {}", crate::core::cycles::levels::MAX_LEVELS)))
+                    }
+                    Err(e) => return Err(e),
                 }
                 layers_by_depth(pocket, *z_top_mm, *z_bottom_mm, rough_ad_mm, last_ad_mm)
             }
@@ -294,9 +302,12 @@ mod tests {
         let deepest = 10.0 * (MAX_CAVITY_LAYERS - 1) as f64 + 5.0;
         let fits = CavityInput::Depth { pocket: pocket.clone(), z_top_mm: 0.0, z_bottom_mm: -deepest };
         assert_eq!(fits.layers_for(10.0, 5.0).unwrap().layers.len(), MAX_CAVITY_LAYERS);
-        let too_deep = CavityInput::Depth { pocket, z_top_mm: 0.0, z_bottom_mm: -1e5 };
+        let too_deep = CavityInput::Depth { pocket: pocket.clone(), z_top_mm: 0.0, z_bottom_mm: -1e5 };
         let e = too_deep.layers_for(10.0, 5.0).unwrap_err().to_string();
         assert!(e.starts_with("z_bottom") && e.contains("10001 layers"), "{e}");
+        let past_counting = CavityInput::Depth { pocket, z_top_mm: 0.0, z_bottom_mm: -1e9 };
+        let e = past_counting.layers_for(10.0, 5.0).unwrap_err().to_string();
+        assert!(e.starts_with("z_bottom") && e.contains("more than 100000 layers"), "{e}");
     }
 
     #[test]
