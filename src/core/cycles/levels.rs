@@ -12,6 +12,12 @@ pub const DEFAULT_ZCUT_AD_MM: f64 = 2.5;
 /// Most levels one depth is divided into.
 pub const MAX_LEVELS: usize = 100_000;
 
+/// `⌈depth / max_ad⌉`, at least 1, unbounded (for a positive `max_ad_mm`): a depth that is
+/// a whole number of steps (to rounding) gets exactly that many.
+pub fn step_count(depth_mm: f64, max_ad_mm: f64) -> f64 {
+    (depth_mm / max_ad_mm - LENGTH_EPS_MM / max_ad_mm).ceil().max(1.0)
+}
+
 /// How many passes [`z_levels`] makes: `⌈depth / max_ad⌉`, at least 1; an error naming
 /// `max_ad_mm` when that is more than [`MAX_LEVELS`].
 pub fn level_count(z_top_mm: f64, z_bottom_mm: f64, max_ad_mm: f64) -> Result<usize, CoreError> {
@@ -22,9 +28,7 @@ pub fn level_count(z_top_mm: f64, z_bottom_mm: f64, max_ad_mm: f64) -> Result<us
     if depth <= LENGTH_EPS_MM {
         return Err(CoreError::invalid("z_bottom_mm", "must be below z_top_mm"));
     }
-    // A depth that is a whole number of steps (to rounding) gets exactly that many.
-    let ratio = depth / max_ad_mm;
-    let n = (ratio - LENGTH_EPS_MM / max_ad_mm).ceil().max(1.0);
+    let n = step_count(depth, max_ad_mm);
     if n > MAX_LEVELS as f64 {
         return Err(CoreError::invalid("max_ad_mm", format!("divides the depth into more than {MAX_LEVELS} levels")));
     }

@@ -1,7 +1,7 @@
 //! The cavity a process plan machines: layers, each a pocket contour between two heights
 //! (seed 002 §2.2, seed 004 Table 1), and what limits the tools that can cut it.
 
-use crate::core::error::require_finite;
+use crate::core::error::{require_finite, require_positive};
 use crate::core::geometry::Pocket;
 use crate::core::tolerance::LENGTH_EPS_MM;
 use crate::core::CoreError;
@@ -120,23 +120,15 @@ impl CavityInput {
         match self {
             CavityInput::Layers(c) => Ok(c.clone()),
             CavityInput::Depth { pocket, z_top_mm, z_bottom_mm } => {
-                let too_deep = |layers: String| {
-                    let depth = z_top_mm - z_bottom_mm;
-                    CoreError::invalid(
+                let n = layer_count_by_depth(*z_top_mm, *z_bottom_mm, rough_ad_mm, last_ad_mm)?;
+                if n > MAX_CAVITY_LAYERS as f64 {
+                    return Err(CoreError::invalid(
                         "z_bottom",
                         format!(
-                            "{depth} mm deep at a rough axial depth of {rough_ad_mm} mm is {layers} layers; at most {MAX_CAVITY_LAYERS}"
+                            "{} mm deep at a rough axial depth of {rough_ad_mm} mm is {n} layers; at most {MAX_CAVITY_LAYERS}",
+                            z_top_mm - z_bottom_mm
                         ),
-                    )
-                };
-                match layer_count_by_depth(*z_top_mm, *z_bottom_mm, rough_ad_mm, last_ad_mm) {
-                    Ok(n) if n > MAX_CAVITY_LAYERS => return Err(too_deep(n.to_string())),
-                    Ok(_) => {}
-                    // Past the most levels a depth may be cut in: the count itself is refused.
-                    Err(_) if (z_top_mm - z_bottom_mm) > last_ad_mm => {
-                        return Err(too_deep(format!("more than {}", crate::core::cycles::levels::MAX_LEVELS)))
-                    }
-                    Err(e) => return Err(e),
+                    ));
                 }
                 layers_by_depth(pocket, *z_top_mm, *z_bottom_mm, rough_ad_mm, last_ad_mm)
             }
@@ -154,19 +146,21 @@ impl CavityInput {
     }
 }
 
-/// How many layers [`layers_by_depth`] makes, without making them.
+/// How many layers [`layers_by_depth`] makes, without making them (however many that is).
 pub fn layer_count_by_depth(
     z_top_mm: f64,
     z_bottom_mm: f64,
     rough_ad_mm: f64,
     last_ad_mm: f64,
-) -> Result<usize, CoreError> {
+) -> Result<f64, CoreError> {
     require_finite("z_top_mm", z_top_mm)?;
     require_finite("z_bottom_mm", z_bottom_mm)?;
-    if z_top_mm - z_bottom_mm <= last_ad_mm + LENGTH_EPS_MM {
-        return Ok(1);
+    require_positive("rough_ad_mm", rough_ad_mm)?;
+    let depth = z_top_mm - z_bottom_mm;
+    if depth <= last_ad_mm + LENGTH_EPS_MM {
+        return Ok(1.0);
     }
-    Ok(crate::core::cycles::levels::level_count(z_top_mm, z_bottom_mm + last_ad_mm, rough_ad_mm)? + 1)
+    Ok(crate::core::cycles::levels::step_count(depth - last_ad_mm, rough_ad_mm) + 1.0)
 }
 
 /// One contour cut to a depth: layers of the rough axial depth `rough_ad_mm` (equal, at
@@ -292,7 +286,7 @@ mod tests {
         let pocket = rounded_box(90.0, 70.0, 8.0);
         for depth in [1.0, 5.0, 5.0 + 1e-12, 7.5, 15.0, 32.0, 35.0, 35.1, 250.0] {
             let made = layers_by_depth(&pocket, 0.0, -depth, 10.0, 5.0).unwrap().layers.len();
-            assert_eq!(layer_count_by_depth(0.0, -depth, 10.0, 5.0).unwrap(), made, "{depth} mm deep");
+            assert_eq!(layer_count_by_depth(0.0, -depth, 10.0, 5.0).unwrap() as usize, made, "{depth} mm deep");
         }
     }
 
@@ -307,7 +301,7 @@ mod tests {
         assert!(e.starts_with("z_bottom") && e.contains("10001 layers"), "{e}");
         let past_counting = CavityInput::Depth { pocket, z_top_mm: 0.0, z_bottom_mm: -1e9 };
         let e = past_counting.layers_for(10.0, 5.0).unwrap_err().to_string();
-        assert!(e.starts_with("z_bottom") && e.contains("more than 100000 layers"), "{e}");
+        assert!(e.starts_with("z_bottom") && e.contains("100000001 layers"), "{e}");
     }
 
     #[test]
