@@ -121,7 +121,7 @@ async fn bad_plan_requests_are_refused_naming_the_field() {
             json!({"contour": case_study_contour(), "z_top": 0, "z_bottom": -10, "target_consumption": 2}),
             "target_consumption",
         ),
-        (json!({"contour": {"outer": [[0, 0], [10, 0]]}, "z_top": 0, "z_bottom": -10}), "contour.outer.vertices[0]"),
+        (json!({"contour": {"outer": [[0, 0], [10, 0]]}, "z_top": 0, "z_bottom": -10}), "contour.outer[0]"),
         (json!({"dxf": "0\nSECTION\n2\nHEADER\n0\nENDSEC\n0\nEOF\n", "z_top": 0, "z_bottom": -10}), "dxf"),
         (
             json!({"layers": [{"contour": case_study_contour(), "z_top": 0, "z_bottom": -10},

@@ -154,7 +154,7 @@ impl Loop {
     }
 
     /// Checks the loop (see [`super::validate::validate_loop`]); `field` names it in errors,
-    /// e.g. `outer` gives `outer.vertices[3]`.
+    /// e.g. `outer` gives `outer[3]`.
     pub fn validate(&self, field: &str) -> Result<(), CoreError> {
         super::validate::validate_loop(self, field)
     }

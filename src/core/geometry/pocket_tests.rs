@@ -95,7 +95,7 @@ fn an_invalid_island_is_named_by_its_index_and_vertex() {
         Vertex::new(1.0, 3.0, 0.0),
     ]);
     let err = Pocket::new(Loop::rectangle(0.0, 0.0, 10.0, 10.0), vec![bow]).unwrap_err();
-    assert_eq!(field_and_reason(err).0, "islands[0].vertices[0]");
+    assert_eq!(field_and_reason(err).0, "islands[0][0]");
 }
 
 #[test]
@@ -194,7 +194,7 @@ fn a_pocket_deserialises_only_when_valid() {
     let bad = serde_json::from_str::<Pocket>(
         r#"{"outer":{"vertices":[{"x":0,"y":0},{"x":10,"y":10},{"x":10,"y":0},{"x":0,"y":10}]}}"#,
     );
-    assert!(bad.unwrap_err().to_string().contains("outer.vertices[0]"));
+    assert!(bad.unwrap_err().to_string().contains("outer[0]"));
 }
 
 /// Midpoint-rule integral of the interval lengths over `rows` rows.

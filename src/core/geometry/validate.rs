@@ -8,7 +8,8 @@ use super::segment_index::SegmentIndex;
 use super::{fmt_point, MIN_LOOP_AREA_MM2, MIN_SEGMENT_LENGTH_MM, POINT_EPS_MM};
 use crate::core::error::CoreError;
 
-/// Checks that `lp` is a simple closed contour; errors name `{field}.vertices[i]`.
+/// Checks that `lp` is a simple closed contour; errors name vertex i `{field}[i]` (the
+/// loop's JSON array of vertices is `field`), or `field` for the loop as a whole.
 ///
 /// At least 2 vertices (2 only with a bulge), finite coordinates and bulges, no segment
 /// shorter than [`MIN_SEGMENT_LENGTH_MM`], no two segments meeting other than adjacent ones
@@ -16,12 +17,9 @@ use crate::core::error::CoreError;
 /// least [`MIN_LOOP_AREA_MM2`].
 pub fn validate_loop(lp: &Loop, field: &str) -> Result<(), CoreError> {
     let n = lp.vertices.len();
-    let at = |i: usize| format!("{field}.vertices[{i}]");
+    let at = |i: usize| format!("{field}[{i}]");
     if n < 2 {
-        return Err(CoreError::invalid(
-            format!("{field}.vertices"),
-            format!("a loop needs at least 2 vertices, got {n}"),
-        ));
+        return Err(CoreError::invalid(field.to_string(), format!("a loop needs at least 2 vertices, got {n}")));
     }
     for (i, v) in lp.vertices.iter().enumerate() {
         if !(v.x.is_finite() && v.y.is_finite() && v.bulge.is_finite()) {
@@ -43,7 +41,7 @@ pub fn validate_loop(lp: &Loop, field: &str) -> Result<(), CoreError> {
             return Err(CoreError::invalid(
                 at(i),
                 format!(
-                    "segment {i} from vertices[{i}] to vertices[{}] has zero length ({chord:e} mm < {MIN_SEGMENT_LENGTH_MM:e} mm)",
+                    "segment {i} from vertex {i} to vertex {} has zero length ({chord:e} mm < {MIN_SEGMENT_LENGTH_MM:e} mm)",
                     (i + 1) % n
                 ),
             ));
@@ -54,7 +52,7 @@ pub fn validate_loop(lp: &Loop, field: &str) -> Result<(), CoreError> {
         return Err(CoreError::invalid(
             at(i),
             format!(
-                "the loop intersects itself: segment {i} (vertices[{i}] → vertices[{}]) and segment {j} (vertices[{j}] → vertices[{}]) {how} at {}",
+                "the loop intersects itself: segment {i} (vertex {i} → vertex {}) and segment {j} (vertex {j} → vertex {}) {how} at {}",
                 (i + 1) % n,
                 (j + 1) % n,
                 fmt_point(point)
@@ -63,10 +61,7 @@ pub fn validate_loop(lp: &Loop, field: &str) -> Result<(), CoreError> {
     }
     let area = lp.signed_area();
     if area.abs() < MIN_LOOP_AREA_MM2 {
-        return Err(CoreError::invalid(
-            format!("{field}.vertices"),
-            format!("the loop encloses no area ({area:e} mm²)"),
-        ));
+        return Err(CoreError::invalid(field.to_string(), format!("the loop encloses no area ({area:e} mm²)")));
     }
     Ok(())
 }
@@ -184,7 +179,7 @@ mod tests {
         // Tooth 7 000's tip rises through the next tooth's lower edge.
         points[4 * 7_000 + 1].1 += 1.2;
         let (field, reason) = field_and_reason(lp(&points).validate("outer").unwrap_err());
-        assert_eq!(field, "outer.vertices[28000]");
+        assert_eq!(field, "outer[28000]");
         assert!(reason.contains("segment 28000 "), "{reason}");
     }
 
@@ -192,9 +187,9 @@ mod tests {
     fn a_bow_tie_is_refused_naming_the_two_crossing_segments_and_the_point() {
         let bow = lp(&[(0.0, 0.0, 0.0), (10.0, 10.0, 0.0), (10.0, 0.0, 0.0), (0.0, 10.0, 0.0)]);
         let (field, reason) = field_and_reason(bow.validate("outer").unwrap_err());
-        assert_eq!(field, "outer.vertices[0]");
-        assert!(reason.contains("segment 0 (vertices[0] → vertices[1])"), "{reason}");
-        assert!(reason.contains("segment 2 (vertices[2] → vertices[3])"), "{reason}");
+        assert_eq!(field, "outer[0]");
+        assert!(reason.contains("segment 0 (vertex 0 → vertex 1)"), "{reason}");
+        assert!(reason.contains("segment 2 (vertex 2 → vertex 3)"), "{reason}");
         assert!(reason.contains("at (5, 5)"), "{reason}");
     }
 
@@ -211,16 +206,16 @@ mod tests {
     #[test]
     fn too_few_vertices_non_finite_values_and_zero_length_segments_are_refused() {
         let (field, _) = field_and_reason(lp(&[(0.0, 0.0, 0.0)]).validate("islands[1]").unwrap_err());
-        assert_eq!(field, "islands[1].vertices");
+        assert_eq!(field, "islands[1]");
         let two_lines = lp(&[(0.0, 0.0, 0.0), (1.0, 0.0, 0.0)]);
         let (field, reason) = field_and_reason(two_lines.validate("outer").unwrap_err());
-        assert_eq!(field, "outer.vertices[0]");
+        assert_eq!(field, "outer[0]");
         assert!(reason.contains("bulge"), "{reason}");
         let nan = lp(&[(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (1.0, f64::NAN, 0.0)]);
-        assert_eq!(field_and_reason(nan.validate("outer").unwrap_err()).0, "outer.vertices[2]");
+        assert_eq!(field_and_reason(nan.validate("outer").unwrap_err()).0, "outer[2]");
         let dup = lp(&[(0.0, 0.0, 0.0), (5.0, 0.0, 0.0), (5.0, 0.0, 0.0), (0.0, 5.0, 0.0)]);
         let (field, reason) = field_and_reason(dup.validate("islands[0]").unwrap_err());
-        assert_eq!(field, "islands[0].vertices[1]");
+        assert_eq!(field, "islands[0][1]");
         assert!(reason.contains("zero length"), "{reason}");
     }
 
@@ -228,7 +223,7 @@ mod tests {
     fn an_edge_folding_back_onto_the_previous_one_is_refused_as_an_overlap() {
         let spike = lp(&[(0.0, 0.0, 0.0), (10.0, 0.0, 0.0), (5.0, 0.0, 0.0), (5.0, 5.0, 0.0)]);
         let (field, reason) = field_and_reason(spike.validate("outer").unwrap_err());
-        assert_eq!(field, "outer.vertices[0]");
+        assert_eq!(field, "outer[0]");
         assert!(reason.contains("overlap"), "{reason}");
     }
 
