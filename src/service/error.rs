@@ -11,6 +11,19 @@ use utoipa::ToSchema;
 /// Content type of every error body.
 pub const PROBLEM_JSON: &str = "application/problem+json";
 
+/// Input quoted in an error message is cut to this many characters, so a 10 000-character
+/// value is named, not echoed.
+pub const MAX_QUOTED_INPUT_CHARS: usize = 32;
+
+/// `text` as quoted in an error message: its first [`MAX_QUOTED_INPUT_CHARS`] characters,
+/// and an ellipsis when there are more.
+pub fn excerpt(text: &str) -> String {
+    match text.char_indices().nth(MAX_QUOTED_INPUT_CHARS) {
+        Some((cut, _)) => format!("{}…", &text[..cut]),
+        None => text.to_string(),
+    }
+}
+
 /// One field that failed validation.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct FieldError {

@@ -1,6 +1,6 @@
 //! Request extractors whose rejections are problem documents naming the field.
 
-use crate::service::error::{ApiError, FieldError};
+use crate::service::error::{excerpt, ApiError, FieldError};
 use axum::extract::{FromRequest, FromRequestParts, Request};
 use axum::http::{header, request::Parts};
 use serde::de::DeserializeOwned;
@@ -50,9 +50,32 @@ pub fn from_value<T: DeserializeOwned>(value: serde_json::Value) -> Result<T, Ap
         .map_err(|e| ApiError::Validation(vec![field_error(e.path().to_string(), &e.inner().to_string())]))
 }
 
+/// `message` with every stretch between backticks or double quotes (serde quotes the
+/// input it refuses) longer than [`MAX_QUOTED_INPUT_CHARS`] cut to its first characters
+/// and an ellipsis ([`excerpt`]).
+fn shorten_quoted(message: &str) -> String {
+    let mut out = String::with_capacity(message.len().min(256));
+    let mut rest = message;
+    while let Some(open) = rest.find(['`', '"']) {
+        let quote = rest[open..].chars().next().unwrap_or('"');
+        let inner_start = open + quote.len_utf8();
+        let Some(len) = rest[inner_start..].find(quote) else {
+            break;
+        };
+        let inner = &rest[inner_start..inner_start + len];
+        out.push_str(&rest[..inner_start]);
+        out.push_str(&excerpt(inner));
+        out.push(quote);
+        rest = &rest[inner_start + len + quote.len_utf8()..];
+    }
+    out.push_str(rest);
+    out
+}
+
 /// The field a deserialisation error at `path` is about, and why: a missing field is named
 /// itself ("diameter_mm: is required"), not its parent object.
 fn field_error(path: String, message: &str) -> FieldError {
+    let message = &shorten_quoted(message);
     let missing = message.strip_prefix("missing field `").and_then(|rest| rest.split_once('`')).map(|(name, _)| name);
     match missing {
         Some(name) if path == "." || path.is_empty() => {
@@ -107,7 +130,7 @@ where
             let field = field_of(e.path().to_string());
             ApiError::Status {
                 status: axum::http::StatusCode::BAD_REQUEST,
-                detail: format!("query parameter {field}: {}", e.inner()),
+                detail: format!("query parameter {field}: {}", shorten_quoted(&e.inner().to_string())),
             }
         })
     }
@@ -127,7 +150,7 @@ where
         axum::extract::Path::<T>::from_request_parts(parts, state)
             .await
             .map(|axum::extract::Path(v)| ApiPath(v))
-            .map_err(|rejection| ApiError::BadRequest(format!("path: {}", rejection.body_text())))
+            .map_err(|rejection| ApiError::BadRequest(format!("path: {}", shorten_quoted(&rejection.body_text()))))
     }
 }
 
@@ -162,6 +185,21 @@ mod tests {
         assert_eq!((e.field.as_str(), e.reason.as_str()), ("diameter_mm", "is required"));
         let e = only_error(parse_json::<Tool>(br#"{"diameter_mm": 10, "holder": {}}"#).unwrap_err());
         assert_eq!((e.field.as_str(), e.reason.as_str()), ("holder.gauge_mm", "is required"));
+    }
+
+    #[test]
+    fn a_long_refused_value_is_quoted_by_its_first_characters_not_echoed_whole() {
+        let long = "x".repeat(5000);
+        let body = format!(r#"{{"diameter_mm": "{long}", "holder": {{"gauge_mm": 60}}}}"#);
+        let e = only_error(parse_json::<Tool>(body.as_bytes()).unwrap_err());
+        let quoted = format!("\"{}…\"", &long[..crate::service::error::MAX_QUOTED_INPUT_CHARS]);
+        assert_eq!(e.field, "diameter_mm");
+        assert!(e.reason.contains(&quoted) && e.reason.len() < 200, "{}", e.reason);
+        assert_eq!(
+            shorten_quoted("unknown variant `squar`, expected one of `square`, `ball`"),
+            "unknown variant `squar`, expected one of `square`, `ball`"
+        );
+        assert_eq!(shorten_quoted("an unpaired ` quote stays"), "an unpaired ` quote stays");
     }
 
     #[test]

@@ -3,7 +3,7 @@
 
 use crate::core::operation::Operation;
 use crate::core::tool::ToolType;
-use crate::service::error::ApiError;
+use crate::service::error::{excerpt, ApiError};
 use crate::service::resources::cost_rates::CostRates;
 use crate::service::resources::force_models::ForceModelRecord;
 use crate::service::resources::materials::Material;
@@ -30,7 +30,7 @@ pub async fn material(pool: &SqlitePool, id: Option<i64>, name: Option<&str>) ->
                 .bind(name)
                 .fetch_optional(pool)
                 .await?
-                .ok_or_else(|| ApiError::field("material", format!("no material named '{name}'")))?
+                .ok_or_else(|| ApiError::field("material", format!("no material named '{}'", excerpt(name))))?
         }
     };
     Ok(found)

@@ -37,6 +37,7 @@ pub use canned::{G83_PECK_CLEARANCE_MM, MAX_PECKS_PER_HOLE};
 pub use error::{NcError, NcErrors, MAX_NC_ERRORS, MAX_NC_WARNINGS};
 pub use json::{toolpath_from_json, toolpath_to_json, JsonCenter, JsonMove, JsonProgram};
 pub use parse::parse_gcode;
+pub use report::MAX_QUOTED_WORD_CHARS;
 pub use writer::{
     write_program, Dialect, LineNumbers, WriterOptions, DEFAULT_DECIMALS, DEFAULT_FEED_DECIMALS, MAX_DECIMALS,
     MAX_SEQUENCE_NUMBER,

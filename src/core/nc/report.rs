@@ -13,6 +13,11 @@ fn is_utf8_continuation(b: u8) -> bool {
     b & TOP_TWO_BITS == CONTINUATION
 }
 
+/// A word longer than this many characters is quoted in errors and warnings by its first
+/// ones and an ellipsis: a 10 000-digit number or a comment left open over a whole file
+/// is named, not echoed.
+pub const MAX_QUOTED_WORD_CHARS: usize = 32;
+
 /// Marks that a line has an error: the line's effects are dropped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Failed;
@@ -54,8 +59,14 @@ impl<'a> Line<'a> {
         self.span_text(w.start, w.end)
     }
 
+    /// The text from byte `start` to `end` as written, shortened past
+    /// [`MAX_QUOTED_WORD_CHARS`].
     fn span_text(&self, start: u32, end: u32) -> String {
-        String::from_utf8_lossy(&self.text[start as usize..end as usize]).into_owned()
+        let text = String::from_utf8_lossy(&self.text[start as usize..end as usize]);
+        match text.char_indices().nth(MAX_QUOTED_WORD_CHARS) {
+            Some((cut, _)) => format!("{}…", &text[..cut]),
+            None => text.into_owned(),
+        }
     }
 
     /// 1-based column (in characters) of byte offset `start`. Counting resumes from the

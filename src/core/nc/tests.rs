@@ -250,6 +250,16 @@ mod gcode {
     }
 
     #[test]
+    fn a_very_long_word_is_quoted_by_its_first_characters_not_echoed_whole() {
+        let digits = "9".repeat(400);
+        let e = errors(&format!("G1 X{digits} F100\n(é{}", "c".repeat(500)));
+        let quoted = format!("X{}…", &digits[..MAX_QUOTED_WORD_CHARS - 1]);
+        assert_eq!((e[0].line, e[0].column, e[0].word.as_str()), (1, 4, quoted.as_str()));
+        assert_eq!((e[1].line, e[1].word.chars().count()), (2, MAX_QUOTED_WORD_CHARS + 1));
+        assert!(e[1].word.starts_with("(éccc") && e[1].reason.contains("not closed"), "{:?}", e[1]);
+    }
+
+    #[test]
     fn columns_count_characters_after_a_comment_with_accents() {
         let e = errors("(côté) G0 D1");
         assert_eq!((e[0].column, e[0].word.as_str()), (11, "D1"));

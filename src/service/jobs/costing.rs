@@ -17,7 +17,7 @@ use crate::core::progress::Progress;
 use crate::core::tool::ToolType;
 use crate::core::tool_life::ToolLifeModel;
 use crate::core::CoreError;
-use crate::service::error::{ApiError, Validator};
+use crate::service::error::{excerpt, ApiError, Validator};
 use crate::service::lookup;
 use crate::service::resources::machines::Machine;
 use serde::{Deserialize, Serialize};
@@ -134,8 +134,9 @@ pub async fn prepare(pool: &SqlitePool, request: CostingRequest) -> Result<Costi
     v.finish()?;
     let job_program = match &request.job_id {
         Some(id) => {
-            let row =
-                store::get(pool, id).await.map_err(|_| ApiError::field("job_id", format!("no job with id {id}")))?;
+            let row = store::get(pool, id)
+                .await
+                .map_err(|_| ApiError::field("job_id", format!("no job with id {}", excerpt(id))))?;
             Some(row.program.ok_or_else(|| {
                 ApiError::field("job_id", format!("job {id} ({}, {}) has no NC program", row.kind, row.status))
             })?)

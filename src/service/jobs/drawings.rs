@@ -6,7 +6,7 @@ use super::store;
 use crate::core::drawing::chart::render_chart;
 use crate::core::drawing::plan_view::{render_drawing, DrawOptions};
 use crate::core::drawing::scene::{Quantity, Scene};
-use crate::service::error::{ApiError, Problem, Validator};
+use crate::service::error::{excerpt, ApiError, Problem, Validator};
 use crate::service::extract::{ApiPath, ApiQuery};
 use crate::service::state::AppState;
 use axum::extract::State;
@@ -240,7 +240,11 @@ pub async fn get_chart(
     let scene = scene_of(&state, &id).await?;
     let Some(data) = scene.chart(&chart).cloned() else {
         let known: Vec<&str> = scene.charts.iter().map(|c| c.id.as_str()).collect();
-        return Err(ApiError::not_found(format!("job {id} has no chart {chart:?}; it has: {}", known.join(", "))));
+        return Err(ApiError::not_found(format!(
+            "job {id} has no chart {:?}; it has: {}",
+            excerpt(&chart),
+            known.join(", ")
+        )));
     };
     let body = tokio::task::spawn_blocking(move || render_chart(&data, width, height))
         .await

@@ -1,7 +1,7 @@
 //! The `jobs` table.
 
 use super::model::{Job, JobKind, JobLinks, JobStatus};
-use crate::service::error::{ApiError, Problem};
+use crate::service::error::{excerpt, ApiError, Problem};
 use sqlx::SqlitePool;
 
 /// A row of `jobs`.
@@ -92,7 +92,7 @@ pub async fn get(pool: &SqlitePool, id: &str) -> Result<JobRow, ApiError> {
         .bind(id)
         .fetch_optional(pool)
         .await?
-        .ok_or_else(|| ApiError::not_found(format!("no job with id {id}")))
+        .ok_or_else(|| ApiError::not_found(format!("no job with id {}", excerpt(id))))
 }
 
 /// Lists jobs, newest first.
