@@ -15,8 +15,12 @@ use sqlx::SqlitePool;
 
 /// The material used when a request names none (MODEL.md §5).
 pub const DEFAULT_MATERIAL_NAME: &str = "SKD61";
+/// The seed key of that material's row (migrations/0002_seed.sql): it is still the default
+/// when a shop has renamed it.
+pub const DEFAULT_MATERIAL_SEED_KEY: &str = "material:skd61";
 
-/// The material with `id`, or named `name`, or the default material.
+/// The material with `id`, or named `name`, or the default material: the one named
+/// [`DEFAULT_MATERIAL_NAME`], else the seeded row, renamed.
 pub async fn material(pool: &SqlitePool, id: Option<i64>, name: Option<&str>) -> Result<Material, ApiError> {
     let found = match (id, name) {
         (Some(id), _) => sqlx::query_as::<_, Material>("SELECT * FROM materials WHERE id = ?")
@@ -24,14 +28,28 @@ pub async fn material(pool: &SqlitePool, id: Option<i64>, name: Option<&str>) ->
             .fetch_optional(pool)
             .await?
             .ok_or_else(|| ApiError::field("material_id", format!("no material with id {id}")))?,
-        (None, name) => {
-            let name = name.unwrap_or(DEFAULT_MATERIAL_NAME);
-            sqlx::query_as::<_, Material>("SELECT * FROM materials WHERE name = ?")
-                .bind(name)
-                .fetch_optional(pool)
-                .await?
-                .ok_or_else(|| ApiError::field("material", format!("no material named '{}'", excerpt(name))))?
-        }
+        (None, Some(name)) => sqlx::query_as::<_, Material>("SELECT * FROM materials WHERE name = ?")
+            .bind(name)
+            .fetch_optional(pool)
+            .await?
+            .ok_or_else(|| ApiError::field("material", format!("no material named '{}'", excerpt(name))))?,
+        (None, None) => sqlx::query_as::<_, Material>(
+            "SELECT * FROM materials WHERE name = ? OR seed_key = ? ORDER BY name = ? DESC LIMIT 1",
+        )
+        .bind(DEFAULT_MATERIAL_NAME)
+        .bind(DEFAULT_MATERIAL_SEED_KEY)
+        .bind(DEFAULT_MATERIAL_NAME)
+        .fetch_optional(pool)
+        .await?
+        .ok_or_else(|| {
+            ApiError::field(
+                "material",
+                format!(
+                    "no material given, and the default ({DEFAULT_MATERIAL_NAME}) is no longer in the database: \
+                     give material or material_id"
+                ),
+            )
+        })?,
     };
     Ok(found)
 }

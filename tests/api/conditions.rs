@@ -100,3 +100,17 @@ async fn bad_conditions_requests_are_refused_at_submission_naming_the_field_and_
     assert_eq!(jobs.body["total"], 0, "refused requests create no job");
     app.stop().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_default_material_is_still_the_seeded_skd61_after_a_shop_renames_it() {
+    let app = TestApp::start().await;
+    let list = app.get("/v1/materials?name=SKD61").await;
+    let id = list.body["items"][0]["id"].as_i64().expect("the seeded SKD61");
+    let renamed = app.patch(&format!("/v1/materials/{id}"), json!({"name": "SKD61 (our heat lot)"})).await;
+    assert_eq!(renamed.status, 200, "{}", renamed.text);
+    let a = app.post_wait("/v1/conditions", json!({"tool_type": "square", "diameter_mm": 10})).await;
+    assert_eq!(a.status, 201, "{}", a.text);
+    assert_eq!(a.body["result"]["material"]["id"], id);
+    assert_eq!(a.body["result"]["material"]["name"], "SKD61 (our heat lot)");
+    app.stop().await;
+}
