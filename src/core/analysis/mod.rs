@@ -16,8 +16,8 @@ pub mod slices;
 
 use crate::core::error::require_positive;
 use crate::core::force_model::ForceModel;
-use crate::core::progress::Progress;
-use crate::core::stock::Rect;
+use crate::core::progress::{Progress, Stage};
+use crate::core::stock::{Raster, Rect};
 use crate::core::tool::EndMill;
 use crate::core::toolpath::{Motion, Toolpath};
 use crate::core::CoreError;
@@ -43,6 +43,11 @@ pub const MIN_CELL_MM: f64 = 0.002;
 pub const MAX_CELL_MM: f64 = 0.5;
 /// Raster memory the analysis may use, cells over all slices (one byte each: 128 MiB).
 pub const MAX_RASTER_CELLS: f64 = 128.0 * 1024.0 * 1024.0;
+/// Painting this many raster cells takes about as long as simulating one sample: the
+/// weight of painting the stock in a job's progress. (BENCHMARKS.md: tiger.nc's stock,
+/// 8.4 M cells, paints in about 50 ms, and its samples take about 0.8 µs each; the
+/// synthetic pocket's, 0.4 µs.)
+pub const PAINTED_CELLS_PER_SAMPLE: f64 = 100.0;
 /// Most series points a request may ask for.
 pub const MAX_SERIES_POINTS: usize = 100_000;
 /// Most samples one analysis takes (5 km of path at 0.05 mm).
@@ -202,13 +207,17 @@ pub fn analyze_with(
     let bounds = region::union_bounds(&spec.stock);
     let levels = slices::slice_levels(path, spec.z_bottom, spec.z_top);
     let (spacing, cell) = resolution(spec, bounds, levels.len() - 1);
+    let total_samples: usize =
+        path.moves.iter().map(|m| ((sampling::move_length(m) / spacing).ceil() as usize).max(1)).sum();
+    // Painting and simulating share the progress by their expected times.
+    let painting = Raster::cell_count(bounds, cell) as f64 / PAINTED_CELLS_PER_SAMPLE;
+    let paint_share = painting / (painting + total_samples as f64);
+    let paint_stage = Stage { inner: progress, from: 0.0, span: paint_share };
     let mut slices =
-        slices::build(&levels, bounds, cell, |raster| region::paint(raster, &spec.stock, &spec.open, progress))?;
+        slices::build(&levels, bounds, cell, |raster| region::paint(raster, &spec.stock, &spec.open, &paint_stage))?;
     let initial: Vec<f64> = slices.iter().map(|s| s.raster.material_area_mm2()).collect();
 
     let total_length: f64 = path.moves.iter().map(sampling::move_length).sum();
-    let total_samples: usize =
-        path.moves.iter().map(|m| ((sampling::move_length(m) / spacing).ceil() as usize).max(1)).sum();
     let cutter = Cutter {
         radius_mm: spec.tool.radius_mm(),
         flutes: spec.tool.flutes,
@@ -218,7 +227,8 @@ pub fn analyze_with(
         total_samples,
     };
     let mut builder = ReportBuilder::new(spec.alpha_limit_deg, spec.tool.diameter_mm, spec.series_points, total_length);
-    simulate(path, cutter, &mut slices, progress, |r| {
+    let simulation_stage = Stage { inner: progress, from: paint_share, span: 1.0 - paint_share };
+    simulate(path, cutter, &mut slices, &simulation_stage, |r| {
         builder.add(r);
         sink(r);
     })?;
@@ -316,3 +326,63 @@ fn assemble(
 mod accuracy_tests;
 #[cfg(test)]
 mod probe_tests;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::tool::ToolType;
+    use crate::core::toolpath::{Move, Units, P3};
+    use std::sync::Mutex;
+
+    /// Keeps every fraction reported.
+    #[derive(Default)]
+    struct Recorded(Mutex<Vec<f64>>);
+
+    impl Progress for Recorded {
+        fn report(&self, fraction: f64) {
+            self.0.lock().expect("not poisoned").push(fraction);
+        }
+        fn cancelled(&self) -> bool {
+            false
+        }
+    }
+
+    #[test]
+    fn painting_a_large_stock_moves_the_progress_before_the_simulation_does() {
+        // A 200 mm square block (4 M cells of 0.1 mm) and 10 mm of path (200 samples):
+        // painting is nearly all of the work.
+        let block = Rect { x_min: 0.0, y_min: 0.0, x_max: 200.0, y_max: 200.0 };
+        let tool = EndMill { tool_type: ToolType::Square, diameter_mm: 10.0, flutes: 6, corner_radius_mm: 0.0 };
+        let line = Move {
+            motion: Motion::Linear,
+            start: P3::new(0.0, 100.0, -1.0),
+            end: P3::new(10.0, 100.0, -1.0),
+            feed_mm_min: Some(1000.0),
+            spindle_rpm: Some(9600.0),
+            tool: None,
+            line: 1,
+        };
+        let path = Toolpath { moves: vec![line], events: vec![], source_units: Units::Mm, warnings: vec![] };
+        let spec = AnalysisSpec {
+            tool,
+            stock: vec![StockRegion::Rect(block)],
+            open: vec![],
+            z_top: 0.0,
+            z_bottom: -5.0,
+            force_model: None,
+            default_spindle_rpm: None,
+            rapid_mm_min: 20000.0,
+            sample_spacing_mm: None,
+            cell_mm: None,
+            alpha_limit_deg: DEFAULT_ALPHA_LIMIT_DEG,
+            series_points: 0,
+        };
+        let recorded = Recorded::default();
+        analyze(&path, &spec, &recorded).expect("analyses");
+        let reports = recorded.0.into_inner().expect("not poisoned");
+        assert!(reports.windows(2).all(|w| w[0] <= w[1]), "the progress went back");
+        let while_painting = reports.iter().filter(|&&f| f < 0.99).count();
+        assert!(while_painting > 1000, "{while_painting} reports while painting");
+        assert!(reports.last().is_some_and(|&f| (f - 1.0).abs() < 1e-12));
+    }
+}

@@ -87,9 +87,9 @@ pub fn union_bounds(regions: &[StockRegion]) -> Rect {
     )
 }
 
-/// Paints `stock` as material and clears `open`; stops (`Err(Cancelled)`) as soon as
-/// `progress` is cancelled, since a contour of many segments on a large raster takes
-/// seconds.
+/// Paints `stock` as material and clears `open`, reporting the share of the regions'
+/// rows painted to `progress`; stops (`Err(Cancelled)`) as soon as `progress` is
+/// cancelled, since a contour of many segments on a large raster takes seconds.
 pub fn paint(
     raster: &mut Raster,
     stock: &[StockRegion],
@@ -97,8 +97,12 @@ pub fn paint(
     progress: &dyn Progress,
 ) -> Result<(), CoreError> {
     let regions = stock.iter().map(|r| (true, r)).chain(open.iter().map(|r| (false, r)));
-    for (add, region) in regions {
-        let stopped = || progress.cancelled();
+    let count = (stock.len() + open.len()) as f64;
+    for (n, (add, region)) in regions.enumerate() {
+        let stopped = |done: f64| {
+            progress.report((n as f64 + done) / count);
+            progress.cancelled()
+        };
         let painted = match region {
             StockRegion::Pocket(p) => paint_pocket(raster, add, p, stopped),
             _ => raster.paint_until(
@@ -118,7 +122,7 @@ pub fn paint(
 /// Paints a pocket through an index of its segments: each row and each band cell visits
 /// only the segments near it. The same cells as [`StockRegion::signed_distance`] gives:
 /// distances beyond the raster's clamp are stored as the clamp either way.
-fn paint_pocket(raster: &mut Raster, add: bool, p: &Pocket, stopped: impl FnMut() -> bool) -> bool {
+fn paint_pocket(raster: &mut Raster, add: bool, p: &Pocket, stopped: impl FnMut(f64) -> bool) -> bool {
     let index = SegmentIndex::new(std::iter::once(&p.outer).chain(&p.islands), 0.0);
     let reach_mm = (SDF_CLAMP_CELLS + 1.0) * raster.cell_mm();
     let intervals = |y: f64, out: &mut Vec<(f64, f64)>| {

@@ -92,11 +92,7 @@ impl Raster {
     /// An empty raster (no material) covering `bounds` (plus a margin of the clamp width)
     /// with square cells of `cell_mm`.
     pub fn new(bounds: Rect, cell_mm: f64) -> Raster {
-        let margin = (SDF_CLAMP_CELLS + 1.0) * cell_mm;
-        let x0 = bounds.x_min - margin;
-        let y0 = bounds.y_min - margin;
-        let nx = (((bounds.x_max + margin - x0) / cell_mm).ceil() as usize).max(2);
-        let ny = (((bounds.y_max + margin - y0) / cell_mm).ceil() as usize).max(2);
+        let (x0, y0, nx, ny) = Raster::layout(bounds, cell_mm);
         Raster {
             x0,
             y0,
@@ -111,6 +107,22 @@ impl Raster {
             end_disc_cleared: false,
             version: 0,
         }
+    }
+
+    /// The origin and the size in cells of the raster [`Raster::new`] makes.
+    fn layout(bounds: Rect, cell_mm: f64) -> (f64, f64, usize, usize) {
+        let margin = (SDF_CLAMP_CELLS + 1.0) * cell_mm;
+        let x0 = bounds.x_min - margin;
+        let y0 = bounds.y_min - margin;
+        let nx = (((bounds.x_max + margin - x0) / cell_mm).ceil() as usize).max(2);
+        let ny = (((bounds.y_max + margin - y0) / cell_mm).ceil() as usize).max(2);
+        (x0, y0, nx, ny)
+    }
+
+    /// The number of cells of the raster [`Raster::new`] makes, without making it.
+    pub fn cell_count(bounds: Rect, cell_mm: f64) -> usize {
+        let (_, _, nx, ny) = Raster::layout(bounds, cell_mm);
+        nx * ny
     }
 
     pub fn size(&self) -> (usize, usize) {
@@ -213,24 +225,26 @@ impl Raster {
         distance: impl FnMut(f64, f64, bool) -> f64,
     ) {
         // Never stopped, so always painted whole.
-        let _painted = self.paint_until(add, intervals, distance, || false);
+        let _painted = self.paint_until(add, intervals, distance, |_| false);
     }
 
-    /// As [`Raster::paint`], asking `stopped` before each row: `false` when it stopped
-    /// part of the way (the raster is then partly painted, for dropping).
+    /// As [`Raster::paint`], asking `stopped(done)` before each row of its two passes
+    /// over the rows, `done` being the share of those rows done (0..1): `false` when it
+    /// stopped part of the way (the raster is then partly painted, for dropping).
     pub fn paint_until(
         &mut self,
         add: bool,
         mut intervals: impl FnMut(f64, &mut Vec<(f64, f64)>),
         mut distance: impl FnMut(f64, f64, bool) -> f64,
-        mut stopped: impl FnMut() -> bool,
+        mut stopped: impl FnMut(f64) -> bool,
     ) -> bool {
         self.end_disc_cleared = false;
         let (nx, ny) = (self.nx, self.ny);
+        let rows_done = |pass: usize, j: usize| (pass * ny + j) as f64 / (2 * ny) as f64;
         let mut inside = vec![false; nx * ny];
         let mut out = Vec::new();
         for j in 0..ny {
-            if stopped() {
+            if stopped(rows_done(0, j)) {
                 return false;
             }
             out.clear();
@@ -255,7 +269,7 @@ impl Raster {
             }
         }
         for j in 0..ny {
-            if stopped() {
+            if stopped(rows_done(1, j)) {
                 return false;
             }
             for i in 0..nx {
