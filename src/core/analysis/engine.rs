@@ -3,6 +3,7 @@
 //! the arc length, the chip thickness at the programmed feed and the force are found.
 
 use super::chunk::Chunk;
+use super::engages::interior_points;
 use super::lines::straight_runs;
 use super::probe::{AngleTable, Contact, ProbeSite};
 use super::same_below::SameBelow;
@@ -98,13 +99,15 @@ pub fn simulate(
     let curvatures = move_curvatures(path);
     // All slices share one cell size (with none, nothing is probed).
     let cell_mm = slices.first().map_or(0.0, |s| s.raster.cell_mm());
-    let table = AngleTable::new(cutter.radius_mm, cell_mm);
-    let mut site = ProbeSite::default();
+    let mut probes = SliceProbes {
+        table: AngleTable::new(cutter.radius_mm, cell_mm),
+        site: ProbeSite::default(),
+        contacts: vec![Contact::default(); slices.len()],
+        memories: vec![ScanMemory::default(); slices.len()],
+        same_below: SameBelow::new(slices.len()),
+    };
     let r = cutter.radius_mm;
     let mut chunk = Chunk::new(0, cell_mm);
-    let mut contacts = vec![Contact::default(); slices.len()];
-    let mut memories = vec![ScanMemory::default(); slices.len()];
-    let mut same_below = SameBelow::new(slices.len());
     let runs = straight_runs(path);
     let mut s_mm = 0.0;
     let mut n = 0usize;
@@ -146,24 +149,13 @@ pub fn simulate(
                 let to_end = ((run.end.0 - p.0).powi(2) + (run.end.1 - p.1).powi(2)).sqrt();
                 Line { id: run.id, dir: sample.heading, ahead_cells: to_end / cell_mm }
             });
-            site.set(&table, p, grid, sample.heading, chunk.recent(), &chunk.corridor(), line);
-            // From the deepest slice cut up: above a slice with no material near the tool,
-            // none has any (see `slices`); a slice with the cells of the one below under
-            // the tool has its contact.
-            let mut material_near = true;
-            for k in (0..cut).rev() {
-                contacts[k] = if !material_near {
-                    Contact::default()
-                } else if k + 1 < cut && same_below.same(slices, k, p, sample.heading, r) {
-                    contacts[k + 1]
-                } else if slices[k].any_material_near(p.0, p.1, r) {
-                    table.contact(&slices[k].raster, &site, Some(&mut memories[k]))
-                } else {
-                    material_near = false;
-                    Contact::default()
-                };
+            probes.site.set(&probes.table, p, grid, sample.heading, chunk.recent(), &chunk.corridor(), line);
+            if force_model.is_some() {
+                probes.measure_every_slice(slices, cut, p, sample.heading, r);
+            } else {
+                probes.measure_deepest_slice(slices, cut, p, r);
             }
-            evaluate(&mut result, &contacts[..cut], slices, cutter, force_model);
+            evaluate(&mut result, &probes.contacts[..cut], slices, cutter, force_model);
         }
         chunk.push(slices, r, p, sample.heading, sample.step_mm);
         sink(&result);
@@ -173,6 +165,67 @@ pub fn simulate(
     match failure {
         Some(e) => Err(e),
         None => Ok(()),
+    }
+}
+
+/// What the probes of the slices keep from sample to sample.
+struct SliceProbes {
+    table: AngleTable,
+    site: ProbeSite,
+    /// Per slice, its contact at the current sample.
+    contacts: Vec<Contact>,
+    memories: Vec<ScanMemory>,
+    same_below: SameBelow,
+}
+
+impl SliceProbes {
+    /// Measures the contact of each of the `cut` slices at the site, tool centre `p`
+    /// moving along `heading`: a force model needs every slice's α.
+    fn measure_every_slice(&mut self, slices: &mut [Slice], cut: usize, p: (f64, f64), heading: (f64, f64), r: f64) {
+        // From the deepest slice cut up: above a slice with no material near the tool,
+        // none has any (see `slices`); a slice with the cells of the one below under the
+        // tool has its contact.
+        let mut material_near = true;
+        for k in (0..cut).rev() {
+            self.contacts[k] = if !material_near {
+                Contact::default()
+            } else if k + 1 < cut && self.same_below.same(slices, k, p, heading, r) {
+                self.contacts[k + 1]
+            } else if slices[k].any_material_near(p.0, p.1, r) {
+                self.table.contact(&slices[k].raster, &self.site, Some(&mut self.memories[k]))
+            } else {
+                material_near = false;
+                Contact::default()
+            };
+        }
+    }
+
+    /// Measures the contact of the deepest of the `cut` slices at the site, tool centre
+    /// `p`; each slice above takes it where it engages the tool at all, and none where it
+    /// does not. Without a force model that gives what [`measure_every_slice`] gives: the
+    /// deepest slice's material holds every upper slice's, so its contact is the largest
+    /// and the sample's, and the upper slices count only in Ad.
+    ///
+    /// [`measure_every_slice`]: SliceProbes::measure_every_slice
+    fn measure_deepest_slice(&mut self, slices: &mut [Slice], cut: usize, p: (f64, f64), r: f64) {
+        let deepest = cut - 1;
+        let (contact, states) = if slices[deepest].any_material_near(p.0, p.1, r) {
+            self.table.contact_and_states(&slices[deepest].raster, &self.site, Some(&mut self.memories[deepest]))
+        } else {
+            (Contact::default(), 0)
+        };
+        self.contacts[deepest] = contact;
+        // Interior points in air below are in air above (see `engages`).
+        let mut candidates = states & interior_points();
+        for k in (0..deepest).rev() {
+            let engages = candidates != 0
+                && slices[k].any_material_near(p.0, p.1, r)
+                && self.table.engages(&slices[k].raster, &self.site, &mut candidates);
+            if !engages {
+                candidates = 0;
+            }
+            self.contacts[k] = if engages { contact } else { Contact::default() };
+        }
     }
 }
 
@@ -235,11 +288,11 @@ mod tests {
     use crate::core::stock::Rect;
     use crate::core::toolpath::{Motion, Move, Units, P3};
 
-    #[test]
-    fn every_slice_keeps_its_material_inside_the_material_of_the_slice_below() {
-        // Zig-zag passes along x that step down and across, ramping in z: a relief
-        // program in miniature.
-        let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 30.0, y_max: 30.0 };
+    const RELIEF: Rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 30.0, y_max: 30.0 };
+
+    /// Zig-zag passes along x over [`RELIEF`] that step down and across, ramping in z: a
+    /// relief program in miniature.
+    fn relief_program() -> Toolpath {
         let mut moves = Vec::new();
         let mut at = P3::new(-3.0, 2.0, -0.5);
         for pass in 0..14 {
@@ -259,21 +312,33 @@ mod tests {
                 at = end;
             }
         }
-        let path = Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] };
-        let levels = slice_levels(&path, -6.0, 0.0);
-        let mut slices =
-            build(&levels, rect, 0.1, |raster| paint(raster, &[StockRegion::Rect(rect)], &[], &NoProgress))
-                .expect("nothing cancels the painting");
-        assert!(slices.len() > 4, "{} slices", slices.len());
-        let cutter = Cutter {
+        Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] }
+    }
+
+    /// The slices of [`RELIEF`] for `path`, painted.
+    fn relief_slices(path: &Toolpath) -> Vec<Slice> {
+        let levels = slice_levels(path, -6.0, 0.0);
+        build(&levels, RELIEF, 0.1, |raster| paint(raster, &[StockRegion::Rect(RELIEF)], &[], &NoProgress))
+            .expect("nothing cancels the painting")
+    }
+
+    fn relief_cutter(force_model: Option<ForceModel>) -> Cutter {
+        Cutter {
             radius_mm: 2.0,
             flutes: 2,
-            default_spindle_rpm: None,
-            force_model: None,
+            default_spindle_rpm: Some(9600.0),
+            force_model,
             spacing_mm: 0.05,
             total_samples: 1,
-        };
-        simulate(&path, cutter, &mut slices, &NoProgress, |_| {}).expect("simulates");
+        }
+    }
+
+    #[test]
+    fn every_slice_keeps_its_material_inside_the_material_of_the_slice_below() {
+        let path = relief_program();
+        let mut slices = relief_slices(&path);
+        assert!(slices.len() > 4, "{} slices", slices.len());
+        simulate(&path, relief_cutter(None), &mut slices, &NoProgress, |_| {}).expect("simulates");
         let mut removed_somewhere = vec![false; slices.len()];
         for i in 0..300 {
             for j in 0..300 {
@@ -286,5 +351,33 @@ mod tests {
             }
         }
         assert!(removed_somewhere.iter().take(slices.len() - 1).all(|&r| r), "some slice was never cut");
+    }
+
+    #[test]
+    fn without_a_force_model_every_sample_has_the_engagement_and_depth_it_has_with_one() {
+        // Without a model only the deepest slice's contact is measured, and the slices
+        // above are only asked whether they engage at all.
+        let model = crate::core::fixtures::seed_001_ten_mm();
+        let path = relief_program();
+        let run = |model: Option<ForceModel>| {
+            let mut results = Vec::new();
+            let mut slices = relief_slices(&path);
+            simulate(&path, relief_cutter(model), &mut slices, &NoProgress, |r| results.push(*r)).expect("simulates");
+            results
+        };
+        let (with, without) = (run(Some(model)), run(None));
+        assert_eq!(with.len(), without.len());
+        let mut upper_slices_engaged = 0;
+        for (a, b) in with.iter().zip(&without) {
+            assert_eq!(a.contact, b.contact, "at {:?}", a.sample.p);
+            assert_eq!(a.ad_mm.to_bits(), b.ad_mm.to_bits(), "Ad at {:?}", a.sample.p);
+            assert_eq!(a.t_m_um.to_bits(), b.t_m_um.to_bits(), "t_m at {:?}", a.sample.p);
+            assert!(a.force_n.is_some() && b.force_n.is_none());
+            // More than one slice engaged: more than the deepest slice's share of Ad.
+            if a.ad_mm > 1.0 {
+                upper_slices_engaged += 1;
+            }
+        }
+        assert!(upper_slices_engaged > 1000, "only {upper_slices_engaged} samples engage more than one slice");
     }
 }

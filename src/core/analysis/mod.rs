@@ -3,6 +3,7 @@
 //! chip thickness and force, and the critical regions where the tool is overloaded.
 
 pub mod chunk;
+pub mod engages;
 pub mod engine;
 pub mod lines;
 pub mod probe;

@@ -140,7 +140,7 @@ impl AngleTable {
     }
 
     /// Coarse points after a probe certified at `level` that share its state.
-    fn skip(&self, level: Certified) -> usize {
+    pub(super) fn skip(&self, level: Certified) -> usize {
         match level {
             Certified::No => 0,
             Certified::Level(l) => self.skips[l - 1],
@@ -172,7 +172,7 @@ impl AngleTable {
     /// As `material`, with how far the state is known to hold; material is certified
     /// only when no recent disc reaches the leading half.
     #[inline]
-    fn certified_material(&self, raster: &Raster, site: &ProbeSite, k: usize) -> (bool, Certified) {
+    pub(super) fn certified_material(&self, raster: &Raster, site: &ProbeSite, k: usize) -> (bool, Certified) {
         let (material, level) = raster.probe_at(self.grid_point(site, k));
         if !material {
             return (false, level);
@@ -323,7 +323,18 @@ impl AngleTable {
 
     /// Measures the engagement of the leading half at `site`; `memory` (one per raster)
     /// carries coarse states from sample to sample along a straight stretch of path.
-    pub fn contact(&self, raster: &Raster, site: &ProbeSite, mut memory: Option<&mut ScanMemory>) -> Contact {
+    pub fn contact(&self, raster: &Raster, site: &ProbeSite, memory: Option<&mut ScanMemory>) -> Contact {
+        self.contact_and_states(raster, site, memory).0
+    }
+
+    /// As [`AngleTable::contact`], with the material state of every coarse point (bit m
+    /// for point m).
+    pub fn contact_and_states(
+        &self,
+        raster: &Raster,
+        site: &ProbeSite,
+        mut memory: Option<&mut ScanMemory>,
+    ) -> (Contact, u128) {
         let step = 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
         // States are remembered along a line when no recent disc reaches the leading half:
         // the travel along it.
@@ -377,11 +388,12 @@ impl AngleTable {
         }
         let to_rad = |k: usize| k as f64 * step - PI / 2.0;
         let engaged_somewhere = entry != usize::MAX;
-        Contact {
+        let contact = Contact {
             alpha_rad: engaged as f64 * step,
             entry_rad: if engaged_somewhere { to_rad(entry) } else { 0.0 },
             exit_rad: if engaged_somewhere { to_rad(exit) } else { 0.0 },
-        }
+        };
+        (contact, state)
     }
 }
 
@@ -452,43 +464,6 @@ pub(super) fn certified_ahead(
 }
 
 /// Coarse points lo..=hi as bits.
-fn points(lo: usize, hi: usize) -> u128 {
+pub(super) fn points(lo: usize, hi: usize) -> u128 {
     (u128::MAX >> (127 - hi)) & (u128::MAX << lo)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::super::probe_tests::block_of_40_mm as block;
-    use super::*;
-
-    fn site(table: &AngleTable, center: (f64, f64), heading: (f64, f64), recent: &[(f64, f64)]) -> ProbeSite {
-        let mut site = ProbeSite::default();
-        site.set(table, center, block().grid_position(center.0, center.1), heading, recent, &Corridor::UNKNOWN, None);
-        site
-    }
-
-    #[test]
-    fn a_tool_buried_in_material_engages_its_whole_leading_half() {
-        let table = AngleTable::new(5.0, 0.02);
-        let c = table.contact(&block(), &site(&table, (0.0, 0.0), (1.0, 0.0), &[]), None);
-        assert!((c.alpha_rad - PI).abs() < 1e-9);
-        assert!((c.entry_rad + PI / 2.0).abs() < 1e-9 && (c.exit_rad - PI / 2.0).abs() < 1e-9);
-    }
-
-    #[test]
-    fn the_recent_centres_remove_what_they_swept() {
-        let table = AngleTable::new(5.0, 0.02);
-        // A disc about (1, 0) covers the circle where cos θ > 0.1: what stays engaged is
-        // 2 × (90° − acos 0.1).
-        let c = table.contact(&block(), &site(&table, (0.0, 0.0), (1.0, 0.0), &[(1.0, 0.0)]), None);
-        let expected = 2.0 * (PI / 2.0 - 0.1f64.acos());
-        assert!((c.alpha_rad - expected).abs() < 0.2f64.to_radians(), "{} vs {expected}", c.alpha_rad);
-    }
-
-    #[test]
-    fn a_tool_in_the_air_engages_nothing() {
-        let table = AngleTable::new(5.0, 0.02);
-        let c = table.contact(&block(), &site(&table, (100.0, 0.0), (0.0, 1.0), &[]), None);
-        assert!(c.alpha_rad.abs() < 1e-12);
-    }
 }

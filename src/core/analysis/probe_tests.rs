@@ -10,9 +10,9 @@ use crate::core::stock::{Certified, Raster, Rect};
 use proptest::prelude::*;
 use std::f64::consts::PI;
 
-const RADIUS: f64 = 5.0;
-const CELL: f64 = 0.1;
-const SIDE: f64 = 60.0;
+pub(super) const RADIUS: f64 = 5.0;
+pub(super) const CELL: f64 = 0.1;
+pub(super) const SIDE: f64 = 60.0;
 /// Contacts are whole probe steps (1e-3 rad): anything closer is the same contact.
 const SAME_RAD: f64 = 1e-12;
 /// Half the length of a rib, mm.
@@ -84,7 +84,7 @@ fn plain_contact(raster: &Raster, center: (f64, f64), heading: (f64, f64), recen
 
 /// A block with discs, slots and pairs of slots leaving a thin rib between them cleared
 /// from it: walls of every direction, narrow features, wide areas of air and material.
-fn stock(discs: &[(f64, f64, f64)], slots: &[Slot], ribs: &[Rib]) -> Raster {
+pub(super) fn stock(discs: &[(f64, f64, f64)], slots: &[Slot], ribs: &[Rib]) -> Raster {
     let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: SIDE, y_max: SIDE };
     let mut r = Raster::new(rect, CELL);
     r.paint(
@@ -118,11 +118,11 @@ fn stock(discs: &[(f64, f64, f64)], slots: &[Slot], ribs: &[Rib]) -> Raster {
 }
 
 /// Ends and radius, mm.
-type Slot = ((f64, f64), (f64, f64), f64);
+pub(super) type Slot = ((f64, f64), (f64, f64), f64);
 /// Centre, direction (rad), width and the radius of the slots either side, mm.
-type Rib = ((f64, f64), f64, f64, f64);
+pub(super) type Rib = ((f64, f64), f64, f64, f64);
 
-fn point() -> impl Strategy<Value = (f64, f64)> {
+pub(super) fn point() -> impl Strategy<Value = (f64, f64)> {
     (0.0..SIDE, 0.0..SIDE)
 }
 
@@ -233,4 +233,41 @@ pub(super) fn block_of_40_mm() -> Raster {
         |x, y, _| crate::core::stock::rect_signed_distance(&rect, x, y),
     );
     r
+}
+
+/// The contact at a few simple positions.
+mod simple {
+    use super::block_of_40_mm as block;
+    use super::*;
+
+    fn site(table: &AngleTable, center: (f64, f64), heading: (f64, f64), recent: &[(f64, f64)]) -> ProbeSite {
+        let mut site = ProbeSite::default();
+        site.set(table, center, block().grid_position(center.0, center.1), heading, recent, &Corridor::UNKNOWN, None);
+        site
+    }
+
+    #[test]
+    fn a_tool_buried_in_material_engages_its_whole_leading_half() {
+        let table = AngleTable::new(5.0, 0.02);
+        let c = table.contact(&block(), &site(&table, (0.0, 0.0), (1.0, 0.0), &[]), None);
+        assert!((c.alpha_rad - PI).abs() < 1e-9);
+        assert!((c.entry_rad + PI / 2.0).abs() < 1e-9 && (c.exit_rad - PI / 2.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn the_recent_centres_remove_what_they_swept() {
+        let table = AngleTable::new(5.0, 0.02);
+        // A disc about (1, 0) covers the circle where cos θ > 0.1: what stays engaged is
+        // 2 × (90° − acos 0.1).
+        let c = table.contact(&block(), &site(&table, (0.0, 0.0), (1.0, 0.0), &[(1.0, 0.0)]), None);
+        let expected = 2.0 * (PI / 2.0 - 0.1f64.acos());
+        assert!((c.alpha_rad - expected).abs() < 0.2f64.to_radians(), "{} vs {expected}", c.alpha_rad);
+    }
+
+    #[test]
+    fn a_tool_in_the_air_engages_nothing() {
+        let table = AngleTable::new(5.0, 0.02);
+        let c = table.contact(&block(), &site(&table, (100.0, 0.0), (0.0, 1.0), &[]), None);
+        assert!(c.alpha_rad.abs() < 1e-12);
+    }
 }
