@@ -218,9 +218,7 @@ impl SliceProbes {
         // Interior points in air below are in air above (see `engages`).
         let mut candidates = states & interior_points();
         for k in (0..deepest).rev() {
-            let engages = candidates != 0
-                && slices[k].any_material_near(p.0, p.1, r)
-                && self.table.engages(&slices[k].raster, &self.site, &mut candidates);
+            let engages = candidates != 0 && self.table.engages(&slices[k].raster, &self.site, &mut candidates);
             if !engages {
                 candidates = 0;
             }
