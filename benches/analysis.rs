@@ -130,10 +130,7 @@ fn main() {
     // tiger.camotics: 2.5 mm flat end mill, stock (-2,-1,-32)..(92,89,0).
     let small = EndMill { tool_type: ToolType::Square, diameter_mm: 2.5, flutes: 2, corner_radius_mm: 0.0 };
     let tiger_stock = Rect { x_min: -2.0, y_min: -1.0, x_max: 92.0, y_max: 89.0 };
-    report("tiger.nc (default spacing D/100)", &tiger, &spec(small, tiger_stock, 0.0, -32.0, None, None));
-    report("tiger.nc at 0.05 mm", &tiger, &spec(small, tiger_stock, 0.0, -32.0, None, Some(0.05)));
-
-    let ten = EndMill { tool_type: ToolType::Square, diameter_mm: 10.0, flutes: 6, corner_radius_mm: 0.0 };
+    // seed 001 Table 4, 10 mm end mill.
     let model = ForceModel {
         t0_um: 43.589,
         dt_um: 15.0,
@@ -142,6 +139,18 @@ fn main() {
         coefficients: Coefficients { b0: 269.1, b1: 65.84, b2: 53.66, b11: 0.0, b22: 3.763, b12: 15.45 },
         ad_ref_mm: 10.0,
     };
+    report("tiger.nc (default spacing D/100)", &tiger, &spec(small, tiger_stock, 0.0, -32.0, None, None));
+    report("tiger.nc at 0.05 mm", &tiger, &spec(small, tiger_stock, 0.0, -32.0, None, Some(0.05)));
+    // With a force model every slice cut is measured (its force needs its α); without
+    // one only the deepest is, and the others only for Ad. The 10 mm tool's model stands
+    // in here: its forces mean nothing for the 2.5 mm tool, the time is what counts.
+    report(
+        "tiger.nc with the forces of every slice, at 0.05 mm",
+        &tiger,
+        &spec(small, tiger_stock, 0.0, -32.0, Some(model), Some(0.05)),
+    );
+
+    let ten = EndMill { tool_type: ToolType::Square, diameter_mm: 10.0, flutes: 6, corner_radius_mm: 0.0 };
     let troch_stock = Rect { x_min: -60.0, y_min: -10.0, x_max: 40.0, y_max: 90.0 };
     report("trochoidal.ngc (10 mm tool)", &trochoidal, &spec(ten, troch_stock, 0.0, -10.0, Some(model), None));
 

@@ -55,7 +55,7 @@ mod tests {
         #![proptest_config(ProptestConfig::with_cases(64))]
 
         #[test]
-        fn a_slice_engages_exactly_when_its_contact_has_an_engagement(
+        fn a_slice_engages_exactly_when_its_contact_has_an_engagement_and_its_contact_needs_no_probe_in_air_below(
             discs in prop::collection::vec((0.0..SIDE, 0.0..SIDE, 0.5..12.0f64), 0..6),
             slots in prop::collection::vec((point(), point(), 0.05..6.0f64), 0..4),
             ribs in prop::collection::vec((point(), 0.0..PI, 0.05..0.6f64, 0.5..4.0f64), 0..4),
@@ -76,9 +76,12 @@ mod tests {
                 let heading = (angle.cos(), angle.sin());
                 let recent: Vec<(f64, f64)> = offsets.iter().map(|o| (center.0 + o.0, center.1 + o.1)).collect();
                 site.set(&table, center, below.grid_position(center.0, center.1), heading, &recent, &Corridor::UNKNOWN, None);
-                let (_, states_below) = table.contact_and_states(&below, &site, None);
-                let (contact, states_upper) = table.contact_and_states(&upper, &site, None);
+                let (_, states_below) = table.contact_and_states(&below, &site, None, 0);
+                let (contact, states_upper) = table.contact_and_states(&upper, &site, None, 0);
                 prop_assert_eq!(states_upper & !states_below, 0, "the upper slice has material where the one below has none");
+                // Not probing the points in air below changes nothing.
+                let told = table.contact_and_states(&upper, &site, None, !states_below);
+                prop_assert_eq!(told, (contact, states_upper), "at {:?} heading {:?}", center, heading);
                 let mut candidates = states_below & interior_points();
                 let engages = table.engages(&upper, &site, &mut candidates);
                 let want: Contact = contact;

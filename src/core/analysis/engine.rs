@@ -182,21 +182,25 @@ impl SliceProbes {
     /// Measures the contact of each of the `cut` slices at the site, tool centre `p`
     /// moving along `heading`: a force model needs every slice's α.
     fn measure_every_slice(&mut self, slices: &mut [Slice], cut: usize, p: (f64, f64), heading: (f64, f64), r: f64) {
-        // From the deepest slice cut up: above a slice with no material near the tool,
-        // none has any (see `slices`); a slice with the cells of the one below under the
-        // tool has its contact.
-        let mut material_near = true;
+        // From the deepest slice cut up. Each slice's material lies inside the material of
+        // the one below (see `slices`), and so does each coarse point's state: above a
+        // slice with no material near the tool, or none at an interior coarse point (no
+        // engagement, see `engages`), none engages; coarse points in air below are in air
+        // above; and a slice with the cells of the one below under the tool has its
+        // contact.
+        let mut below: Option<u128> = None;
         for k in (0..cut).rev() {
-            self.contacts[k] = if !material_near {
-                Contact::default()
-            } else if k + 1 < cut && self.same_below.same(slices, k, p, heading, r) {
-                self.contacts[k + 1]
-            } else if slices[k].any_material_near(p.0, p.1, r) {
-                self.table.contact(&slices[k].raster, &self.site, Some(&mut self.memories[k]))
-            } else {
-                material_near = false;
-                Contact::default()
+            let (contact, states) = match below {
+                Some(states) if states & interior_points() == 0 => (Contact::default(), 0),
+                Some(states) if self.same_below.same(slices, k, p, heading, r) => (self.contacts[k + 1], states),
+                _ if !slices[k].any_material_near(p.0, p.1, r) => (Contact::default(), 0),
+                _ => {
+                    let known_air = below.map_or(0, |states| !states);
+                    self.table.contact_and_states(&slices[k].raster, &self.site, Some(&mut self.memories[k]), known_air)
+                }
             };
+            self.contacts[k] = contact;
+            below = Some(states);
         }
     }
 
@@ -210,7 +214,7 @@ impl SliceProbes {
     fn measure_deepest_slice(&mut self, slices: &mut [Slice], cut: usize, p: (f64, f64), r: f64) {
         let deepest = cut - 1;
         let (contact, states) = if slices[deepest].any_material_near(p.0, p.1, r) {
-            self.table.contact_and_states(&slices[deepest].raster, &self.site, Some(&mut self.memories[deepest]))
+            self.table.contact_and_states(&slices[deepest].raster, &self.site, Some(&mut self.memories[deepest]), 0)
         } else {
             (Contact::default(), 0)
         };

@@ -258,15 +258,23 @@ impl AngleTable {
         })
     }
 
-    /// The material state of every coarse point (bit m for point m): those `memory` still
-    /// holds, then the anchors, then the rest that no certified probe decided.
-    /// The probes of each pass are independent of each other, so they overlap in the
-    /// processor.
-    fn coarse_states(&self, raster: &Raster, site: &ProbeSite, mut memory: Option<(&mut ScanMemory, f64)>) -> u128 {
+    /// The material state of every coarse point (bit m for point m): those of `known_air`
+    /// are in air, then those `memory` still holds, then the anchors, then the rest that
+    /// no certified probe decided. The probes of each pass are independent of each other,
+    /// so they overlap in the processor.
+    fn coarse_states(
+        &self,
+        raster: &Raster,
+        site: &ProbeSite,
+        mut memory: Option<(&mut ScanMemory, f64)>,
+        known_air: u128,
+    ) -> u128 {
         let (mut known, mut state) = match memory.as_mut() {
             Some((mem, travel)) => mem.recall(*travel),
             None => (0, 0),
         };
+        known |= known_air;
+        state &= !known_air;
         let mut unknown = !known & points(0, COARSE_POINTS);
         let look_ahead = site.line.map_or(0.0, |l| l.ahead_cells.min(AHEAD_CELLS));
         for pass in [unknown & self.anchors, unknown] {
@@ -324,16 +332,18 @@ impl AngleTable {
     /// Measures the engagement of the leading half at `site`; `memory` (one per raster)
     /// carries coarse states from sample to sample along a straight stretch of path.
     pub fn contact(&self, raster: &Raster, site: &ProbeSite, memory: Option<&mut ScanMemory>) -> Contact {
-        self.contact_and_states(raster, site, memory).0
+        self.contact_and_states(raster, site, memory, 0).0
     }
 
     /// As [`AngleTable::contact`], with the material state of every coarse point (bit m
-    /// for point m).
+    /// for point m). The coarse points of `known_air` are known to be in air at `site`
+    /// (they are in a raster whose material holds this one's): they are not probed.
     pub fn contact_and_states(
         &self,
         raster: &Raster,
         site: &ProbeSite,
         mut memory: Option<&mut ScanMemory>,
+        known_air: u128,
     ) -> (Contact, u128) {
         let step = 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
         // States are remembered along a line when no recent disc reaches the leading half:
@@ -344,7 +354,7 @@ impl AngleTable {
             }
             _ => None,
         };
-        let state = self.coarse_states(raster, site, memory.as_deref_mut().zip(travel));
+        let state = self.coarse_states(raster, site, memory.as_deref_mut().zip(travel), known_air);
         let look_ahead = site.line.map_or(0.0, |l| l.ahead_cells.min(AHEAD_CELLS));
         // Coarse interval m runs from point m to point m + 1.
         let intervals = points(0, COARSE_POINTS - 1);
