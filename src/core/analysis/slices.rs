@@ -34,6 +34,9 @@ pub struct Slice {
     /// Blocks last found to hold no material: material is only ever removed during a
     /// simulation, so they stay empty.
     empty: Option<BlockRange>,
+    /// The block (column, row) last found to hold material: it is looked at first, since
+    /// it most often still does.
+    material_at: Option<(usize, usize)>,
     /// The last capsule applied to the raster (see [`Slice::take_capsule`]).
     last_capsule: Option<TakenCapsule>,
 }
@@ -50,7 +53,7 @@ pub struct TakenCapsule {
 
 impl Slice {
     pub fn new(z_top: f64, z_bottom: f64, raster: Raster) -> Slice {
-        Slice { z_bottom, z_top, raster, empty: None, last_capsule: None }
+        Slice { z_bottom, z_top, raster, empty: None, material_at: None, last_capsule: None }
     }
 
     /// Applies capsule number `serial` to the raster ([`Raster::clear_capsule_rows`]),
@@ -69,20 +72,29 @@ impl Slice {
         self.last_capsule.filter(|t| t.version_after == self.raster.version())
     }
 
-    /// As [`Raster::any_material_near`], remembering an empty answer: while the tool
-    /// stays over the same empty blocks, no block is read again.
+    /// As [`Raster::any_material_near`], remembering the answers: while the tool stays
+    /// over the same empty blocks, no block is read again, and while a block found to hold
+    /// material lies under the tool and still does, no other is read.
     pub fn any_material_near(&mut self, x: f64, y: f64, reach_mm: f64) -> bool {
         let Some(blocks) = self.raster.blocks_near(x, y, reach_mm) else {
             return false;
         };
+        if self.material_at.is_some_and(|at| blocks.holds(at) && self.raster.block_holds_material(at)) {
+            return true;
+        }
         if self.empty.is_some_and(|e| e.contains(&blocks)) {
             return false;
         }
-        let any = self.raster.any_material_in(blocks);
-        if !any {
-            self.empty = Some(blocks);
+        match self.raster.first_material_block_in(blocks) {
+            Some(at) => {
+                self.material_at = Some(at);
+                true
+            }
+            None => {
+                self.empty = Some(blocks);
+                false
+            }
         }
-        any
     }
 }
 
@@ -309,5 +321,28 @@ mod tests {
                 prop_assert!(levels.iter().any(|&l| (l - z).abs() < 1e-12), "layer {z} merged away: {levels:?}");
             }
         }
+    }
+
+    #[test]
+    fn material_near_is_looked_up_again_once_the_block_that_held_it_is_cleared() {
+        let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 20.0, y_max: 20.0 };
+        let mut raster = Raster::new(rect, 0.1);
+        raster.paint(
+            true,
+            |y, out| {
+                if (rect.y_min..rect.y_max).contains(&y) {
+                    out.push((rect.x_min, rect.x_max));
+                }
+            },
+            |x, y, _| crate::core::stock::rect_signed_distance(&rect, x, y),
+        );
+        let mut slice = Slice::new(0.0, -5.0, raster);
+        assert!(slice.any_material_near(10.0, 10.0, 2.0));
+        // The block found first goes; others near the tool still hold material.
+        slice.raster.clear_capsule((8.0, 8.0), (8.0, 8.0), 2.5);
+        assert!(slice.any_material_near(10.0, 10.0, 2.0));
+        // All of it goes.
+        slice.raster.clear_capsule((10.0, 10.0), (10.0, 10.0), 6.0);
+        assert!(!slice.any_material_near(10.0, 10.0, 2.0));
     }
 }

@@ -58,6 +58,11 @@ pub struct BlockRange {
 }
 
 impl BlockRange {
+    /// `true` when block (column, row) is one of `self`.
+    pub fn holds(&self, (column, row): (usize, usize)) -> bool {
+        (self.columns.0..=self.columns.1).contains(&column) && (self.rows.0..=self.rows.1).contains(&row)
+    }
+
     /// `true` when `other` lies inside `self`.
     pub fn contains(&self, other: &BlockRange) -> bool {
         self.columns.0 <= other.columns.0
@@ -178,8 +183,20 @@ impl Raster {
 
     /// `true` when a cell of the blocks `b` holds material.
     pub fn any_material_in(&self, b: BlockRange) -> bool {
-        (b.rows.0..=b.rows.1)
-            .any(|bj| self.blocks[bj * self.bx + b.columns.0..=bj * self.bx + b.columns.1].iter().any(|&n| n > 0))
+        self.first_material_block_in(b).is_some()
+    }
+
+    /// The first block of `b`, row by row, with a cell that holds material, as (column, row).
+    pub fn first_material_block_in(&self, b: BlockRange) -> Option<(usize, usize)> {
+        (b.rows.0..=b.rows.1).find_map(|bj| {
+            let row = &self.blocks[bj * self.bx + b.columns.0..=bj * self.bx + b.columns.1];
+            row.iter().position(|&n| n > 0).map(|i| (b.columns.0 + i, bj))
+        })
+    }
+
+    /// `true` when a cell of block (column, row) holds material.
+    pub fn block_holds_material(&self, (column, row): (usize, usize)) -> bool {
+        self.blocks.get(row * self.bx + column).is_some_and(|&n| n > 0)
     }
 
     /// Cells whose centres lie in `[x_lo, x_hi]`, as a half-open index range.
