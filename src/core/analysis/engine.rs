@@ -172,7 +172,9 @@ pub fn simulate(
 struct SliceProbes {
     table: AngleTable,
     site: ProbeSite,
-    /// Per slice, its contact at the current sample.
+    /// Per slice, its contact at the current sample: from the deepest slice cut up to the
+    /// first that does not engage. Above that one none engages (see `engages`), and they
+    /// are neither measured nor read.
     contacts: Vec<Contact>,
     memories: Vec<ScanMemory>,
     same_below: SameBelow,
@@ -185,13 +187,12 @@ impl SliceProbes {
         // From the deepest slice cut up. Each slice's material lies inside the material of
         // the one below (see `slices`), and so does each coarse point's state: above a
         // slice with no material near the tool, or none at an interior coarse point (no
-        // engagement, see `engages`), none engages; coarse points in air below are in air
-        // above; and a slice with the cells of the one below under the tool has its
-        // contact.
+        // engagement, see `engages`), none engages, and none is measured; coarse points in
+        // air below are in air above; and a slice with the cells of the one below under the
+        // tool has its contact.
         let mut below: Option<u128> = None;
         for k in (0..cut).rev() {
             let (contact, states) = match below {
-                Some(states) if states & interior_points() == 0 => (Contact::default(), 0),
                 Some(states) if self.same_below.same(slices, k, p, heading, r) => (self.contacts[k + 1], states),
                 _ if !slices[k].any_material_near(p.0, p.1, r) => (Contact::default(), 0),
                 _ => {
@@ -200,6 +201,9 @@ impl SliceProbes {
                 }
             };
             self.contacts[k] = contact;
+            if states & interior_points() == 0 {
+                break;
+            }
             below = Some(states);
         }
     }
@@ -226,11 +230,11 @@ impl SliceProbes {
         // Interior points in air below are in air above (see `engages`).
         let mut candidates = states & interior_points();
         for k in (0..deepest).rev() {
-            let engages = candidates != 0 && self.table.engages(&slices[k].raster, &self.site, &mut candidates);
-            if !engages {
-                candidates = 0;
+            if candidates == 0 || !self.table.engages(&slices[k].raster, &self.site, &mut candidates) {
+                self.contacts[k] = Contact::default();
+                break;
             }
-            self.contacts[k] = if engages { contact } else { Contact::default() };
+            self.contacts[k] = contact;
         }
     }
 }
