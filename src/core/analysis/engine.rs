@@ -239,7 +239,8 @@ impl SliceProbes {
     }
 }
 
-/// Fills α, L, Ad, t_m and the force of `result` from the contacts of the cut slices.
+/// Fills α, L, Ad, t_m and the force of `result` from the contacts of the cut slices
+/// (read from the deepest up to the first that does not engage, see [`SliceProbes`]).
 fn evaluate(
     result: &mut SampleResult,
     contacts: &[Contact],
