@@ -44,8 +44,7 @@ impl AngleTable {
 
 #[cfg(test)]
 mod tests {
-    use super::super::probe::Contact;
-    use super::super::probe_tests::{point, stock, Rib, Slot, CELL, RADIUS, SIDE};
+    use super::super::probe_tests::{point, stock, CELL, RADIUS, SIDE};
     use super::super::recent::Corridor;
     use super::*;
     use proptest::prelude::*;
@@ -62,8 +61,6 @@ mod tests {
             above in prop::collection::vec((point(), point(), 0.05..6.0f64), 0..6),
             sites in prop::collection::vec((point(), 0.0..2.0 * PI, prop::collection::vec((-4.0..4.0f64, -4.0..4.0f64), 0..4)), 32),
         ) {
-            let slots: Vec<Slot> = slots;
-            let ribs: Vec<Rib> = ribs;
             // The slice below, and one above it that lost more material.
             let below = stock(&discs, &slots, &ribs);
             let mut upper = below.clone();
@@ -84,8 +81,7 @@ mod tests {
                 prop_assert_eq!(told, (contact, states_upper), "at {:?} heading {:?}", center, heading);
                 let mut candidates = states_below & interior_points();
                 let engages = table.engages(&upper, &site, &mut candidates);
-                let want: Contact = contact;
-                prop_assert_eq!(engages, want.alpha_rad > 0.0, "at {:?} heading {:?}: {:?}", center, heading, want);
+                prop_assert_eq!(engages, contact.alpha_rad > 0.0, "at {:?} heading {:?}: {:?}", center, heading, contact);
                 prop_assert_eq!(states_upper & interior_points() & !candidates, 0, "a material point was dropped");
             }
         }

@@ -118,9 +118,9 @@ pub(super) fn stock(discs: &[(f64, f64, f64)], slots: &[Slot], ribs: &[Rib]) -> 
 }
 
 /// Ends and radius, mm.
-pub(super) type Slot = ((f64, f64), (f64, f64), f64);
+type Slot = ((f64, f64), (f64, f64), f64);
 /// Centre, direction (rad), width and the radius of the slots either side, mm.
-pub(super) type Rib = ((f64, f64), f64, f64, f64);
+type Rib = ((f64, f64), f64, f64, f64);
 
 pub(super) fn point() -> impl Strategy<Value = (f64, f64)> {
     (0.0..SIDE, 0.0..SIDE)

@@ -327,20 +327,21 @@ mod tests {
     fn material_near_is_looked_up_again_once_the_block_that_held_it_is_cleared() {
         let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 20.0, y_max: 20.0 };
         let mut raster = Raster::new(rect, 0.1);
-        raster.paint(
-            true,
-            |y, out| {
-                if (rect.y_min..rect.y_max).contains(&y) {
-                    out.push((rect.x_min, rect.x_max));
-                }
-            },
-            |x, y, _| crate::core::stock::rect_signed_distance(&rect, x, y),
-        );
+        crate::core::analysis::region::paint(
+            &mut raster,
+            &[crate::core::analysis::region::StockRegion::Rect(rect)],
+            &[],
+            &crate::core::progress::NoProgress,
+        )
+        .expect("nothing cancels the painting");
         let mut slice = Slice::new(0.0, -5.0, raster);
         assert!(slice.any_material_near(10.0, 10.0, 2.0));
+        let first = slice.material_at.expect("the block with material is remembered");
         // The block found first goes; others near the tool still hold material.
         slice.raster.clear_capsule((8.0, 8.0), (8.0, 8.0), 2.5);
+        assert!(!slice.raster.block_holds_material(first), "the remembered block still holds material");
         assert!(slice.any_material_near(10.0, 10.0, 2.0));
+        assert_ne!(slice.material_at, Some(first));
         // All of it goes.
         slice.raster.clear_capsule((10.0, 10.0), (10.0, 10.0), 6.0);
         assert!(!slice.any_material_near(10.0, 10.0, 2.0));
