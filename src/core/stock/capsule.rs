@@ -12,8 +12,6 @@ use super::{Raster, BLOCK_CELLS, DEGENERATE_SEGMENT_MM, FULL};
 const MIN_ROW_SLOPE: f64 = 1e-6;
 /// Cells compared at once when skipping runs of "far outside" cells.
 const WORD_CELLS: usize = 8;
-/// Words of cells tested at once when skipping the tiles of a row already cleared.
-const SKIP_WORDS: usize = 4;
 /// Eight "far outside" cells as one word.
 const FAR_OUTSIDE_WORD: u64 = u64::from_ne_bytes([(-FULL) as u8; WORD_CELLS]);
 // A tile's stretch of a row is one word and lies in one block of material counts.
@@ -48,25 +46,31 @@ impl Raster {
         self.end_disc_cleared = false;
     }
 
+    /// `true` when a capsule update leaves the tile of cell (i, j) as it is: it has no
+    /// material near (see [`Raster::clear_capsule_rows`]).
+    #[inline]
+    fn left_alone(&self, i: usize, j: usize) -> bool {
+        !self.updates_every_cell() && self.tiles.without_material_near(i, j)
+    }
+
+    /// Tests compare the updates with those that leave no cell alone.
+    #[inline]
+    fn updates_every_cell(&self) -> bool {
+        #[cfg(test)]
+        if self.update_every_cell {
+            return true;
+        }
+        false
+    }
+
     /// `true` when the `WORD_CELLS` cells from index `k` are all "far outside".
     #[inline]
     fn far_outside_word(&self, k: usize) -> bool {
-        self.far_outside_words::<1>(k)
-    }
-
-    /// `true` when the `WORDS` × `WORD_CELLS` cells from index `k` are all "far outside"
-    /// (one test for all the words).
-    #[inline]
-    fn far_outside_words<const WORDS: usize>(&self, k: usize) -> bool {
-        let cells = &self.f[k..k + WORDS * WORD_CELLS];
-        let differing = cells.chunks_exact(WORD_CELLS).fold(0u64, |acc, w| {
-            let mut word = [0u8; WORD_CELLS];
-            for (b, &v) in word.iter_mut().zip(w) {
-                *b = v as u8;
-            }
-            acc | (u64::from_ne_bytes(word) ^ FAR_OUTSIDE_WORD)
-        });
-        differing == 0
+        let mut word = [0u8; WORD_CELLS];
+        for (b, &v) in word.iter_mut().zip(&self.f[k..k + WORD_CELLS]) {
+            *b = v as u8;
+        }
+        u64::from_ne_bytes(word) == FAR_OUTSIDE_WORD
     }
 
     /// Cells [from, to) of row `j` in the band around the capsule `outer` (radius
@@ -77,51 +81,63 @@ impl Raster {
         let y = self.row_y(j);
         let mut changed = false;
         let mut i = from;
+        // A tile's stretch at a time: tiles with no material near are left as they are
+        // (see [`Raster::clear_capsule_rows`]), as are stretches already far outside.
         while i < to {
-            if i + WORD_CELLS <= to && self.far_outside_word(row + i) {
-                i += WORD_CELLS;
+            let end = ((i / TILE_CELLS + 1) * TILE_CELLS).min(to);
+            if self.left_alone(i, j) || (end - i == WORD_CELLS && self.far_outside_word(row + i)) {
+                i = end;
                 continue;
             }
-            let q = (self.col_x(i), y);
-            let old = self.f[row + i];
-            let distance = if old == -FULL { None } else { outer.distance_unless_behind(q, skip_behind) };
-            if let Some(d) = distance {
-                // Material stays where it is farther than r from the segment. The cell
-                // is written whether or not it changes (no branch to mispredict); it can
-                // only lose material.
-                let v = self.encode(d - r).min(old);
-                self.f[row + i] = v;
-                changed |= v != old;
-                if old > 0 && v <= 0 {
-                    self.blocks[(j / BLOCK_CELLS) * self.bx + i / BLOCK_CELLS] -= 1;
-                    self.tiles.update(i, j, false);
+            for i in i..end {
+                let q = (self.col_x(i), y);
+                let old = self.f[row + i];
+                let distance = if old == -FULL { None } else { outer.distance_unless_behind(q, skip_behind) };
+                if let Some(d) = distance {
+                    // Material stays where it is farther than r from the segment. The cell
+                    // is written whether or not it changes (no branch to mispredict); it
+                    // can only lose material.
+                    let v = self.encode(d - r).min(old);
+                    self.f[row + i] = v;
+                    changed |= v != old;
+                    if old > 0 && v <= 0 {
+                        self.blocks[(j / BLOCK_CELLS) * self.bx + i / BLOCK_CELLS] -= 1;
+                        self.tiles.update(i, j, false);
+                    }
                 }
             }
-            i += 1;
+            i = end;
         }
         if changed {
             self.version += 1;
         }
     }
 
-    /// Sets cells [from, to) of row `j` to "far outside", a tile's width at a time: the
-    /// material cells of each stretch are counted and the block and tile counts updated
-    /// once.
+    /// Clears the material of cells [from, to) of row `j`, which lie inside the capsule by
+    /// at least the clamp width, a tile's width at a time: the material cells of each
+    /// stretch are counted and the block and tile counts updated once. Only material
+    /// needs clearing: such a cell is too deep inside the capsule ever to share a probe's
+    /// 2 × 2 cells with material again, so of an air cell only the sign counts (see
+    /// [`Raster::clear_capsule_rows`]); tiles with no material are not read.
     pub(super) fn clear_cells(&mut self, j: usize, from: usize, to: usize) {
+        if from >= to {
+            return;
+        }
         let row = j * self.nx;
-        let mut i = from;
-        while i < to {
-            // Runs of tiles already cleared, several at once.
-            while i.is_multiple_of(TILE_CELLS)
-                && i + SKIP_WORDS * WORD_CELLS <= to
-                && self.far_outside_words::<SKIP_WORDS>(row + i)
-            {
-                i += SKIP_WORDS * WORD_CELLS;
+        let (tj, last) = (j / TILE_CELLS, (to - 1) / TILE_CELLS);
+        let mut t = from / TILE_CELLS;
+        loop {
+            if !self.updates_every_cell() {
+                match self.tiles.next_holding_material(tj, t, last) {
+                    Some(next) => t = next,
+                    None => break,
+                }
             }
-            if i >= to {
+            if t > last {
                 break;
             }
-            let end = ((i / TILE_CELLS + 1) * TILE_CELLS).min(to);
+            let (i, end) = ((t * TILE_CELLS).max(from), ((t + 1) * TILE_CELLS).min(to));
+            t += 1;
             let cleared = if end - i == WORD_CELLS {
                 self.far_outside_word(row + i)
             } else {
@@ -137,7 +153,6 @@ impl Raster {
                     self.tiles.lose(i, j, lost);
                 }
             }
-            i = end;
         }
     }
 }
@@ -311,6 +326,9 @@ mod tests {
             radius in 0.3..6.0f64,
         ) {
             let (mut crescents, mut whole) = (block(), block());
+            // Cell by cell, in tiles with no material near too.
+            crescents.update_every_cell = true;
+            whole.update_every_cell = true;
             let mut a = start;
             for (k, d) in steps.iter().enumerate() {
                 let b = (a.0 + d.0, a.1 + d.1);
@@ -324,6 +342,46 @@ mod tests {
             prop_assert!(worst.unwrap_or(0) <= 1, "cells differ by {:?}", worst);
             let differing_sign = crescents.f.iter().zip(&whole.f).filter(|(p, q)| (**p > 0) != (**q > 0)).count();
             prop_assert!(differing_sign == 0, "{} cells change side", differing_sign);
+        }
+
+        #[test]
+        fn updates_that_leave_air_far_from_material_alone_change_no_probe_and_no_count(
+            start in (0.0..SIDE, 0.0..SIDE),
+            steps in prop::collection::vec((-4.0..4.0f64, -4.0..4.0f64), 1..40),
+            radius in 0.3..3.0f64,
+            probes in prop::collection::vec((0.0..SIDE, 0.0..SIDE), 400),
+        ) {
+            let (mut skipping, mut every) = (block(), block());
+            every.update_every_cell = true;
+            let mut a = start;
+            let mut near_edges = Vec::new();
+            for (k, d) in steps.iter().enumerate() {
+                let b = (a.0 + d.0, a.1 + d.1);
+                // Points about the edge of the disc at b, where the cells decide.
+                for n in 0..16 {
+                    let angle = f64::from(n) * std::f64::consts::PI / 8.0;
+                    for off in [-0.15, -0.05, 0.0, 0.05, 0.15] {
+                        near_edges.push((b.0 + (radius + off) * angle.cos(), b.1 + (radius + off) * angle.sin()));
+                    }
+                }
+                prop_assert_eq!(skipping.clear_capsule_after(a, b, radius, k > 0), every.clear_capsule_after(a, b, radius, k > 0));
+                a = b;
+            }
+            prop_assert!(skipping.blocks == every.blocks && skipping.tiles == every.tiles, "counts differ");
+            // Material cells are the same; so is every probe, with what it certifies.
+            let differing_material = skipping.f.iter().zip(&every.f).filter(|(p, q)| (**p > 0 || **q > 0) && p != q).count();
+            prop_assert!(differing_material == 0, "{} material cells differ", differing_material);
+            for (x, y) in probes.into_iter().chain(near_edges) {
+                let g = skipping.grid_position(x, y);
+                prop_assert_eq!(skipping.probe_at(g), every.probe_at(g), "at ({}, {})", x, y);
+            }
+            // And a probe inside every quad of cells.
+            for j in 0..skipping.ny - 1 {
+                for i in 0..skipping.nx - 1 {
+                    let g = (i as f64 + 0.3, j as f64 + 0.6);
+                    prop_assert_eq!(skipping.probe_at(g), every.probe_at(g), "at cells ({}, {})", i, j);
+                }
+            }
         }
 
         #[test]

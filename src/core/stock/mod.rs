@@ -3,6 +3,12 @@
 //! (positive in material), clamped to ±[`SDF_CLAMP_CELLS`] cells and stored in one byte;
 //! a probe interpolates bilinearly, which places a smooth boundary to a small fraction of
 //! a cell. Memory grows with the stock area (one byte per cell), not with the path.
+//!
+//! Only the cells a probe can read beside a material cell need their distance: an air
+//! cell that no longer has material next to it keeps whatever value at or below zero it
+//! had when the last material near it was removed (capsule updates leave it alone, see
+//! [`Raster::clear_capsule_rows`]). Such a value underestimates the distance to the
+//! material that is left, which is all that is read from it.
 
 mod along;
 mod capsule;
@@ -91,6 +97,9 @@ pub struct Raster {
     end_disc_cleared: bool,
     /// Counts the writes: what was read from the raster holds while it is unchanged.
     version: u64,
+    /// Tests compare capsule updates with and without leaving tiles alone.
+    #[cfg(test)]
+    update_every_cell: bool,
 }
 
 impl Raster {
@@ -111,6 +120,8 @@ impl Raster {
             tiles: Tiles::new(nx, ny),
             end_disc_cleared: false,
             version: 0,
+            #[cfg(test)]
+            update_every_cell: false,
         }
     }
 
@@ -370,8 +381,10 @@ impl Raster {
         let nearest = self.f[k + usize::from(tx > 0.5) + if ty > 0.5 { self.nx } else { 0 }];
         if nearest.unsigned_abs() >= DECISIVE {
             let material = nearest > 0;
-            // Only a cell at the clamp can lie in a tile neighbourhood of one state.
-            let certified = if CERTIFY && nearest.unsigned_abs() == FULL.unsigned_abs() {
+            // Only a material cell at the clamp can lie in a tile neighbourhood of one
+            // state; an air cell can hold any value there (capsules leave such tiles
+            // alone, see `clear_capsule_rows`).
+            let certified = if CERTIFY && (nearest == FULL || !material) {
                 self.tiles.certified(i, j, material)
             } else {
                 Certified::No
@@ -382,7 +395,10 @@ impl Raster {
         let (c, d) = (f64::from(self.f[k + self.nx]), f64::from(self.f[k + self.nx + 1]));
         let bottom = a + (b - a) * tx;
         let top = c + (d - c) * tx;
-        (bottom + (top - bottom) * ty > 0.0, Certified::No)
+        let material = bottom + (top - bottom) * ty > 0.0;
+        let certified =
+            if CERTIFY && !material && nearest <= 0 { self.tiles.certified(i, j, false) } else { Certified::No };
+        (material, certified)
     }
 
     /// How far around a grid position off the raster (where [`Raster::classify`] answers

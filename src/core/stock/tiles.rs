@@ -48,7 +48,15 @@ pub struct Tiles {
     /// Per tile and level: tiles of the neighbourhood that are not all air, then tiles
     /// that are not all material (tiles outside the raster count as air, not material).
     mixed: Vec<[u8; 2 * LEVEL_RADII.len()]>,
+    /// Per row of tiles, one bit per tile that holds material (bit `ti % 64` of word
+    /// `ti / 64`), so that runs of tiles without material are passed over at once.
+    holding: Vec<u64>,
+    /// Words of `holding` per row of tiles.
+    words: usize,
 }
+
+/// Tiles per word of [`Tiles::holding`].
+const TILES_PER_WORD: usize = u64::BITS as usize;
 
 impl Tiles {
     /// Counts for an all-air raster of `nx` × `ny` cells.
@@ -58,7 +66,8 @@ impl Tiles {
         for (l, r) in LEVEL_RADII.iter().enumerate() {
             level[LEVEL_RADII.len() + l] = ((2 * r + 1) * (2 * r + 1)) as u8;
         }
-        Tiles { tx, ty, material: vec![0; tx * ty], mixed: vec![level; tx * ty] }
+        let words = tx.div_ceil(TILES_PER_WORD);
+        Tiles { tx, ty, material: vec![0; tx * ty], mixed: vec![level; tx * ty], holding: vec![0; words * ty], words }
     }
 
     /// Adds the material cells of row `j` (every cell of it, in order) to the tiles'
@@ -126,6 +135,11 @@ impl Tiles {
     /// Adds (`more`) or removes one mixed tile at (ti, tj) from the counts of `offset`
     /// (0: not air, LEVEL_RADII.len(): not material) of its neighbours.
     fn spread(&mut self, ti: usize, tj: usize, offset: usize, more: bool) {
+        if offset == 0 {
+            // The tile itself turns from air to not air, or back.
+            let (word, bit) = (&mut self.holding[tj * self.words + ti / TILES_PER_WORD], 1 << (ti % TILES_PER_WORD));
+            *word = if more { *word | bit } else { *word & !bit };
+        }
         for (l, &r) in LEVEL_RADII.iter().enumerate() {
             for nj in tj.saturating_sub(r)..(tj + r + 1).min(self.ty) {
                 for ni in ti.saturating_sub(r)..(ti + r + 1).min(self.tx) {
@@ -134,6 +148,34 @@ impl Tiles {
                 }
             }
         }
+    }
+
+    /// The first column of tiles in `from..=to` whose tile in row `tj` holds material.
+    #[inline]
+    pub fn next_holding_material(&self, tj: usize, from: usize, to: usize) -> Option<usize> {
+        let row = &self.holding[tj * self.words..(tj + 1) * self.words];
+        let mut w = from / TILES_PER_WORD;
+        let mut bits = row.get(w)? & (u64::MAX << (from % TILES_PER_WORD));
+        loop {
+            if bits != 0 {
+                let t = w * TILES_PER_WORD + bits.trailing_zeros() as usize;
+                return (t <= to).then_some(t);
+            }
+            w += 1;
+            if w * TILES_PER_WORD > to {
+                return None;
+            }
+            bits = *row.get(w)?;
+        }
+    }
+
+    /// `true` when no cell of the 3 × 3 tiles around the tile of cell (i, j) holds
+    /// material. Material is only ever removed, so this stays true, and no cell of that
+    /// tile will ever share a probe's 2 × 2 cells with a material cell: its value decides
+    /// nothing beyond its sign (see [`super::Raster::clear_capsule_rows`]).
+    #[inline]
+    pub fn without_material_near(&self, i: usize, j: usize) -> bool {
+        self.mixed[(j / TILE_CELLS) * self.tx + i / TILE_CELLS][0] == 0
     }
 
     /// How far the state `material` of a point whose 2 × 2 cells start at cell (i, j)
@@ -183,6 +225,26 @@ mod tests {
         assert_eq!(t.certified(40 + TILE_CELLS, 40, true), Certified::No);
         assert_eq!(t.certified(40 + 2 * TILE_CELLS, 40, true), Certified::Level(1));
         assert_eq!(t.certified(40, 40, false), Certified::No);
+    }
+
+    #[test]
+    fn the_next_tile_holding_material_is_found_across_words_and_forgotten_once_cleared() {
+        // 200 tiles to a row: four words.
+        let mut t = Tiles::new(200 * TILE_CELLS, 3 * TILE_CELLS);
+        let row = TILE_CELLS + 3;
+        for tile in [5, 70, 130] {
+            t.update(tile * TILE_CELLS + 2, row, true);
+        }
+        assert_eq!(t.next_holding_material(1, 0, 199), Some(5));
+        assert_eq!(t.next_holding_material(1, 6, 199), Some(70));
+        assert_eq!(t.next_holding_material(1, 71, 129), None, "the range ends before tile 130");
+        assert_eq!(t.next_holding_material(1, 71, 130), Some(130));
+        assert_eq!(t.next_holding_material(0, 0, 199), None, "another row of tiles");
+        t.update(70 * TILE_CELLS + 2, row, false);
+        assert_eq!(t.next_holding_material(1, 6, 199), Some(130));
+        t.lose(130 * TILE_CELLS, row, 1);
+        assert_eq!(t.next_holding_material(1, 6, 199), None);
+        assert_eq!(t.next_holding_material(1, 0, 4), None);
     }
 
     #[test]
