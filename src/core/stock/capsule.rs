@@ -116,9 +116,8 @@ impl Raster {
     /// Clears the material of cells [from, to) of row `j`, which lie inside the capsule by
     /// at least the clamp width, a tile's width at a time: the material cells of each
     /// stretch are counted and the block and tile counts updated once. Only material
-    /// needs clearing: such a cell is too deep inside the capsule ever to share a probe's
-    /// 2 × 2 cells with material again, so of an air cell only the sign counts (see
-    /// [`Raster::clear_capsule_rows`]); tiles with no material are not read.
+    /// needs clearing (see [`Raster::clear_capsule_rows`]): tiles with no material are
+    /// not read.
     pub(super) fn clear_cells(&mut self, j: usize, from: usize, to: usize) {
         if from >= to {
             return;

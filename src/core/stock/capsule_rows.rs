@@ -116,14 +116,14 @@ impl Raster {
     /// As [`Raster::clear_capsule_after`] with the rows of a capsule found for a raster of
     /// the same grid.
     ///
-    /// Tiles with no material in the 3 × 3 tiles around them are left as they are: a
-    /// probe reads the 2 × 2 cells around its point, and where none of them holds
-    /// material it answers air whatever their values. Material is only ever removed, so
-    /// such a tile's cells never again share a probe with a material cell; their values
-    /// stay at or below zero, and an air cell's value, which only underestimates its
-    /// distance to the material that is left, is still a safe bound. Every probe gives
-    /// the answer it would give had the cells been updated, and the updates skip the
-    /// cleared area a path has long left behind.
+    /// Air that no probe can read beside material is left as it is. A probe reads the
+    /// 2 × 2 cells around its point, and where none of them holds material it answers air
+    /// whatever their values. Material is only ever removed, so two kinds of cell never
+    /// again share a probe with a material cell: those in a tile with no material in the
+    /// 3 × 3 tiles around it (the band skips such tiles), and those deep inside the
+    /// capsule (of which only the material is cleared, see `clear_cells`). Their
+    /// values stay at or below zero and only underestimate the distance to the material
+    /// that is left, so every probe gives the answer it would give had they been updated.
     pub fn clear_capsule_rows(&mut self, capsule: &mut CapsuleRows) -> bool {
         debug_assert!(capsule.grid == self.grid(), "a capsule's rows found on another grid");
         let skip_start_disc = capsule.disc_at_a_cleared && self.end_disc_cleared;

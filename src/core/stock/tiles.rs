@@ -170,9 +170,7 @@ impl Tiles {
     }
 
     /// `true` when no cell of the 3 × 3 tiles around the tile of cell (i, j) holds
-    /// material. Material is only ever removed, so this stays true, and no cell of that
-    /// tile will ever share a probe's 2 × 2 cells with a material cell: its value decides
-    /// nothing beyond its sign (see [`super::Raster::clear_capsule_rows`]).
+    /// material (which stays true: material is only ever removed).
     #[inline]
     pub fn without_material_near(&self, i: usize, j: usize) -> bool {
         self.mixed[(j / TILE_CELLS) * self.tx + i / TILE_CELLS][0] == 0
