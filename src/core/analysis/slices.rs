@@ -16,6 +16,9 @@ use crate::core::CoreError;
 
 /// z levels closer than this are one level, mm.
 pub const MIN_SLICE_MM: f64 = 0.05;
+/// Levels this much closer than [`MIN_SLICE_MM`] are still apart: layers a program steps
+/// down by exactly the smallest slice differ by it only up to rounding, mm.
+const LEVEL_ROUNDING_MM: f64 = 1e-9;
 /// Most slices one analysis keeps (levels are merged away beyond it, see [`slice_levels`]).
 pub const MAX_SLICES: usize = 16;
 /// A level the program cuts flat for at least this share of its feed length is a layer
@@ -118,21 +121,27 @@ pub fn slice_levels(path: &Toolpath, z_bottom: f64, z_top: f64) -> Vec<f64> {
         .filter(|&(z, _)| z < z_top - MIN_SLICE_MM && z > z_bottom + MIN_SLICE_MM)
         .collect();
     candidates.sort_by(|a, b| b.0.total_cmp(&a.0));
-    // Candidates at one height are one, their lengths summed.
-    let mut heights: Vec<(f64, f64)> = Vec::with_capacity(candidates.len());
+    // Candidates at one height are one, their lengths summed, at the z of the longest
+    // flat move among them (a layer stays exact beside a ramp's end a rounding above it).
+    let mut heights: Vec<(f64, f64, f64)> = Vec::with_capacity(candidates.len());
     for (z, flat_mm) in candidates {
         match heights.last_mut() {
-            Some(last) if last.0 - z <= Z_CONTACT_EPS_MM => last.1 += flat_mm,
-            _ => heights.push((z, flat_mm)),
+            Some(last) if last.0 - z <= Z_CONTACT_EPS_MM => {
+                if flat_mm > last.2 {
+                    (last.0, last.2) = (z, flat_mm);
+                }
+                last.1 += flat_mm;
+            }
+            _ => heights.push((z, flat_mm, flat_mm)),
         }
     }
     // Levels as (z, the flat length at z, the flat length of the heights merged into it);
     // top first, bottom last, and neither is ever merged away.
     let mut levels: Vec<(f64, f64, f64)> = Vec::with_capacity(heights.len() + 2);
     levels.push((z_top, f64::INFINITY, f64::INFINITY));
-    for (z, flat_mm) in heights {
+    for (z, flat_mm, _) in heights {
         match levels.last_mut() {
-            Some(last) if last.0 - z < MIN_SLICE_MM => {
+            Some(last) if last.0 - z < MIN_SLICE_MM - LEVEL_ROUNDING_MM => {
                 if flat_mm > last.1 {
                     (last.0, last.1) = (z, flat_mm);
                 }
@@ -246,6 +255,21 @@ mod tests {
     }
 
     #[test]
+    fn a_layer_stays_exact_beside_a_ramp_end_a_rounding_above_it_and_layers_a_smallest_slice_apart_stay() {
+        // A ramp ending 2e-7 mm above the layer at −5 (one height with it), and layers at
+        // −2.9, −2.95 and −3.0 reached by subtracting 0.05 (a rounding under 0.05 apart).
+        let mut moves = vec![line(P3::new(0.0, 0.0, 0.0), P3::new(5.0, 0.0, -5.0 + 2e-7))];
+        moves.push(line(P3::new(0.0, 1.0, -5.0), P3::new(100.0, 1.0, -5.0)));
+        let mut z = -2.9;
+        for _ in 0..3 {
+            moves.push(line(P3::new(0.0, 2.0, z), P3::new(100.0, 2.0, z)));
+            z -= MIN_SLICE_MM;
+        }
+        let levels = slice_levels(&program(moves), -8.0, 0.0);
+        assert_levels(levels, &[0.0, -2.9, -2.9 - MIN_SLICE_MM, -2.9 - 2.0 * MIN_SLICE_MM, -5.0, -8.0]);
+    }
+
+    #[test]
     fn of_two_close_layers_the_one_cut_longer_is_the_level_however_many_moves_cut_it() {
         // 50 mm at −5 in one move, 100 mm at −5.03 in ten.
         let mut moves = vec![line(P3::new(0.0, 0.0, -5.0), P3::new(50.0, 0.0, -5.0))];
@@ -315,7 +339,7 @@ mod tests {
             prop_assert!(levels.len() >= 2 && levels.len() <= MAX_SLICES + 1, "{} levels", levels.len());
             prop_assert!((levels[0] - z_top).abs() < 1e-12 && (levels[levels.len() - 1] - z_bottom).abs() < 1e-12);
             for pair in levels.windows(2) {
-                prop_assert!(pair[0] - pair[1] >= MIN_SLICE_MM - 1e-9, "{pair:?} closer than the smallest slice");
+                prop_assert!(pair[0] - pair[1] >= MIN_SLICE_MM - LEVEL_ROUNDING_MM, "{pair:?} closer than the smallest slice");
             }
             for z in layers {
                 prop_assert!(levels.iter().any(|&l| (l - z).abs() < 1e-12), "layer {z} merged away: {levels:?}");
