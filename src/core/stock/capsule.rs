@@ -315,6 +315,13 @@ mod tests {
         assert!(upper.blocks == upper_alone.blocks && upper.tiles == upper_alone.tiles, "counts differ");
     }
 
+    /// `true` when cell `k` and a material cell lie in one 2 × 2 quad, which a probe reads.
+    fn shares_a_probe_with_material(r: &Raster, k: usize) -> bool {
+        let (i, j) = (k % r.nx, k / r.nx);
+        let near = |n: usize, len: usize| n.saturating_sub(1)..(n + 2).min(len);
+        near(j, r.ny).any(|jj| near(i, r.nx).any(|ii| r.f[jj * r.nx + ii] > 0))
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(48))]
 
@@ -336,8 +343,13 @@ mod tests {
                 a = b;
             }
             // Cells behind a start hold the distance to the previous capsule, computed
-            // there through a different segment: equal to a unit of rounding.
-            let worst = crescents.f.iter().zip(&whole.f).map(|(p, q)| (i16::from(*p) - i16::from(*q)).abs()).max();
+            // there through a different segment: equal to a unit of rounding. Only cells
+            // a probe reads beside material count: a capsule with no material near is
+            // skipped, and the air it would have updated keeps other values.
+            let worst = (0..whole.f.len())
+                .filter(|&k| shares_a_probe_with_material(&whole, k))
+                .map(|k| (i16::from(crescents.f[k]) - i16::from(whole.f[k])).abs())
+                .max();
             prop_assert!(worst.unwrap_or(0) <= 1, "cells differ by {:?}", worst);
             let differing_sign = crescents.f.iter().zip(&whole.f).filter(|(p, q)| (**p > 0) != (**q > 0)).count();
             prop_assert!(differing_sign == 0, "{} cells change side", differing_sign);
