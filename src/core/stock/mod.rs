@@ -21,15 +21,19 @@ pub use compare::CellRect;
 pub use tiles::Certified;
 use tiles::Tiles;
 
-/// Distances are clamped to this many cells either side of the boundary.
-pub const SDF_CLAMP_CELLS: f64 = 2.0;
-/// Stored units per cell of distance (so ±2 cells fit an i8).
-const UNITS_PER_CELL: f64 = 63.0;
+/// Distances are clamped to this many cells either side of the boundary. A probe
+/// interpolates the 2 × 2 cells around its point; where the boundary crosses them, each
+/// lies within a diagonal (√2 cells) of it, so a clamp beyond √2 never changes where a
+/// probe places the boundary, and the cells beyond it need no exact distance.
+pub const SDF_CLAMP_CELLS: f64 = 1.5;
+/// Stored units per cell of distance (so ±1.5 cells fit an i8).
+const UNITS_PER_CELL: f64 = 84.0;
 /// A nearest cell at least this far from the boundary (stored units: √2/2 of a cell,
 /// rounded up) decides a probe without interpolation.
-const DECISIVE: u8 = 45;
+const DECISIVE: u8 = (std::f64::consts::FRAC_1_SQRT_2 * UNITS_PER_CELL) as u8 + 1;
+const _: () = assert!(SDF_CLAMP_CELLS > std::f64::consts::SQRT_2);
 /// The stored value of "far inside material" / "far outside".
-const FULL: i8 = 126;
+const FULL: i8 = (SDF_CLAMP_CELLS * UNITS_PER_CELL) as i8;
 /// Segments shorter than this are treated as a single disc, mm.
 const DEGENERATE_SEGMENT_MM: f64 = 1e-12;
 /// Side of the square blocks whose material cells are counted, in cells: a probe skips
@@ -127,7 +131,8 @@ impl Raster {
 
     /// The origin and the size in cells of the raster [`Raster::new`] makes.
     fn layout(bounds: Rect, cell_mm: f64) -> (f64, f64, usize, usize) {
-        let margin = (SDF_CLAMP_CELLS + 1.0) * cell_mm;
+        // A whole number of cells, so the grid keeps its phase whatever the clamp.
+        let margin = (SDF_CLAMP_CELLS.ceil() + 1.0) * cell_mm;
         let x0 = bounds.x_min - margin;
         let y0 = bounds.y_min - margin;
         let nx = (((bounds.x_max + margin - x0) / cell_mm).ceil() as usize).max(2);
