@@ -49,7 +49,7 @@ impl Raster {
     /// `true` when a capsule update leaves the tile of cell (i, j) as it is: it has no
     /// material near (see [`Raster::clear_capsule_rows`]).
     #[inline]
-    fn left_alone(&self, i: usize, j: usize) -> bool {
+    pub(super) fn left_alone(&self, i: usize, j: usize) -> bool {
         !self.updates_every_cell() && self.tiles.without_material_near(i, j)
     }
 
@@ -63,54 +63,24 @@ impl Raster {
         false
     }
 
+    /// Tests compare the updates with those that take every band cell one by one.
+    #[inline]
+    pub(super) fn band_cell_by_cell(&self) -> bool {
+        #[cfg(test)]
+        if self.band_cell_by_cell {
+            return true;
+        }
+        false
+    }
+
     /// `true` when the `WORD_CELLS` cells from index `k` are all "far outside".
     #[inline]
-    fn far_outside_word(&self, k: usize) -> bool {
+    pub(super) fn far_outside_word(&self, k: usize) -> bool {
         let mut word = [0u8; WORD_CELLS];
         for (b, &v) in word.iter_mut().zip(&self.f[k..k + WORD_CELLS]) {
             *b = v as u8;
         }
         u64::from_ne_bytes(word) == FAR_OUTSIDE_WORD
-    }
-
-    /// Cells [from, to) of row `j` in the band around the capsule `outer` (radius
-    /// `r` + the clamp width) get their distance to the capsule of radius `r`, where it
-    /// is smaller; with `skip_behind`, cells projecting before its start are left alone.
-    pub(super) fn band_cells(&mut self, j: usize, from: usize, to: usize, outer: &Capsule, r: f64, skip_behind: bool) {
-        let row = j * self.nx;
-        let y = self.row_y(j);
-        let mut changed = false;
-        let mut i = from;
-        // A tile's stretch at a time: tiles with no material near are left as they are
-        // (see [`Raster::clear_capsule_rows`]), as are stretches already far outside.
-        while i < to {
-            let end = ((i / TILE_CELLS + 1) * TILE_CELLS).min(to);
-            if self.left_alone(i, j) || (end - i == WORD_CELLS && self.far_outside_word(row + i)) {
-                i = end;
-                continue;
-            }
-            for i in i..end {
-                let q = (self.col_x(i), y);
-                let old = self.f[row + i];
-                let distance = if old == -FULL { None } else { outer.distance_unless_behind(q, skip_behind) };
-                if let Some(d) = distance {
-                    // Material stays where it is farther than r from the segment. The cell
-                    // is written whether or not it changes (no branch to mispredict); it
-                    // can only lose material.
-                    let v = self.encode(d - r).min(old);
-                    self.f[row + i] = v;
-                    changed |= v != old;
-                    if old > 0 && v <= 0 {
-                        self.blocks[(j / BLOCK_CELLS) * self.bx + i / BLOCK_CELLS] -= 1;
-                        self.tiles.update(i, j, false);
-                    }
-                }
-            }
-            i = end;
-        }
-        if changed {
-            self.version += 1;
-        }
     }
 
     /// Clears the material of cells [from, to) of row `j`, which lie inside the capsule by
@@ -164,6 +134,24 @@ pub(super) enum FrontHalf {
     Below(f64),
 }
 
+/// The distance to a segment from points of one row that all lie beside it.
+pub(super) struct Beside {
+    a_x: f64,
+    /// The row's y from the segment's start.
+    py: f64,
+    dir: (f64, f64),
+}
+
+impl Beside {
+    /// The distance from `(x, row)` to the segment's line, computed as
+    /// [`Capsule::distance_unless_behind`] does.
+    #[inline]
+    pub(super) fn distance(&self, x: f64) -> f64 {
+        let (ux, uy) = self.dir;
+        ((x - self.a_x) * uy - self.py * ux).abs()
+    }
+}
+
 /// The set of points within `r` of a segment.
 pub(super) struct Capsule {
     a: (f64, f64),
@@ -205,7 +193,7 @@ impl Capsule {
     /// root); beyond either end, to that end. With `skip_behind`, `None` when `q` projects
     /// before the start (its nearest point is `a`).
     #[inline]
-    fn distance_unless_behind(&self, q: (f64, f64), skip_behind: bool) -> Option<f64> {
+    pub(super) fn distance_unless_behind(&self, q: (f64, f64), skip_behind: bool) -> Option<f64> {
         let (px, py) = (q.0 - self.a.0, q.1 - self.a.1);
         match self.dir {
             Some(((ux, uy), len)) => {
@@ -223,6 +211,20 @@ impl Capsule {
             }
             None => Some((px * px + py * py).sqrt()),
         }
+    }
+
+    /// Where the points from `(x_lo, y)` to `(x_hi, y)` all lie beside the segment (their
+    /// nearest point is inside it; with `skip_behind`, not its start), how to find their
+    /// distance to it, as [`Capsule::distance_unless_behind`] does.
+    #[inline]
+    pub(super) fn beside_all(&self, x_lo: f64, x_hi: f64, y: f64, skip_behind: bool) -> Option<Beside> {
+        let ((ux, uy), len) = self.dir?;
+        let py = y - self.a.1;
+        // The projection is monotonic along the row: its ends bound it.
+        let along = |x: f64| (x - self.a.0) * ux + py * uy;
+        let (t_lo, t_hi) = (along(x_lo), along(x_hi));
+        let inside = |t: f64| (0.0..=len).contains(&t) && !(skip_behind && t <= 0.0);
+        (inside(t_lo) && inside(t_hi)).then_some(Beside { a_x: self.a.0, py, dir: (ux, uy) })
     }
 
     /// The chord of the disc of radius `r` about `c` on the line at `y`.
@@ -393,6 +395,27 @@ mod tests {
                     prop_assert_eq!(skipping.probe_at(g), every.probe_at(g), "at cells ({}, {})", i, j);
                 }
             }
+        }
+
+        #[test]
+        fn band_stretches_beside_the_segment_take_the_values_of_band_cells_taken_one_by_one(
+            start in (0.0..SIDE, 0.0..SIDE),
+            steps in prop::collection::vec((-4.0..4.0f64, -4.0..4.0f64), 1..30),
+            radius in 0.3..6.0f64,
+        ) {
+            let (mut stretches, mut one_by_one) = (block(), block());
+            one_by_one.band_cell_by_cell = true;
+            let mut a = start;
+            for (k, d) in steps.iter().enumerate() {
+                // Every fourth step along a row or a column, where stretches run beside.
+                let d = match k % 4 { 1 => (d.0, 0.0), 3 => (0.0, d.1), _ => *d };
+                let b = (a.0 + d.0, a.1 + d.1);
+                prop_assert_eq!(stretches.clear_capsule_after(a, b, radius, k > 0), one_by_one.clear_capsule_after(a, b, radius, k > 0));
+                a = b;
+            }
+            prop_assert!(stretches.f == one_by_one.f, "cells differ");
+            prop_assert!(stretches.blocks == one_by_one.blocks && stretches.tiles == one_by_one.tiles, "counts differ");
+            prop_assert_eq!(stretches.version, one_by_one.version);
         }
 
         #[test]

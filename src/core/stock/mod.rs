@@ -11,6 +11,7 @@
 //! material that is left, which is all that is read from it.
 
 mod along;
+mod band;
 mod capsule;
 mod capsule_rows;
 mod compare;
@@ -101,9 +102,12 @@ pub struct Raster {
     end_disc_cleared: bool,
     /// Counts the writes: what was read from the raster holds while it is unchanged.
     version: u64,
-    /// Tests compare capsule updates with and without leaving tiles alone.
+    /// Tests compare capsule updates with and without leaving tiles alone, and with band
+    /// cells taken one by one.
     #[cfg(test)]
     update_every_cell: bool,
+    #[cfg(test)]
+    band_cell_by_cell: bool,
 }
 
 impl Raster {
@@ -126,6 +130,8 @@ impl Raster {
             version: 0,
             #[cfg(test)]
             update_every_cell: false,
+            #[cfg(test)]
+            band_cell_by_cell: false,
         }
     }
 

@@ -1,0 +1,87 @@
+//! The band of a capsule update: the cells within the clamp width of the capsule's edge,
+//! which take their distance to it (see [`Raster::clear_capsule_rows`]).
+
+use super::capsule::{Beside, Capsule};
+use super::tiles::TILE_CELLS;
+use super::{Raster, BLOCK_CELLS, FULL};
+
+/// Cells of a row taken at once where all lie beside the segment (a tile's stretch).
+const STRETCH_CELLS: usize = TILE_CELLS;
+
+impl Raster {
+    /// Cells [from, to) of row `j` in the band around the capsule `outer` (radius
+    /// `r` + the clamp width) get their distance to the capsule of radius `r`, where it
+    /// is smaller; with `skip_behind`, cells projecting before its start are left alone.
+    pub(super) fn band_cells(&mut self, j: usize, from: usize, to: usize, outer: &Capsule, r: f64, skip_behind: bool) {
+        let row = j * self.nx;
+        let y = self.row_y(j);
+        let mut changed = false;
+        let mut i = from;
+        // A tile's stretch at a time: tiles with no material near are left as they are
+        // (see [`Raster::clear_capsule_rows`]), as are stretches already far outside.
+        while i < to {
+            let end = ((i / TILE_CELLS + 1) * TILE_CELLS).min(to);
+            if self.left_alone(i, j) || (end - i == STRETCH_CELLS && self.far_outside_word(row + i)) {
+                i = end;
+                continue;
+            }
+            if end - i == STRETCH_CELLS && !self.band_cell_by_cell() {
+                if let Some(beside) = outer.beside_all(self.col_x(i), self.col_x(end - 1), y, skip_behind) {
+                    changed |= self.band_stretch_beside(j, i, &beside, r);
+                    i = end;
+                    continue;
+                }
+            }
+            for i in i..end {
+                let q = (self.col_x(i), y);
+                let old = self.f[row + i];
+                let distance = if old == -FULL { None } else { outer.distance_unless_behind(q, skip_behind) };
+                if let Some(d) = distance {
+                    // Material stays where it is farther than r from the segment. The cell
+                    // is written whether or not it changes (no branch to mispredict); it
+                    // can only lose material.
+                    let v = self.encode(d - r).min(old);
+                    self.f[row + i] = v;
+                    changed |= v != old;
+                    if old > 0 && v <= 0 {
+                        self.blocks[(j / BLOCK_CELLS) * self.bx + i / BLOCK_CELLS] -= 1;
+                        self.tiles.update(i, j, false);
+                    }
+                }
+            }
+            i = end;
+        }
+        if changed {
+            self.version += 1;
+        }
+    }
+
+    /// The band cells [i, i + `STRETCH_CELLS`) of row `j`, all beside the segment of the
+    /// capsule `beside` is of: each takes its distance to the capsule of radius `r` where
+    /// that is smaller, as in [`Raster::band_cells`], eight at once without a branch per
+    /// cell. Returns `true` when a cell changed.
+    fn band_stretch_beside(&mut self, j: usize, i: usize, beside: &Beside, r: f64) -> bool {
+        let k = j * self.nx + i;
+        let mut new = [0i8; STRETCH_CELLS];
+        for (n, v) in new.iter_mut().enumerate() {
+            *v = self.encode(beside.distance(self.col_x(i + n)) - r);
+        }
+        let mut old = [0i8; STRETCH_CELLS];
+        old.copy_from_slice(&self.f[k..k + STRETCH_CELLS]);
+        let mut lost = 0u32;
+        let mut changed = false;
+        for (n, (v, &o)) in new.iter_mut().zip(&old).enumerate() {
+            *v = (*v).min(o);
+            changed |= *v != o;
+            lost |= u32::from(o > 0 && *v <= 0) << n;
+        }
+        self.f[k..k + STRETCH_CELLS].copy_from_slice(&new);
+        while lost != 0 {
+            let n = lost.trailing_zeros() as usize;
+            lost &= lost - 1;
+            self.blocks[(j / BLOCK_CELLS) * self.bx + (i + n) / BLOCK_CELLS] -= 1;
+            self.tiles.update(i + n, j, false);
+        }
+        changed
+    }
+}
