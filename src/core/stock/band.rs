@@ -44,8 +44,7 @@ impl Raster {
                     self.f[row + i] = v;
                     changed |= v != old;
                     if old > 0 && v <= 0 {
-                        self.blocks[(j / BLOCK_CELLS) * self.bx + i / BLOCK_CELLS] -= 1;
-                        self.tiles.update(i, j, false);
+                        self.count_lost_material(i, j);
                     }
                 }
             }
@@ -79,9 +78,15 @@ impl Raster {
         while lost != 0 {
             let n = lost.trailing_zeros() as usize;
             lost &= lost - 1;
-            self.blocks[(j / BLOCK_CELLS) * self.bx + (i + n) / BLOCK_CELLS] -= 1;
-            self.tiles.update(i + n, j, false);
+            self.count_lost_material(i + n, j);
         }
         changed
+    }
+
+    /// Counts in its block and tile that cell (i, j) lost its material.
+    #[inline]
+    fn count_lost_material(&mut self, i: usize, j: usize) {
+        self.blocks[(j / BLOCK_CELLS) * self.bx + i / BLOCK_CELLS] -= 1;
+        self.tiles.update(i, j, false);
     }
 }
