@@ -143,13 +143,20 @@ pub(super) struct Beside {
 }
 
 impl Beside {
-    /// The distance from `(x, row)` to the segment's line, computed as
-    /// [`Capsule::distance_unless_behind`] does.
+    /// The distance from `(x, row)` to the segment's line (see `line_distance`).
     #[inline]
     pub(super) fn distance(&self, x: f64) -> f64 {
         let (ux, uy) = self.dir;
-        ((x - self.a_x) * uy - self.py * ux).abs()
+        line_distance((x - self.a_x, self.py), (ux, uy))
     }
+}
+
+/// Distance from the point `p` (relative to a point of a line) to the line along the unit
+/// vector `u`. One function for the band's stretches and its single cells, so both give
+/// the same bits.
+#[inline]
+fn line_distance(p: (f64, f64), u: (f64, f64)) -> f64 {
+    (p.0 * u.1 - p.1 * u.0).abs()
 }
 
 /// The set of points within `r` of a segment.
@@ -202,7 +209,7 @@ impl Capsule {
                     return None;
                 }
                 Some(if (0.0..=len).contains(&t) {
-                    (px * uy - py * ux).abs()
+                    line_distance((px, py), (ux, uy))
                 } else {
                     let t = t.clamp(0.0, len);
                     let (ex, ey) = (px - t * ux, py - t * uy);
