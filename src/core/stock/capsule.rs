@@ -55,7 +55,7 @@ impl Raster {
 
     /// Tests compare the updates with those that leave no cell alone.
     #[inline]
-    fn updates_every_cell(&self) -> bool {
+    pub(super) fn updates_every_cell(&self) -> bool {
         #[cfg(test)]
         if self.update_every_cell {
             return true;
@@ -122,6 +122,30 @@ impl Raster {
                     self.tiles.lose(i, j, lost);
                 }
             }
+        }
+    }
+}
+
+impl Raster {
+    /// Clears the material of the whole tiles [t0, t1) of row of tiles `tj`, whose cells
+    /// all lie inside the capsule by at least the clamp width: the tiles' material counts
+    /// are what they lose. As in [`Raster::clear_cells`], tiles with no material are not
+    /// read.
+    pub(super) fn clear_tiles(&mut self, tj: usize, t0: usize, t1: usize) {
+        let mut t = t0;
+        while t < t1 {
+            match self.tiles.next_holding_material(tj, t, t1 - 1) {
+                Some(next) => t = next,
+                None => break,
+            }
+            let (i, j0) = (t * TILE_CELLS, tj * TILE_CELLS);
+            let lost = self.tiles.empty(t, tj);
+            for j in j0..(j0 + TILE_CELLS).min(self.ny) {
+                self.f[j * self.nx + i..j * self.nx + i + TILE_CELLS].fill(-FULL);
+            }
+            self.blocks[(j0 / BLOCK_CELLS) * self.bx + i / BLOCK_CELLS] -= u32::from(lost);
+            self.version += 1;
+            t += 1;
         }
     }
 }

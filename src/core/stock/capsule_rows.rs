@@ -2,6 +2,7 @@
 //! (see [`Raster::clear_capsule_rows`]): the slices of a layer take the same capsules.
 
 use super::capsule::{Capsule, FrontHalf};
+use super::tiles::TILE_CELLS;
 use super::{Raster, SDF_CLAMP_CELLS};
 
 /// The cells of each row one capsule update touches. The rows are found when first
@@ -136,17 +137,55 @@ impl Raster {
             return false;
         }
         capsule.find_rows(self);
-        for row in &capsule.spans {
-            let j = row.j;
-            for (from, to) in row.bands {
-                self.band_cells(j, from, to, &capsule.outer, capsule.r, capsule.disc_at_a_cleared);
+        // A row of tiles at a time: the band and the inside cells of each row, except the
+        // tiles inside the capsule in every one of their rows, which are cleared whole.
+        let spans = &capsule.spans[..];
+        let mut first = 0;
+        while first < spans.len() {
+            let tj = spans[first].j / TILE_CELLS;
+            let end = spans[first..].iter().position(|row| row.j / TILE_CELLS != tj).map_or(spans.len(), |n| first + n);
+            let group = &spans[first..end];
+            first = end;
+            let (t0, t1) = self.whole_tiles_inside(group);
+            let whole = (t0 * TILE_CELLS, t1 * TILE_CELLS);
+            for row in group {
+                let j = row.j;
+                for (from, to) in row.bands {
+                    self.band_cells(j, from, to, &capsule.outer, capsule.r, capsule.disc_at_a_cleared);
+                }
+                let (in_from, in_to) = row.inside;
+                let (skip_from, skip_to) = if skip_start_disc { row.start_disc } else { (in_from, in_from) };
+                for (from, to) in [(in_from, skip_from), (skip_to.max(skip_from), in_to)] {
+                    // The whole tiles are cleared below.
+                    self.clear_cells(j, from, to.min(whole.0).max(from));
+                    self.clear_cells(j, from.max(whole.1), to);
+                }
             }
-            let (in_from, in_to) = row.inside;
-            let (skip_from, skip_to) = if skip_start_disc { row.start_disc } else { (in_from, in_from) };
-            self.clear_cells(j, in_from, skip_from);
-            self.clear_cells(j, skip_to.max(skip_from), in_to);
+            self.clear_tiles(tj, t0, t1);
         }
         self.end_disc_cleared = true;
         true
+    }
+
+    /// The columns of tiles [t0, t1) of the row of tiles of `group` (the spans of its
+    /// rows, in order) that lie inside the capsule in all of the tile's rows: cleared whole
+    /// (see [`Raster::clear_tiles`]). Cells of the start disc among them are cleared
+    /// already or cleared again, which changes nothing.
+    fn whole_tiles_inside(&self, group: &[RowSpans]) -> (usize, usize) {
+        let Some(first) = group.first() else {
+            return (0, 0);
+        };
+        let rows_of_tile = TILE_CELLS.min(self.ny - first.j / TILE_CELLS * TILE_CELLS);
+        if group.len() < rows_of_tile || self.updates_every_cell() {
+            return (0, 0);
+        }
+        let from = group.iter().map(|row| row.inside.0).max().unwrap_or(0);
+        let to = group.iter().map(|row| row.inside.1).min().unwrap_or(0);
+        let (t0, t1) = (from.div_ceil(TILE_CELLS), to / TILE_CELLS);
+        if t0 < t1 {
+            (t0, t1)
+        } else {
+            (0, 0)
+        }
     }
 }

@@ -132,6 +132,20 @@ impl Tiles {
         }
     }
 
+    /// Records that every material cell of tile (ti, tj) (at least one) was cleared;
+    /// returns how many.
+    #[inline]
+    pub fn empty(&mut self, ti: usize, tj: usize) -> u8 {
+        let t = tj * self.tx + ti;
+        let lost = self.material[t];
+        self.material[t] = 0;
+        if lost == CELLS_PER_TILE {
+            self.spread(ti, tj, LEVEL_RADII.len(), true);
+        }
+        self.spread(ti, tj, 0, false);
+        lost
+    }
+
     /// Adds (`more`) or removes one mixed tile at (ti, tj) from the counts of `offset`
     /// (0: not air, LEVEL_RADII.len(): not material) of its neighbours.
     fn spread(&mut self, ti: usize, tj: usize, offset: usize, more: bool) {
@@ -243,6 +257,22 @@ mod tests {
         t.lose(130 * TILE_CELLS, row, 1);
         assert_eq!(t.next_holding_material(1, 6, 199), None);
         assert_eq!(t.next_holding_material(1, 0, 4), None);
+    }
+
+    #[test]
+    fn emptying_a_tile_at_once_gives_the_counts_of_losing_its_cells_one_by_one() {
+        for cells in [1, 17, TILE_CELLS * TILE_CELLS] {
+            let mut at_once = Tiles::new(80, 80);
+            for n in 0..cells {
+                at_once.update(24 + n % TILE_CELLS, 32 + n / TILE_CELLS, true);
+            }
+            let mut one_by_one = at_once.clone();
+            assert_eq!(usize::from(at_once.empty(3, 4)), cells);
+            for n in 0..cells {
+                one_by_one.update(24 + n % TILE_CELLS, 32 + n / TILE_CELLS, false);
+            }
+            assert_eq!(at_once, one_by_one, "{cells} cells");
+        }
     }
 
     #[test]
