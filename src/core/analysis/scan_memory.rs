@@ -4,7 +4,7 @@
 //! tile neighbourhood, a chain of them along it, or uniform cells along it) needs no
 //! probe until the stretch ends.
 
-use super::probe::COARSE_POINTS;
+use super::probe::{points, COARSE_POINTS};
 
 /// Positions may stray this far from the remembered line, cells (rounding).
 pub const LATERAL_TOLERANCE_CELLS: f64 = 1e-6;
@@ -137,7 +137,7 @@ impl ScanMemory {
     /// A probe of coarse point `centre` at `travel` found `state` over every position
     /// within `cells` (along either axis): it holds for the points `lo..=hi` around it as
     /// long as they stay inside, `chord_cells[n]` being the distance between points n
-    /// apart.
+    /// apart (increasing with n).
     pub fn hold_disc(
         &mut self,
         centre: usize,
@@ -147,17 +147,23 @@ impl ScanMemory {
         cells: f64,
         chord_cells: &[f64],
     ) {
-        let (mut mask, mut earliest) = (0u128, f64::INFINITY);
+        // The chords increase with the distance from the centre: the points that stay
+        // inside are a run around it.
+        let (mut first, mut last, mut earliest) = (usize::MAX, 0, f64::INFINITY);
         for k in lo..=hi {
             let reach = (cells - chord_cells[k.abs_diff(centre)] - LATERAL_TOLERANCE_CELLS) * self.travel_per_cell;
             if reach > 0.0 {
+                debug_assert!(first == usize::MAX || last + 1 == k, "the points that hold are not a run");
                 // A longer hold of the same state may remain from an earlier probe.
                 self.until[k] = self.until[k].max(travel + reach);
                 earliest = earliest.min(self.until[k]);
-                mask |= 1 << k;
+                first = first.min(k);
+                last = k;
             }
         }
-        self.hold(mask, state, earliest);
+        if first <= last {
+            self.hold(points(first, last), state, earliest);
+        }
     }
 
     /// Coarse point `m` has `state` from `travel` over the next `length` cells of travel.
