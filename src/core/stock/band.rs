@@ -61,9 +61,11 @@ impl Raster {
     /// cell. Returns `true` when a cell changed.
     fn band_stretch_beside(&mut self, j: usize, i: usize, beside: &Beside, r: f64) -> bool {
         let k = j * self.nx + i;
-        let mut new = [0i8; STRETCH_CELLS];
-        for (n, v) in new.iter_mut().enumerate() {
-            *v = self.encode(beside.distance(self.col_x(i + n)) - r);
+        let mut new = [self.encode(beside.distance(self.col_x(i)) - r); STRETCH_CELLS];
+        if !beside.same_along_row() {
+            for (n, v) in new.iter_mut().enumerate().skip(1) {
+                *v = self.encode(beside.distance(self.col_x(i + n)) - r);
+            }
         }
         let mut old = [0i8; STRETCH_CELLS];
         old.copy_from_slice(&self.f[k..k + STRETCH_CELLS]);

@@ -173,6 +173,14 @@ impl Beside {
         let (ux, uy) = self.dir;
         line_distance((x - self.a_x, self.py), (ux, uy))
     }
+
+    /// `true` when the segment runs exactly along the rows (its direction has no y
+    /// component at all, ±0): [`Beside::distance`] then gives the same bits at every x of
+    /// the row, since (x − a.x)·0 is a zero whatever x.
+    #[inline]
+    pub(super) fn same_along_row(&self) -> bool {
+        self.dir.1.to_bits() << 1 == 0
+    }
 }
 
 /// Distance from the point `p` (relative to a point of a line) to the line along the unit
