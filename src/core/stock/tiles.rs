@@ -10,6 +10,45 @@ pub const TILE_CELLS: usize = 8;
 const LEVEL_RADII: [usize; 2] = [1, 2];
 /// Material cells in a tile whose cells all hold material.
 const CELLS_PER_TILE: u8 = (TILE_CELLS * TILE_CELLS) as u8;
+/// Counts per tile in [`Tiles::mixed`]: not air, then not material, per level.
+const COUNTS: usize = 2 * LEVEL_RADII.len();
+const _: () = assert!(COUNTS <= 4, "a tile's counts are the bytes of a u32");
+/// Tiles around the raster's tiles in [`Tiles::mixed`], so that no neighbourhood is
+/// clipped at the raster's edge (their counts are never read).
+const MARGIN: usize = LEVEL_RADII[LEVEL_RADII.len() - 1];
+/// Side of the largest neighbourhood, tiles.
+const SIDE: usize = 2 * MARGIN + 1;
+/// Per tile of the largest neighbourhood around a tile (row, then column): a one in the
+/// byte of every level whose neighbourhood holds it.
+const REACH: [[u32; SIDE]; SIDE] = reach();
+
+const fn reach() -> [[u32; SIDE]; SIDE] {
+    let mut table = [[0; SIDE]; SIDE];
+    let mut row = 0;
+    while row < SIDE {
+        let mut column = 0;
+        while column < SIDE {
+            let (dy, dx) = (row.abs_diff(MARGIN), column.abs_diff(MARGIN));
+            let ring = if dy > dx { dy } else { dx };
+            let mut l = 0;
+            while l < LEVEL_RADII.len() {
+                if ring <= LEVEL_RADII[l] {
+                    table[row][column] |= 1 << (8 * l);
+                }
+                l += 1;
+            }
+            column += 1;
+        }
+        row += 1;
+    }
+    table
+}
+
+/// Count `n` of a tile's counts.
+#[inline]
+fn count(counts: u32, n: usize) -> u8 {
+    (counts >> (8 * n)) as u8
+}
 
 /// How far around a point a uniform neighbourhood reaches.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -45,9 +84,13 @@ pub struct Tiles {
     ty: usize,
     /// Material cells per tile.
     material: Vec<u8>,
-    /// Per tile and level: tiles of the neighbourhood that are not all air, then tiles
-    /// that are not all material (tiles outside the raster count as air, not material).
-    mixed: Vec<[u8; 2 * LEVEL_RADII.len()]>,
+    /// Per tile and level, one byte each ([`count`]): tiles of the neighbourhood that are
+    /// not all air, then tiles that are not all material (tiles outside the raster count
+    /// as air, not material). Rows of `stride` tiles, with a [`MARGIN`] around the
+    /// raster's tiles; the counts of one tile change together, a byte each, as one u32
+    /// (no count leaves 0..=255, so none carries into the next).
+    mixed: Vec<u32>,
+    stride: usize,
     /// Per row of tiles, one bit per tile that holds material (bit `ti % 64` of word
     /// `ti / 64`), so that runs of tiles without material are passed over at once.
     holding: Vec<u64>,
@@ -62,12 +105,21 @@ impl Tiles {
     /// Counts for an all-air raster of `nx` × `ny` cells.
     pub fn new(nx: usize, ny: usize) -> Tiles {
         let (tx, ty) = (nx.div_ceil(TILE_CELLS), ny.div_ceil(TILE_CELLS));
-        let mut level = [0u8; 2 * LEVEL_RADII.len()];
+        let mut counts = [0u8; 4];
         for (l, r) in LEVEL_RADII.iter().enumerate() {
-            level[LEVEL_RADII.len() + l] = ((2 * r + 1) * (2 * r + 1)) as u8;
+            counts[LEVEL_RADII.len() + l] = ((2 * r + 1) * (2 * r + 1)) as u8;
         }
         let words = tx.div_ceil(TILES_PER_WORD);
-        Tiles { tx, ty, material: vec![0; tx * ty], mixed: vec![level; tx * ty], holding: vec![0; words * ty], words }
+        let stride = tx + 2 * MARGIN;
+        Tiles {
+            tx,
+            ty,
+            material: vec![0; tx * ty],
+            mixed: vec![u32::from_le_bytes(counts); stride * (ty + 2 * MARGIN)],
+            stride,
+            holding: vec![0; words * ty],
+            words,
+        }
     }
 
     /// Adds the material cells of row `j` (every cell of it, in order) to the tiles'
@@ -154,14 +206,21 @@ impl Tiles {
             let (word, bit) = (&mut self.holding[tj * self.words + ti / TILES_PER_WORD], 1 << (ti % TILES_PER_WORD));
             *word = if more { *word | bit } else { *word & !bit };
         }
-        for (l, &r) in LEVEL_RADII.iter().enumerate() {
-            for nj in tj.saturating_sub(r)..(tj + r + 1).min(self.ty) {
-                for ni in ti.saturating_sub(r)..(ti + r + 1).min(self.tx) {
-                    let c = &mut self.mixed[nj * self.tx + ni][offset + l];
-                    *c = if more { *c + 1 } else { *c - 1 };
-                }
+        // The neighbourhood's corner: the margin keeps it inside `mixed`.
+        let corner = tj * self.stride + ti;
+        for (n, reach) in REACH.iter().enumerate() {
+            let row = &mut self.mixed[corner + n * self.stride..][..SIDE];
+            for (counts, &one) in row.iter_mut().zip(reach) {
+                let one = one << (8 * offset);
+                *counts = if more { counts.wrapping_add(one) } else { counts.wrapping_sub(one) };
             }
         }
+    }
+
+    /// The counts of tile (ti, tj).
+    #[inline]
+    fn mixed_at(&self, ti: usize, tj: usize) -> u32 {
+        self.mixed[(tj + MARGIN) * self.stride + ti + MARGIN]
     }
 
     /// The first column of tiles in `from..=to` whose tile in row `tj` holds material.
@@ -187,16 +246,16 @@ impl Tiles {
     /// material (which stays true: material is only ever removed).
     #[inline]
     pub fn without_material_near(&self, i: usize, j: usize) -> bool {
-        self.mixed[(j / TILE_CELLS) * self.tx + i / TILE_CELLS][0] == 0
+        count(self.mixed_at(i / TILE_CELLS, j / TILE_CELLS), 0) == 0
     }
 
     /// How far the state `material` of a point whose 2 × 2 cells start at cell (i, j)
     /// is known to hold.
     #[inline]
     pub fn certified(&self, i: usize, j: usize, material: bool) -> Certified {
-        let counts = &self.mixed[(j / TILE_CELLS) * self.tx + i / TILE_CELLS];
+        let counts = self.mixed_at(i / TILE_CELLS, j / TILE_CELLS);
         let base = if material { LEVEL_RADII.len() } else { 0 };
-        match (1..=LEVEL_RADII.len()).rev().find(|&l| counts[base + l - 1] == 0) {
+        match (1..=LEVEL_RADII.len()).rev().find(|&l| count(counts, base + l - 1) == 0) {
             Some(l) => Certified::Level(l),
             None => Certified::No,
         }
@@ -272,6 +331,51 @@ mod tests {
                 one_by_one.update(24 + n % TILE_CELLS, 32 + n / TILE_CELLS, false);
             }
             assert_eq!(at_once, one_by_one, "{cells} cells");
+        }
+    }
+
+    #[test]
+    fn the_neighbourhood_counts_are_the_mixed_tiles_around_each_tile_at_the_edges_too() {
+        // 7 × 5 tiles with material in a corner, along an edge and inside; then some lost.
+        let (tx, ty) = (7, 5);
+        let mut t = Tiles::new(tx * TILE_CELLS, ty * TILE_CELLS - 3);
+        let fill = |t: &mut Tiles, (ti, tj): (usize, usize), cells: usize, gained: bool| {
+            for n in 0..cells {
+                t.update(ti * TILE_CELLS + n % TILE_CELLS, tj * TILE_CELLS + n / TILE_CELLS, gained);
+            }
+        };
+        for (tile, cells) in [((0, 0), 64), ((1, 0), 64), ((6, 2), 5), ((3, 2), 64), ((3, 4), 40), ((6, 4), 40)] {
+            fill(&mut t, tile, cells, true);
+        }
+        fill(&mut t, (1, 0), 1, false);
+        fill(&mut t, (6, 2), 5, false);
+        let material = |ti: usize, tj: usize| t.material[tj * tx + ti];
+        for tj in 0..ty {
+            for ti in 0..tx {
+                for (l, &r) in LEVEL_RADII.iter().enumerate() {
+                    let around = |pick: &dyn Fn(u8) -> bool| {
+                        let (mut n, side) = (0, 2 * r + 1);
+                        for nj in (tj as i64 - r as i64)..=(tj + r) as i64 {
+                            for ni in (ti as i64 - r as i64)..=(ti + r) as i64 {
+                                let inside = (0..tx as i64).contains(&ni) && (0..ty as i64).contains(&nj);
+                                // Tiles off the raster are air.
+                                let m = if inside { material(ni as usize, nj as usize) } else { 0 };
+                                n += usize::from(pick(m));
+                            }
+                        }
+                        assert!(n <= side * side);
+                        n as u8
+                    };
+                    let counts = t.mixed_at(ti, tj);
+                    assert_eq!(count(counts, l), around(&|m| m > 0), "not air, level {}, tile ({ti}, {tj})", l + 1);
+                    assert_eq!(
+                        count(counts, LEVEL_RADII.len() + l),
+                        around(&|m| m < CELLS_PER_TILE),
+                        "not material, level {}, tile ({ti}, {tj})",
+                        l + 1
+                    );
+                }
+            }
         }
     }
 
