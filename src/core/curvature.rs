@@ -73,16 +73,23 @@ fn turn_angle(a: (f64, f64), b: (f64, f64), c: (f64, f64)) -> Option<f64> {
 /// Degree of the local polynomial fits: quartic, so that the fitted second derivative
 /// of a circular path is unbiased to O((w/R)⁴) for a window half-width w.
 const FIT_DEGREE: usize = 4;
+/// Degree of the first, narrower fit that estimates the radius.
+const COARSE_DEGREE: usize = 2;
 /// The fitting window never spans more than this fraction of the radius estimated
 /// from a first, narrower fit (tight loops need narrow windows).
 const WINDOW_PER_RADIUS: f64 = 0.6;
 
-/// Least-squares polynomials of degree `degree` through the `(s, x)` and the `(s, y)`
+/// Least-squares polynomials of degree `DEGREE` (at most [`FIT_DEGREE`]) through the `(s, x)` and the `(s, y)`
 /// pairs (with `s` scaled by `scale`): returns the first and second derivatives of each
 /// at s = 0, in unscaled units. Both fits share the normal matrix, solved once with the
-/// two right-hand sides.
-fn polynomial_derivatives(s: &[f64], (x, y): (&[f64], &[f64]), degree: usize, scale: f64) -> Option<[(f64, f64); 2]> {
-    let m = degree + 1;
+/// two right-hand sides. (The degree is a constant so that the loops over it unroll.)
+fn polynomial_derivatives<const DEGREE: usize>(
+    s: &[f64],
+    (x, y): (&[f64], &[f64]),
+    scale: f64,
+) -> Option<[(f64, f64); 2]> {
+    const { assert!(DEGREE <= FIT_DEGREE) };
+    let m = DEGREE + 1;
     // The normal matrix, then the right-hand sides of x and of y.
     let mut a = [[0.0f64; FIT_DEGREE + 3]; FIT_DEGREE + 1];
     for ((&si, &xi), &yi) in s.iter().zip(x).zip(y) {
@@ -125,14 +132,13 @@ fn polynomial_derivatives(s: &[f64], (x, y): (&[f64], &[f64]), degree: usize, sc
     Some([derivatives(m), derivatives(m + 1)])
 }
 
-/// Curvature from fits over `lo..=hi` about vertex `i`.
-fn fit_at(
+/// Curvature from fits of degree `DEGREE` over `lo..=hi` about vertex `i`.
+fn fit_at<const DEGREE: usize>(
     points: &[(f64, f64)],
     s: &[f64],
     i: usize,
     lo: usize,
     hi: usize,
-    degree: usize,
     buf: &mut FitBuffers,
 ) -> PointCurvature {
     buf.ss.clear();
@@ -144,7 +150,7 @@ fn fit_at(
         buf.ys.push(points[k].1 - points[i].1);
     }
     let scale = (s[hi] - s[i]).max(s[i] - s[lo]).max(MIN_SEGMENT_MM);
-    match polynomial_derivatives(&buf.ss, (&buf.xs, &buf.ys), degree, scale) {
+    match polynomial_derivatives::<DEGREE>(&buf.ss, (&buf.xs, &buf.ys), scale) {
         Some([(x1, x2), (y1, y2)]) => {
             let speed2 = x1 * x1 + y1 * y1;
             if speed2 < MIN_SEGMENT_MM {
@@ -217,13 +223,13 @@ pub fn polyline_curvature(points: &[(f64, f64)], half_width_mm: f64) -> Vec<Poin
             if hi - lo < 2 {
                 return PointCurvature::STRAIGHT;
             }
-            let coarse = fit_at(points, &s, i, lo, hi, 2, &mut buf);
+            let coarse = fit_at::<COARSE_DEGREE>(points, &s, i, lo, hi, &mut buf);
             let width = half_width_mm.min(WINDOW_PER_RADIUS * coarse.radius_mm());
             let (lo, hi) = window(&s, &corners, i, width);
             if hi - lo < FIT_DEGREE {
                 return coarse;
             }
-            fit_at(points, &s, i, lo, hi, FIT_DEGREE, &mut buf)
+            fit_at::<FIT_DEGREE>(points, &s, i, lo, hi, &mut buf)
         })
         .collect()
 }
