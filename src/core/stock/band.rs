@@ -32,6 +32,7 @@ impl Raster {
                     continue;
                 }
             }
+            let mut lost = 0;
             for i in i..end {
                 let q = (self.col_x(i), y);
                 let old = self.f[row + i];
@@ -43,11 +44,10 @@ impl Raster {
                     let v = self.encode(d - r).min(old);
                     self.f[row + i] = v;
                     changed |= v != old;
-                    if old > 0 && v <= 0 {
-                        self.count_lost_material(i, j);
-                    }
+                    lost += usize::from(old > 0 && v <= 0);
                 }
             }
+            self.count_lost_material(i, j, lost);
             i = end;
         }
         if changed {
@@ -77,18 +77,18 @@ impl Raster {
             lost |= u32::from(o > 0 && *v <= 0) << n;
         }
         self.f[k..k + STRETCH_CELLS].copy_from_slice(&new);
-        while lost != 0 {
-            let n = lost.trailing_zeros() as usize;
-            lost &= lost - 1;
-            self.count_lost_material(i + n, j);
-        }
+        self.count_lost_material(i, j, lost.count_ones() as usize);
         changed
     }
 
-    /// Counts in its block and tile that cell (i, j) lost its material.
+    /// Counts in their block and tile that `lost` cells of a row's stretch in one tile,
+    /// from cell (i, j), lost their material.
     #[inline]
-    fn count_lost_material(&mut self, i: usize, j: usize) {
-        self.blocks[(j / BLOCK_CELLS) * self.bx + i / BLOCK_CELLS] -= 1;
-        self.tiles.update(i, j, false);
+    fn count_lost_material(&mut self, i: usize, j: usize, lost: usize) {
+        if lost > 0 {
+            // (At most a tile's cells, which fit the count's type.)
+            self.blocks[(j / BLOCK_CELLS) * self.bx + i / BLOCK_CELLS] -= lost as u32;
+            self.tiles.lose(i, j, lost);
+        }
     }
 }
