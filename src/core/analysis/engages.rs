@@ -23,22 +23,38 @@ impl AngleTable {
     /// `true` when [`AngleTable::contact`] at `site` on `raster` would find α > 0.
     /// `candidates` are the interior coarse points that may be material (those in material
     /// in a raster whose material holds this one's); those found in air are removed, so
-    /// they serve the slice above in turn.
-    pub fn engages(&self, raster: &Raster, site: &ProbeSite, candidates: &mut u128) -> bool {
+    /// they serve the slice above in turn. `hint` is the coarse point found in material
+    /// last (at the previous sample, say): probed first, as it most likely still is, and
+    /// set to the one found this time. (Which point is probed first changes the answer
+    /// of none.)
+    pub fn engages(&self, raster: &Raster, site: &ProbeSite, candidates: &mut u128, hint: &mut usize) -> bool {
         let mut todo = *candidates;
+        let hinted = if *hint < COARSE_POINTS { 1u128 << *hint } else { 0 };
+        if todo & hinted != 0 && self.in_material(raster, site, *hint, candidates, &mut todo) {
+            return true;
+        }
         while todo != 0 {
             let m = todo.trailing_zeros() as usize;
-            let (material, level) = self.certified_material(raster, site, m * COARSE_STEP);
-            if material {
+            if self.in_material(raster, site, m, candidates, &mut todo) {
+                *hint = m;
                 return true;
             }
+        }
+        false
+    }
+
+    /// `true` when coarse point `m` at `site` is in material; otherwise removes it from
+    /// `candidates` and `todo`, with the points around it that its probe certifies.
+    fn in_material(&self, raster: &Raster, site: &ProbeSite, m: usize, candidates: &mut u128, todo: &mut u128) -> bool {
+        let (material, level) = self.certified_material(raster, site, m * COARSE_STEP);
+        if !material {
             // A certified probe decides its neighbours too.
             let reach = self.skip(level);
             let air = points(m.saturating_sub(reach), (m + reach).min(COARSE_POINTS));
             *candidates &= !air;
-            todo &= !air;
+            *todo &= !air;
         }
-        false
+        material
     }
 }
 
@@ -60,6 +76,7 @@ mod tests {
             ribs in prop::collection::vec((point(), 0.0..PI, 0.05..0.6f64, 0.5..4.0f64), 0..4),
             above in prop::collection::vec((point(), point(), 0.05..6.0f64), 0..6),
             sites in prop::collection::vec((point(), 0.0..2.0 * PI, prop::collection::vec((-4.0..4.0f64, -4.0..4.0f64), 0..4)), 32),
+            hint in 0..COARSE_POINTS,
         ) {
             // The slice below, and one above it that lost more material.
             let below = stock(&discs, &slots, &ribs);
@@ -79,10 +96,16 @@ mod tests {
                 // Not probing the points in air below changes nothing.
                 let told = table.contact_and_states(&upper, &site, None, !states_below);
                 prop_assert_eq!(told, (contact, states_upper), "at {:?} heading {:?}", center, heading);
-                let mut candidates = states_below & interior_points();
-                let engages = table.engages(&upper, &site, &mut candidates);
-                prop_assert_eq!(engages, contact.alpha_rad > 0.0, "at {:?} heading {:?}: {:?}", center, heading, contact);
-                prop_assert_eq!(states_upper & interior_points() & !candidates, 0, "a material point was dropped");
+                // Whichever point is tried first.
+                for mut hint in [0, hint, COARSE_POINTS / 2, COARSE_POINTS] {
+                    let mut candidates = states_below & interior_points();
+                    let engages = table.engages(&upper, &site, &mut candidates, &mut hint);
+                    prop_assert_eq!(engages, contact.alpha_rad > 0.0, "at {:?} heading {:?}: {:?}", center, heading, contact);
+                    prop_assert_eq!(states_upper & interior_points() & !candidates, 0, "a material point was dropped");
+                    if engages {
+                        prop_assert!(states_upper & (1 << hint) != 0, "the hint is not a material point");
+                    }
+                }
             }
         }
     }

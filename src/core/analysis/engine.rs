@@ -104,6 +104,7 @@ pub fn simulate(
         site: ProbeSite::default(),
         contacts: vec![Contact::default(); slices.len()],
         memories: vec![ScanMemory::default(); slices.len()],
+        engaged_at: vec![0; slices.len()],
         same_below: SameBelow::new(slices.len()),
     };
     let r = cutter.radius_mm;
@@ -177,6 +178,8 @@ struct SliceProbes {
     /// are neither measured nor read.
     contacts: Vec<Contact>,
     memories: Vec<ScanMemory>,
+    /// Per slice, the coarse point where [`AngleTable::engages`] last found material.
+    engaged_at: Vec<usize>,
     same_below: SameBelow,
 }
 
@@ -230,7 +233,9 @@ impl SliceProbes {
         // Interior points in air below are in air above (see `engages`).
         let mut candidates = states & interior_points();
         for k in (0..deepest).rev() {
-            if candidates == 0 || !self.table.engages(&slices[k].raster, &self.site, &mut candidates) {
+            if candidates == 0
+                || !self.table.engages(&slices[k].raster, &self.site, &mut candidates, &mut self.engaged_at[k])
+            {
                 self.contacts[k] = Contact::default();
                 break;
             }
