@@ -467,9 +467,18 @@ pub(super) fn certified_ahead(
     let reach = |level: Certified| (level.cells() - CERTIFY_MARGIN_CELLS - LATERAL_TOLERANCE_CELLS) * travel_per_cell;
     let mut held = reach(level);
     while held > 0.0 && held < look_ahead {
-        match raster.probe_at((g.0 + dx * held, g.1 + dy * held)) {
-            (state, next @ Certified::Level(_)) if state == material => held += reach(next),
-            _ => break,
+        let at = (g.0 + dx * held, g.1 + dy * held);
+        let next = if material {
+            match raster.probe_at(at) {
+                (true, level) => level,
+                (false, _) => Certified::No,
+            }
+        } else {
+            raster.certified_air_at(at)
+        };
+        match next {
+            Certified::Level(_) => held += reach(next),
+            Certified::No => break,
         }
     }
     held.max(0.0)

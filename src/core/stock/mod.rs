@@ -14,6 +14,7 @@ mod along;
 mod band;
 mod capsule;
 mod capsule_rows;
+mod certified_air;
 mod compare;
 mod tiles;
 
