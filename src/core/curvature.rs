@@ -79,9 +79,9 @@ const COARSE_DEGREE: usize = 2;
 /// from a first, narrower fit (tight loops need narrow windows).
 const WINDOW_PER_RADIUS: f64 = 0.6;
 
-/// Least-squares polynomials of degree `DEGREE` (at most [`FIT_DEGREE`]) through the `(s, x)` and the `(s, y)`
-/// pairs (with `s` scaled by `scale`): returns the first and second derivatives of each
-/// at s = 0, in unscaled units. Both fits share the normal matrix, solved once with the
+/// Least-squares polynomials of degree `DEGREE` (at most [`FIT_DEGREE`]) through the
+/// `(s, x)` and the `(s, y)` pairs (with `s` scaled by `scale`): returns the first and
+/// second derivatives of each at s = 0, in unscaled units. Both fits share the normal matrix, solved once with the
 /// two right-hand sides. (The degree is a constant so that the loops over it unroll.)
 fn polynomial_derivatives<const DEGREE: usize>(
     s: &[f64],

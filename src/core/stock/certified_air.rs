@@ -11,17 +11,11 @@ impl Raster {
     /// `certified_ahead`, then waits for one read a step instead of two: tiger.nc at
     /// 0.05 mm takes 5 % less time.)
     #[inline]
-    pub fn certified_air_at(&self, (fx, fy): (f64, f64)) -> Certified {
-        // As `classify`: positions below zero (or NaN) and at or beyond the last cell
-        // centre are off the raster.
-        if !(fx >= 0.0 && fy >= 0.0) {
-            return self.certified_outside((fx, fy));
+    pub fn certified_air_at(&self, g: (f64, f64)) -> Certified {
+        match self.base_cell(g) {
+            Some((i, j)) => self.tiles.certified(i as usize, j as usize, false),
+            None => self.certified_outside(g),
         }
-        let (i, j) = (fx as u32 as usize, fy as u32 as usize);
-        if i + 1 >= self.nx || j + 1 >= self.ny {
-            return self.certified_outside((fx, fy));
-        }
-        self.tiles.certified(i, j, false)
     }
 }
 

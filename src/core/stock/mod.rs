@@ -374,19 +374,27 @@ impl Raster {
         self.classify::<true>(g)
     }
 
-    #[inline]
-    fn classify<const CERTIFY: bool>(&self, (fx, fy): (f64, f64)) -> (bool, Certified) {
+    /// The first of the 2 × 2 cells a probe at grid position `(fx, fy)` reads, (i, j);
+    /// `None` off the raster (below 0, NaN, or at the last cell centre or beyond, along
+    /// either axis), where a probe answers air without reading a cell.
+    #[inline(always)]
+    fn base_cell(&self, (fx, fy): (f64, f64)) -> Option<(u32, u32)> {
         // (Also false for NaN.)
         if !(fx >= 0.0 && fy >= 0.0) {
-            return (false, if CERTIFY { self.certified_outside((fx, fy)) } else { Certified::No });
+            return None;
         }
         // Through u32 (the raster has far fewer cells per side): cheap conversions.
         let (i, j) = (fx as u32, fy as u32);
+        (i as usize + 1 < self.nx && j as usize + 1 < self.ny).then_some((i, j))
+    }
+
+    #[inline]
+    fn classify<const CERTIFY: bool>(&self, (fx, fy): (f64, f64)) -> (bool, Certified) {
+        let Some((i, j)) = self.base_cell((fx, fy)) else {
+            return (false, if CERTIFY { self.certified_outside((fx, fy)) } else { Certified::No });
+        };
         let (tx, ty) = (fx - f64::from(i), fy - f64::from(j));
         let (i, j) = (i as usize, j as usize);
-        if i + 1 >= self.nx || j + 1 >= self.ny {
-            return (false, if CERTIFY { self.certified_outside((fx, fy)) } else { Certified::No });
-        }
         let k = j * self.nx + i;
         // The distance is 1-Lipschitz: a nearest cell more than half a diagonal inside or
         // outside decides alone.
