@@ -7,6 +7,7 @@ pub mod blocks;
 pub mod collect;
 pub mod constant_force;
 pub mod cutting_point;
+pub mod edit;
 pub mod plan;
 pub mod rate_limit;
 pub mod rule;

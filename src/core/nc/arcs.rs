@@ -5,8 +5,10 @@
 //! that a × b = n: XY (a = X, b = Y, n = Z), ZX (a = Z, b = X, n = Y), YZ (a = Y, b = Z,
 //! n = X). Clockwise is seen looking down the positive normal, as G2 is.
 
+use super::options::ArcTolerance;
+use super::MM_PER_INCH;
 use crate::core::tolerance::LENGTH_EPS_MM;
-use crate::core::toolpath::{Plane, P3};
+use crate::core::toolpath::{Plane, Units, P3};
 
 /// Smallest tolerance on the difference between an arc's radius to its start and to its
 /// end, mm (LinuxCNC's default is of the same order).
@@ -58,17 +60,27 @@ pub(crate) fn centre_from_offsets(start: P3, plane: Plane, a_mm: f64, b_mm: f64,
     with_coord(with_coord(start, a, base_a + a_mm), b, base_b + b_mm)
 }
 
+/// mm per unit of `units`.
+fn mm_per(units: Units) -> f64 {
+    match units {
+        Units::Mm => 1.0,
+        Units::Inch => MM_PER_INCH,
+    }
+}
+
 /// The centre of an arc from `start` to `end` of radius |`radius_mm`|: positive for the
 /// short way (≤ 180°), negative for the long way, on the side that `clockwise` implies.
 ///
 /// Errors (as a reason to report): zero radius, end = start in the plane (a full circle
-/// needs I/J/K), radius smaller than half the chord beyond the tolerance.
+/// needs I/J/K), radius smaller than half the chord beyond the tolerance (in `units`).
 pub(crate) fn centre_from_radius(
     start: P3,
     end: P3,
     plane: Plane,
     clockwise: bool,
     radius_mm: f64,
+    units: Units,
+    tolerance: &ArcTolerance,
 ) -> Result<P3, String> {
     let [a, b, _] = plane_axes(plane);
     let r = radius_mm.abs();
@@ -82,7 +94,8 @@ pub(crate) fn centre_from_radius(
         return Err("an R arc cannot end where it starts: program a full circle with I/J/K".to_string());
     }
     let half = chord / 2.0;
-    if half - r > arc_radius_tolerance_mm(r) {
+    let unit = mm_per(units);
+    if half - r > 0.0 && !tolerance.accepts(units, (half - r) / unit, r / unit) {
         return Err(format!(
             "the radius R {r:.4} mm is smaller than half the distance to the end point \
              ({half:.4} mm)"
@@ -96,6 +109,40 @@ pub(crate) fn centre_from_radius(
     let ca = sa + da / 2.0 + height * na;
     let cb = sb + db / 2.0 + height * nb;
     Ok(with_coord(with_coord(start, a, ca), b, cb))
+}
+
+/// Checks a centre-format arc against the tolerance (in `units`). The arc keeps its
+/// programmed centre and end, as a control runs it: a slight spiral from the start radius
+/// to the end radius (the difference is at most the accepted miss).
+pub(crate) fn check_centre(
+    start: P3,
+    centre: P3,
+    end: P3,
+    plane: Plane,
+    units: Units,
+    tolerance: &ArcTolerance,
+) -> Result<(), String> {
+    let [a, b, _] = plane_axes(plane);
+    let radius = |p: P3| (coord(p, a) - coord(centre, a)).hypot(coord(p, b) - coord(centre, b));
+    let (r_start, r_end) = (radius(start), radius(end));
+    if r_start <= LENGTH_EPS_MM || r_end <= LENGTH_EPS_MM {
+        return Err("the arc radius is zero: the centre is at the start or end point".to_string());
+    }
+    let unit = mm_per(units);
+    let miss = (r_start - r_end).abs();
+    if !tolerance.accepts(units, miss / unit, r_start.max(r_end) / unit) {
+        let (absolute, maximum) = tolerance.in_units(units);
+        let name = match units {
+            Units::Mm => "mm",
+            Units::Inch => "in",
+        };
+        return Err(format!(
+            "the arc's radius to the start ({r_start:.4} mm) and to the end ({r_end:.4} mm) \
+             differ by {miss:.4} mm: more than {absolute} {name}, or {} % of the radius up to {maximum} {name}",
+            tolerance.relative * 100.0
+        ));
+    }
+    Ok(())
 }
 
 /// Checks an arc about `centre`: non-zero radius, and the radius to the end equals the
@@ -133,11 +180,11 @@ mod tests {
     fn a_positive_radius_takes_the_short_way_and_a_negative_one_the_long_way() {
         // Quarter circle from (10, 0) to (0, 10) about the origin, counter-clockwise.
         let (s, e) = (P3::new(10.0, 0.0, 0.0), P3::new(0.0, 10.0, 0.0));
-        let short = centre_from_radius(s, e, Plane::Xy, false, 10.0).unwrap();
+        let short = centre_from_radius(s, e, Plane::Xy, false, 10.0, Units::Mm, &ArcTolerance::default()).unwrap();
         assert!(close(short, P3::new(0.0, 0.0, 0.0)), "{short:?}");
-        let long = centre_from_radius(s, e, Plane::Xy, false, -10.0).unwrap();
+        let long = centre_from_radius(s, e, Plane::Xy, false, -10.0, Units::Mm, &ArcTolerance::default()).unwrap();
         assert!(close(long, P3::new(10.0, 10.0, 0.0)), "{long:?}");
-        let clockwise = centre_from_radius(s, e, Plane::Xy, true, 10.0).unwrap();
+        let clockwise = centre_from_radius(s, e, Plane::Xy, true, 10.0, Units::Mm, &ArcTolerance::default()).unwrap();
         assert!(close(clockwise, P3::new(10.0, 10.0, 0.0)), "{clockwise:?}");
     }
 
@@ -146,29 +193,31 @@ mod tests {
         // ZX: a = Z, b = X. Counter-clockwise from z=10 to x=10 about the origin.
         let s = P3::new(0.0, 7.0, 10.0);
         let e = P3::new(10.0, 9.0, 0.0);
-        let c = centre_from_radius(s, e, Plane::Zx, false, 10.0).unwrap();
+        let c = centre_from_radius(s, e, Plane::Zx, false, 10.0, Units::Mm, &ArcTolerance::default()).unwrap();
         assert!(close(c, P3::new(0.0, 7.0, 0.0)), "{c:?}");
         // YZ: a = Y, b = Z.
         let s = P3::new(3.0, 10.0, 0.0);
         let e = P3::new(4.0, 0.0, 10.0);
-        let c = centre_from_radius(s, e, Plane::Yz, false, 10.0).unwrap();
+        let c = centre_from_radius(s, e, Plane::Yz, false, 10.0, Units::Mm, &ArcTolerance::default()).unwrap();
         assert!(close(c, P3::new(3.0, 0.0, 0.0)), "{c:?}");
     }
 
     #[test]
     fn a_semicircle_within_tolerance_is_accepted_and_a_short_radius_is_not() {
         let (s, e) = (P3::new(-5.0, 0.0, 0.0), P3::new(5.0, 0.0, 0.0));
-        let c = centre_from_radius(s, e, Plane::Xy, true, 4.999).unwrap();
+        let c = centre_from_radius(s, e, Plane::Xy, true, 4.999, Units::Mm, &ArcTolerance::default()).unwrap();
         assert!(close(c, P3::default()), "{c:?}");
-        let err = centre_from_radius(s, e, Plane::Xy, true, 4.9).unwrap_err();
+        let err = centre_from_radius(s, e, Plane::Xy, true, 4.9, Units::Mm, &ArcTolerance::default()).unwrap_err();
         assert!(err.contains("smaller than half"), "{err}");
     }
 
     #[test]
     fn zero_radius_and_a_closed_r_arc_are_refused() {
         let s = P3::new(1.0, 1.0, 0.0);
-        assert!(centre_from_radius(s, P3::default(), Plane::Xy, true, 0.0).is_err());
-        let err = centre_from_radius(s, s, Plane::Xy, true, 3.0).unwrap_err();
+        assert!(
+            centre_from_radius(s, P3::default(), Plane::Xy, true, 0.0, Units::Mm, &ArcTolerance::default()).is_err()
+        );
+        let err = centre_from_radius(s, s, Plane::Xy, true, 3.0, Units::Mm, &ArcTolerance::default()).unwrap_err();
         assert!(err.contains("full circle"), "{err}");
         assert!(check_arc(s, s, P3::default(), Plane::Xy).is_err());
     }

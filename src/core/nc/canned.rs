@@ -1,12 +1,19 @@
-//! Canned drilling cycles G81 (drill), G82 (drill, dwell at the bottom) and G83 (peck
-//! drill), expanded into rapid and feed moves the way LinuxCNC executes them (XY plane,
-//! absolute distances):
+//! Canned cycles (drilling, tapping and boring), expanded into rapid and feed moves the
+//! way LinuxCNC and Fanuc controls execute them in the XY plane. Each hole, in absolute
+//! coordinates (the interpreter turns G91 values into these):
 //!
 //! 1. if the tool is below the R plane, rapid up to it (the clearance height becomes R);
 //! 2. rapid to the hole's XY at the clearance height, then rapid down to the R plane;
-//! 3. G81: feed to the bottom. G82: feed to the bottom, dwell. G83: feed down one peck
-//!    (Q), rapid out to R, rapid back down to [`G83_PECK_CLEARANCE_MM`] above the last
-//!    depth, and again until the bottom;
+//! 3. the cycle's own work:
+//!    - G81 drill: feed to the bottom. G82: the same, then dwell (P).
+//!    - G83 peck: feed down one peck (Q), rapid out to R, rapid back down to
+//!      [`G83_PECK_CLEARANCE_MM`] above the last depth, and again until the bottom.
+//!    - G73 chip break: feed down one peck (Q), rapid back [`G73_CHIP_BREAK_MM`], and feed
+//!      on from there, until the bottom.
+//!    - G84/G74 tapping, G85 boring, G89 boring with a dwell: feed to the bottom, (dwell,)
+//!      feed back out to R.
+//!    - G86 boring (spindle stop) and Fanuc's G76 fine boring: feed to the bottom, (dwell,)
+//!      rapid out;
 //! 4. rapid up to R (G99) or to the clearance height (G98, the default).
 
 use crate::core::tolerance::LENGTH_EPS_MM;
@@ -16,10 +23,13 @@ use crate::core::toolpath::P3;
 /// (LinuxCNC 2.9: 0.010 in).
 pub const G83_PECK_CLEARANCE_MM: f64 = 0.254;
 
+/// How far G73 backs off to break the chip, mm (LinuxCNC: 0.010 in).
+pub const G73_CHIP_BREAK_MM: f64 = 0.254;
+
 /// Most pecks G83 may make for one hole; more is surely a mistaken Q.
 pub const MAX_PECKS_PER_HOLE: u32 = 10_000;
 
-/// Which drilling cycle.
+/// Which canned cycle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum CycleKind {
     /// G81.
@@ -28,6 +38,20 @@ pub(crate) enum CycleKind {
     DwellAtBottom,
     /// G83.
     Peck,
+    /// G73.
+    ChipBreak,
+    /// G84.
+    Tap,
+    /// G74 (left-hand tapping, Fanuc).
+    LeftTap,
+    /// G85.
+    Bore,
+    /// G86.
+    BoreSpindleStop,
+    /// G89.
+    BoreDwell,
+    /// G76 (Fanuc fine boring; LinuxCNC's G76 is a lathe threading cycle).
+    FineBore,
 }
 
 impl CycleKind {
@@ -37,7 +61,34 @@ impl CycleKind {
             CycleKind::Drill => "G81",
             CycleKind::DwellAtBottom => "G82",
             CycleKind::Peck => "G83",
+            CycleKind::ChipBreak => "G73",
+            CycleKind::Tap => "G84",
+            CycleKind::LeftTap => "G74",
+            CycleKind::Bore => "G85",
+            CycleKind::BoreSpindleStop => "G86",
+            CycleKind::BoreDwell => "G89",
+            CycleKind::FineBore => "G76",
         }
+    }
+
+    /// Whether the cycle reads a peck depth Q.
+    pub fn pecks(self) -> bool {
+        matches!(self, CycleKind::Peck | CycleKind::ChipBreak)
+    }
+
+    /// Whether the cycle must have a dwell P (others may have one).
+    pub fn needs_dwell(self) -> bool {
+        matches!(self, CycleKind::DwellAtBottom | CycleKind::BoreDwell)
+    }
+
+    /// Whether the cycle reads a dwell P at all.
+    pub fn dwells(self) -> bool {
+        !matches!(self, CycleKind::Drill | CycleKind::Peck | CycleKind::ChipBreak)
+    }
+
+    /// Whether the tool feeds back out to R (tapping and G85/G89 boring).
+    fn feeds_out(self) -> bool {
+        matches!(self, CycleKind::Tap | CycleKind::LeftTap | CycleKind::Bore | CycleKind::BoreDwell)
     }
 }
 
@@ -51,9 +102,9 @@ pub(crate) struct Hole {
     pub bottom_z_mm: f64,
     /// Z of the retract (R) plane.
     pub r_plane_mm: f64,
-    /// G82's dwell at the bottom, s.
+    /// The dwell at the bottom, s (0: none).
     pub dwell_s: f64,
-    /// G83's peck depth (Q), > 0.
+    /// G83's and G73's peck depth (Q), > 0.
     pub peck_mm: f64,
     /// G99: retract to R; G98: to the clearance height.
     pub retract_to_r: bool,
@@ -67,6 +118,25 @@ pub(crate) enum Step {
     Dwell { seconds: f64 },
 }
 
+/// The depths a pecking cycle feeds to before the bottom.
+fn peck_depths(hole: &Hole) -> Result<Vec<f64>, String> {
+    if !hole.kind.pecks() {
+        return Ok(Vec::new());
+    }
+    let (r, bottom) = (hole.r_plane_mm, hole.bottom_z_mm);
+    if hole.peck_mm <= 0.0 {
+        return Err("the peck depth Q must be > 0".to_string());
+    }
+    let pecks = ((r - bottom) / hole.peck_mm).ceil();
+    if pecks > f64::from(MAX_PECKS_PER_HOLE) {
+        return Err(format!("Q {} mm would make {pecks} pecks (at most {MAX_PECKS_PER_HOLE})", hole.peck_mm));
+    }
+    Ok((1..pecks as u32)
+        .map(|k| r - f64::from(k) * hole.peck_mm)
+        .take_while(|&depth| depth > bottom + LENGTH_EPS_MM)
+        .collect())
+}
+
 /// Expands one hole drilled from `from` into `steps` (cleared first). Returns the reason
 /// if the hole cannot be drilled (R plane below the bottom, Q ≤ 0, too many pecks).
 pub(crate) fn expand_hole(from: P3, hole: &Hole, steps: &mut Vec<Step>) -> Result<(), String> {
@@ -75,18 +145,7 @@ pub(crate) fn expand_hole(from: P3, hole: &Hole, steps: &mut Vec<Step>) -> Resul
     if r < bottom {
         return Err(format!("the R plane ({r} mm) is below the bottom of the hole (Z {bottom} mm)"));
     }
-    let pecks = if hole.kind == CycleKind::Peck {
-        if hole.peck_mm <= 0.0 {
-            return Err("the peck depth Q must be > 0".to_string());
-        }
-        let pecks = ((r - bottom) / hole.peck_mm).ceil();
-        if pecks > f64::from(MAX_PECKS_PER_HOLE) {
-            return Err(format!("Q {} mm would make {pecks} pecks (at most {MAX_PECKS_PER_HOLE})", hole.peck_mm));
-        }
-        pecks as u32
-    } else {
-        0
-    };
+    let depths = peck_depths(hole)?;
     let mut clearance = from.z;
     if from.z < r {
         steps.push(Step::Rapid(P3::new(from.x, from.y, r)));
@@ -95,24 +154,21 @@ pub(crate) fn expand_hole(from: P3, hole: &Hole, steps: &mut Vec<Step>) -> Resul
     let at = |z: f64| P3::new(x, y, z);
     steps.push(Step::Rapid(at(clearance)));
     steps.push(Step::Rapid(at(r)));
-    match hole.kind {
-        CycleKind::Drill => steps.push(Step::Feed(at(bottom))),
-        CycleKind::DwellAtBottom => {
-            steps.push(Step::Feed(at(bottom)));
-            steps.push(Step::Dwell { seconds: hole.dwell_s });
+    for &depth in &depths {
+        steps.push(Step::Feed(at(depth)));
+        if hole.kind == CycleKind::ChipBreak {
+            steps.push(Step::Rapid(at(depth + G73_CHIP_BREAK_MM)));
+        } else {
+            steps.push(Step::Rapid(at(r)));
+            steps.push(Step::Rapid(at(depth + G83_PECK_CLEARANCE_MM)));
         }
-        CycleKind::Peck => {
-            for k in 1..pecks {
-                let depth = r - f64::from(k) * hole.peck_mm;
-                if depth <= bottom + LENGTH_EPS_MM {
-                    break;
-                }
-                steps.push(Step::Feed(at(depth)));
-                steps.push(Step::Rapid(at(r)));
-                steps.push(Step::Rapid(at(depth + G83_PECK_CLEARANCE_MM)));
-            }
-            steps.push(Step::Feed(at(bottom)));
-        }
+    }
+    steps.push(Step::Feed(at(bottom)));
+    if hole.dwell_s > 0.0 {
+        steps.push(Step::Dwell { seconds: hole.dwell_s });
+    }
+    if hole.kind.feeds_out() {
+        steps.push(Step::Feed(at(r)));
     }
     let retract = if hole.retract_to_r { r } else { clearance };
     steps.push(Step::Rapid(at(retract)));
@@ -130,7 +186,7 @@ mod tests {
             y_mm: 20.0,
             bottom_z_mm: -5.0,
             r_plane_mm: 2.0,
-            dwell_s: 0.5,
+            dwell_s: if kind.dwells() { 0.5 } else { 0.0 },
             peck_mm: 3.0,
             retract_to_r: false,
         }
@@ -294,17 +350,14 @@ mod tests {
         }
 
         #[test]
-        fn bad_cycles_are_errors_and_l_repeats_are_a_warning() {
+        fn bad_cycles_are_errors() {
             let error = |text: &str| parse_gcode(text, &ParseOptions::default()).unwrap_err().to_string();
-            assert!(error("G91 G81 X1 Y1 Z-5 R2 F100").contains("G91"));
             assert!(error("G81 X1 Y1 Z-5 F100").contains("needs R"));
             assert!(error("G81 X1 Y1 R2 F100").contains("needs Z"));
             assert!(error("G83 X1 Y1 Z-5 R2 F100").contains("needs Q"));
             assert!(error("G82 X1 Y1 Z-5 R2 F100").contains("needs P"));
             assert!(error("G81 X1 Y1 Z-5 R-6 F100").contains("below the bottom"));
             assert!(error("G18 G81 X1 Y1 Z-5 R2 F100").contains("XY plane"));
-            let path = parse("G0 Z5\nG81 X1 Y1 Z-5 R2 L3 F100");
-            assert_eq!(path.warnings, ["line 2: L3 ignored: each position is drilled once"]);
         }
     }
 }

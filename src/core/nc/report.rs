@@ -1,9 +1,9 @@
 //! Where the problems of a line go: the reporter that turns them into errors (with line,
 //! column and word) or, for unknown words under [`UnknownWords::Warn`], warnings.
 
-use super::block::{EXPRESSIONS, PARAMETERS, SUBPROGRAMS};
 use super::error::{Diagnostics, NcError};
-use super::lexer::{Issue, IssueKind, Word};
+use super::lexer::Word;
+use super::line::Fault;
 use super::UnknownWords;
 
 /// Whether `b` continues a multi-byte UTF-8 character (bits 10xxxxxx).
@@ -124,18 +124,19 @@ impl<'a> Line<'a> {
         self.unknown_span(w.start, w.end, what);
     }
 
-    /// Reports something found by the scanner.
-    pub fn issue(&mut self, issue: &Issue) {
-        let (s, e) = (issue.start, issue.end);
-        let reason = match issue.kind {
-            IssueKind::NoNumber => "a letter must be followed by a number",
-            IssueKind::UnclosedComment => "the comment is not closed: add ')'",
-            IssueKind::Parameter => PARAMETERS,
-            IssueKind::Expression => EXPRESSIONS,
-            IssueKind::Subprogram => SUBPROGRAMS,
-            IssueKind::UnknownCharacter => return self.unknown_span(s, e, "unknown character"),
-        };
-        self.error_span(s, e, reason.to_string()).ignore();
+    /// Reports a fault the full reader found: an unknown character is an unknown word
+    /// (a warning under [`UnknownWords::Warn`]), anything else an error.
+    pub fn fault(&mut self, fault: &Fault) {
+        if fault.unknown {
+            self.unknown_span(fault.start, fault.end, "unknown character");
+        } else {
+            self.error_span(fault.start, fault.end, fault.reason.clone()).ignore();
+        }
+    }
+
+    /// Reports an error on the byte span `start..end` of the line.
+    pub fn error_on(&mut self, start: u32, end: u32, reason: impl Into<String>) -> Failed {
+        self.error_span(start, end, reason.into())
     }
 
     /// Adds a warning about this line.

@@ -55,7 +55,7 @@
 //!   and JSON readers make them: only end points are written.
 
 mod arc;
-mod format;
+pub(crate) mod format;
 mod options;
 mod turns;
 

@@ -41,6 +41,10 @@ fn expected_moves(path: &Toolpath, options: &WriterOptions) -> (Vec<Move>, Vec<u
     let mut starts = Vec::with_capacity(path.moves.len() + 1);
     for m in &path.moves {
         starts.push(moves.len());
+        // A rapid or linear move of zero length is not written (the reader drops it).
+        if !matches!(m.motion, Motion::Arc { .. }) && close(m.start, m.end, 0.0) {
+            continue;
+        }
         match options.dialect {
             Dialect::Fanuc => moves.extend(split_turns(m)),
             Dialect::LinuxCnc => moves.push(*m),
@@ -87,7 +91,7 @@ fn assert_round_trip(path: &Toolpath, options: &WriterOptions) -> Result<(), Tes
     let tol = resolution(options.decimals) + FLOAT_SLACK_MM;
     let feed_tol = resolution(options.feed_decimals) / 2.0 + FLOAT_SLACK_MM;
     let spindle_tol = 0.5 + FLOAT_SLACK_MM;
-    prop_assert_eq!(read.moves.len(), expected.len(), "{:?}: move count", options.dialect);
+    prop_assert_eq!(read.moves.len(), expected.len(), "{:?}: move count of\n{}", options.dialect, text);
     for (i, (got, want)) in read.moves.iter().zip(&expected).enumerate() {
         let context = format!("{:?} move {i} (source line {}): {got:?} vs {want:?}", options.dialect, want.line);
         match (got.motion, want.motion) {
