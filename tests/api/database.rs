@@ -126,7 +126,7 @@ async fn refused_writes_name_the_field_and_change_nothing() {
     let bad = [
         (json!({"name": "a", "tool_type": "square", "diameter_mm": -10, "flutes": 4}), 422, Some("diameter_mm")),
         (json!({"name": "a", "tool_type": "square", "diameter_mm": 10, "flutes": -4}), 422, Some("flutes")),
-        (json!({"name": "a", "tool_type": "ball", "diameter_mm": 10, "flutes": 2}), 422, Some("corner_radius_mm")),
+        (json!({"name": "a", "tool_type": "radius", "diameter_mm": 10, "flutes": 2}), 422, Some("corner_radius_mm")),
         (json!({"name": "a", "tool_type": "square", "diameter_mm": 10, "flutes": 4, "spin": 1}), 422, Some("spin")),
         // Values no end mill has.
         (json!({"name": "a", "tool_type": "square", "diameter_mm": 1e308, "flutes": 4}), 422, Some("diameter_mm")),
