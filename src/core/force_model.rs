@@ -257,6 +257,20 @@ mod tests {
         assert!(approx_eq(engaged_edge_length_mm(5.0, -1.0), 0.0, 1e-12));
     }
 
+    proptest::proptest! {
+        #[test]
+        fn the_engaged_edge_grows_with_depth_and_is_longer_than_the_depth_by_at_most_the_corners_bulge(
+            rc in 0.0f64..10.0,
+            ad in 0.0f64..30.0,
+            more in 0.0f64..5.0,
+        ) {
+            let e = engaged_edge_length_mm(rc, ad);
+            proptest::prop_assert!(e >= ad - 1e-12);
+            proptest::prop_assert!(e <= ad + rc * (std::f64::consts::FRAC_PI_2 - 1.0) + 1e-12);
+            proptest::prop_assert!(engaged_edge_length_mm(rc, ad + more) >= e - 1e-12);
+        }
+    }
+
     #[test]
     fn the_r5_balls_model_is_the_square_ones_carried_over_by_flutes_and_engaged_edge() {
         let ball = seed_001_ten_mm().carried_over(6, 2, 5.0, 0.6);

@@ -9,8 +9,8 @@ async fn the_database_is_seeded_from_the_model_with_a_source_on_every_row() {
     for (path, count) in [
         ("/v1/materials", 1),
         ("/v1/tools", 18),
-        ("/v1/conditions/standard", 72),
-        ("/v1/force-models", 12),
+        ("/v1/conditions/standard", 78),
+        ("/v1/force-models", 18),
         ("/v1/tool-life", 18),
         ("/v1/machines", 1),
         ("/v1/cost-rates", 1),
