@@ -138,6 +138,7 @@ fn main() {
         dl_mm: 0.436,
         coefficients: Coefficients { b0: 269.1, b1: 65.84, b2: 53.66, b11: 0.0, b22: 3.763, b12: 15.45 },
         ad_ref_mm: 10.0,
+        corner_radius_mm: 0.0,
     };
     report("tiger.nc (default spacing D/100)", &tiger, &spec(small, tiger_stock, 0.0, -32.0, None, None));
     report("tiger.nc at 0.05 mm", &tiger, &spec(small, tiger_stock, 0.0, -32.0, None, Some(0.05)));

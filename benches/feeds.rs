@@ -90,6 +90,7 @@ fn main() {
         dl_mm: 0.436,
         coefficients: Coefficients { b0: 269.1, b1: 65.84, b2: 53.66, b11: 0.0, b22: 3.763, b12: 15.45 },
         ad_ref_mm: 10.0,
+        corner_radius_mm: 0.0,
     };
     if wanted("trochoidal") {
         let ten = EndMill { tool_type: ToolType::Square, diameter_mm: 10.0, flutes: 6, corner_radius_mm: 0.0 };

@@ -13,6 +13,7 @@ pub fn seed_001_ten_mm() -> ForceModel {
         dl_mm: 0.436,
         coefficients: Coefficients { b0: 269.1, b1: 65.84, b2: 53.66, b11: 0.0, b22: 3.763, b12: 15.45 },
         ad_ref_mm: 10.0,
+        corner_radius_mm: 0.0,
     }
 }
 

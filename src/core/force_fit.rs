@@ -142,6 +142,8 @@ pub fn fit_force_model(samples: &[ForceSample], spec: FitSpec) -> Result<ForceFi
         dl_mm: spec.dl_mm,
         coefficients: Coefficients { b0: b[0], b1: b[1], b2: b[2], b11, b22: rest[0], b12: rest[1] },
         ad_ref_mm: spec.ad_ref_mm,
+        // The fit is evaluated at Ad_ref, where every edge profile gives the same force.
+        corner_radius_mm: 0.0,
     };
     Ok(ForceFit {
         model,

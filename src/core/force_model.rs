@@ -2,7 +2,9 @@
 //! Table 4; MODEL.md §3):
 //!
 //! `F_xy = β0 + β1·X1 + β2·X2 + β11·X1² + β22·X2² + β12·X1·X2`,
-//! `X1 = (t_m − t0)/δt`, `X2 = (L − L0)/δL`, scaled linearly with `Ad / Ad_ref`.
+//! `X1 = (t_m − t0)/δt`, `X2 = (L − L0)/δL`, scaled with the engaged cutting-edge length
+//! at the axial depth: linearly with `Ad / Ad_ref` for a square end mill (MODEL.md §3), by
+//! [`engaged_edge_length_mm`] for radius and ball end mills.
 
 use crate::core::error::require_positive;
 use crate::core::CoreError;
@@ -37,6 +39,30 @@ pub struct ForceModel {
     pub coefficients: Coefficients,
     /// The axial depth of cut the model was measured at, mm.
     pub ad_ref_mm: f64,
+    /// Corner radius of the tool's cutting edge, mm: the force scales with the engaged edge
+    /// length at the axial depth ([`engaged_edge_length_mm`]). 0 (the default) is a square
+    /// end mill, whose force scales linearly with `Ad` as in seed 001's tests.
+    #[serde(default)]
+    pub corner_radius_mm: f64,
+}
+
+/// Length of one flute's cutting edge engaged at axial depth `Ad` below the uncut surface,
+/// measured from the tool's tip, mm: the edge is a corner arc of radius `rc` and then the
+/// straight flank, so `rc·acos(1 − Ad/rc)` while `Ad ≤ rc` and `rc·π/2 + (Ad − rc)` above.
+/// A square end mill (`rc` = 0) engages `Ad`; a ball (`rc` = R = D/2) engages
+/// `R·acos(1 − Ad/R)` up to its equator. Plane geometry of the tool's profile; our rule
+/// (`extrapolated`) for the force of radius and ball end mills, whose forces the papers did
+/// not measure (seed 001 Table 1 tests square end mills at Ad = D; MODEL.md §3).
+pub fn engaged_edge_length_mm(corner_radius_mm: f64, axial_depth_mm: f64) -> f64 {
+    if corner_radius_mm <= 0.0 {
+        return axial_depth_mm;
+    }
+    let depth_mm = axial_depth_mm.max(0.0);
+    if depth_mm <= corner_radius_mm {
+        corner_radius_mm * (1.0 - depth_mm / corner_radius_mm).acos()
+    } else {
+        corner_radius_mm * std::f64::consts::FRAC_PI_2 + (depth_mm - corner_radius_mm)
+    }
 }
 
 /// Coded variables of one (t_m, L) point.
@@ -68,6 +94,12 @@ impl ForceModel {
         require_positive("l0_mm", self.l0_mm)?;
         require_positive("dl_mm", self.dl_mm)?;
         require_positive("ad_ref_mm", self.ad_ref_mm)?;
+        if !(self.corner_radius_mm.is_finite() && self.corner_radius_mm >= 0.0) {
+            return Err(CoreError::invalid(
+                "corner_radius_mm",
+                format!("must be a finite number >= 0, got {}", self.corner_radius_mm),
+            ));
+        }
         let c = self.coefficients;
         for (name, v) in [("b0", c.b0), ("b1", c.b1), ("b2", c.b2), ("b11", c.b11), ("b22", c.b22), ("b12", c.b12)] {
             crate::core::error::require_finite(name, v)?;
@@ -81,10 +113,44 @@ impl ForceModel {
     }
 
     /// Predicted XY force (N) at chip thickness `t_m` (µm), arc length `L` (mm) and axial
-    /// depth `Ad` (mm): seed 002 Eq. 1, scaled linearly with `Ad / Ad_ref` (MODEL.md §3).
+    /// depth `Ad` (mm, from the tool's tip): seed 002 Eq. 1, scaled by the engaged edge
+    /// length at `Ad` over that at `Ad_ref` ([`engaged_edge_length_mm`]; `Ad / Ad_ref` for
+    /// a square end mill, MODEL.md §3).
     pub fn force_n(&self, chip_thickness_um: f64, arc_length_mm: f64, axial_depth_mm: f64) -> f64 {
         let c = self.coded(chip_thickness_um, arc_length_mm);
-        self.coefficients.evaluate(c.x1, c.x2) * axial_depth_mm / self.ad_ref_mm
+        self.coefficients.evaluate(c.x1, c.x2) * self.edge_length_mm(axial_depth_mm)
+            / self.edge_length_mm(self.ad_ref_mm)
+    }
+
+    /// The engaged edge length of this model's tool at axial depth `Ad`, mm.
+    fn edge_length_mm(&self, axial_depth_mm: f64) -> f64 {
+        engaged_edge_length_mm(self.corner_radius_mm, axial_depth_mm)
+    }
+
+    /// This model carried over to an end mill of another edge profile and number of flutes:
+    /// at equal chip thickness and engagement arc the mean force grows with the cutting edge
+    /// in the cut, the flutes in the cut (`z·α/2π`, so `z`) times the edge each engages at
+    /// the depth ([`engaged_edge_length_mm`]). Every β is multiplied by
+    /// `(z / z_self) · e(rc, Ad_ref) / e(rc_self, Ad_ref_self)`; the centres and steps stay,
+    /// so the design region stays that of the experiments. Our rule (`extrapolated`): the
+    /// papers measured square end mills only (seed 001 Table 4; MODEL.md §3).
+    pub fn carried_over(&self, self_flutes: u32, flutes: u32, corner_radius_mm: f64, ad_ref_mm: f64) -> ForceModel {
+        let factor = f64::from(flutes) / f64::from(self_flutes) * engaged_edge_length_mm(corner_radius_mm, ad_ref_mm)
+            / self.edge_length_mm(self.ad_ref_mm);
+        let c = self.coefficients;
+        ForceModel {
+            coefficients: Coefficients {
+                b0: c.b0 * factor,
+                b1: c.b1 * factor,
+                b2: c.b2 * factor,
+                b11: c.b11 * factor,
+                b22: c.b22 * factor,
+                b12: c.b12 * factor,
+            },
+            ad_ref_mm,
+            corner_radius_mm,
+            ..*self
+        }
     }
 
     /// The chip thickness (µm) at which the model gives `target_force_n` for arc length
@@ -98,7 +164,7 @@ impl ForceModel {
         arc_length_mm: f64,
         axial_depth_mm: f64,
     ) -> Option<f64> {
-        let target_at_ref = target_force_n * self.ad_ref_mm / axial_depth_mm;
+        let target_at_ref = target_force_n * self.edge_length_mm(self.ad_ref_mm) / self.edge_length_mm(axial_depth_mm);
         let x2 = (arc_length_mm - self.l0_mm) / self.dl_mm;
         let c = self.coefficients;
         let a = c.b11;
@@ -174,6 +240,69 @@ mod tests {
     fn a_very_long_engagement_arc_cannot_reach_the_target_force() {
         let e = engagement(Contour::Concave { surface_radius_mm: 6.0 }, 5.0, 0.5).unwrap();
         assert!(seed_001_ten_mm().chip_thickness_for_force_um(269.1, e.arc_length_mm, 10.0).is_none());
+    }
+
+    #[test]
+    fn the_engaged_edge_is_the_depth_for_a_square_end_mill_and_the_profile_arc_for_ball_and_radius() {
+        assert!(approx_eq(engaged_edge_length_mm(0.0, 7.0), 7.0, 1e-12));
+        // Ball R5: 5·acos(1 − 0.6/5) = 2.4747 mm at Ad 0.6, a quarter circle at its equator,
+        // then the flank.
+        assert!(approx_eq(engaged_edge_length_mm(5.0, 0.6), 2.474_670_6, 1e-7));
+        assert!(approx_eq(engaged_edge_length_mm(5.0, 5.0), 5.0 * std::f64::consts::FRAC_PI_2, 1e-12));
+        assert!(approx_eq(engaged_edge_length_mm(5.0, 7.0), 5.0 * std::f64::consts::FRAC_PI_2 + 2.0, 1e-12));
+        // Radius end mill, corner R1: π/3 at Ad 0.5 (on the arc), π/2 + 9 at Ad 10.
+        assert!(approx_eq(engaged_edge_length_mm(1.0, 0.5), std::f64::consts::FRAC_PI_3, 1e-12));
+        assert!(approx_eq(engaged_edge_length_mm(1.0, 10.0), 10.570_796_3, 1e-7));
+        assert!(approx_eq(engaged_edge_length_mm(1.0, 1.0 - 1e-12), engaged_edge_length_mm(1.0, 1.0 + 1e-12), 1e-9));
+        assert!(approx_eq(engaged_edge_length_mm(5.0, -1.0), 0.0, 1e-12));
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn the_engaged_edge_grows_with_depth_and_is_longer_than_the_depth_by_at_most_the_corners_bulge(
+            rc in 0.0f64..10.0,
+            ad in 0.0f64..30.0,
+            more in 0.0f64..5.0,
+        ) {
+            let e = engaged_edge_length_mm(rc, ad);
+            proptest::prop_assert!(e >= ad - 1e-12);
+            proptest::prop_assert!(e <= ad + rc * (std::f64::consts::FRAC_PI_2 - 1.0) + 1e-12);
+            proptest::prop_assert!(engaged_edge_length_mm(rc, ad + more) >= e - 1e-12);
+        }
+    }
+
+    #[test]
+    fn the_r5_balls_model_is_the_square_ones_carried_over_by_flutes_and_engaged_edge() {
+        let ball = seed_001_ten_mm().carried_over(6, 2, 5.0, 0.6);
+        // Every β × (2/6) × 2.4747/10 = × 0.082489: β0 269.1 → 22.198 N, centres unchanged.
+        assert!(approx_eq(ball.coefficients.b0, 22.197_796, 1e-6));
+        assert!(approx_eq(ball.coefficients.b12, 15.45 * 0.082_489_021, 1e-6));
+        assert!(approx_eq(ball.t0_um, seed_001_ten_mm().t0_um, 1e-12));
+        // At its standard side cut (seed 004 Table 7: fz 0.3, Rd 4, Ad 0.6; the 2.5-D
+        // engagement α 78.46°, t_m 293.94 µm, L 6.847 mm) the model gives 417.9 N.
+        let e = engagement(Contour::Straight, 5.0, 4.0).unwrap();
+        let t_um = 1000.0 * 0.3 * e.angle_rad.sin();
+        assert!(approx_eq(e.arc_length_mm, 6.847_192, 1e-6) && approx_eq(t_um, 293.938_77, 1e-5));
+        assert!(approx_eq(ball.force_n(t_um, e.arc_length_mm, 0.6), 417.922_25, 1e-4));
+        // Far outside the square tests' design region: X1 ≈ 17, X2 ≈ 10.5.
+        let coded = ball.coded(t_um, e.arc_length_mm);
+        assert!(approx_eq(coded.x1, 16.69, 0.01) && approx_eq(coded.x2, 10.53, 0.01), "{coded:?}");
+        // Half the depth engages 70.3 % of the edge, not 50 % as a straight flank would.
+        let half = ball.force_n(t_um, e.arc_length_mm, 0.3) / ball.force_n(t_um, e.arc_length_mm, 0.6);
+        assert!(approx_eq(half, 0.703_459_3, 1e-7));
+        let t = ball.chip_thickness_for_force_um(100.0, 6.0, 0.3).unwrap();
+        assert!(approx_eq(ball.force_n(t, 6.0, 0.3), 100.0, 1e-9));
+    }
+
+    #[test]
+    fn a_radius_end_mill_engages_its_corner_arc_and_flank_so_its_model_is_5_7_percent_above_the_square_at_full_depth() {
+        let square = seed_001_ten_mm();
+        let radius = square.carried_over(6, 6, 1.0, 10.0);
+        assert!(approx_eq(radius.coefficients.b0, 284.460_129, 1e-6));
+        let (t, l) = (square.t0_um, square.l0_mm);
+        assert!(approx_eq(radius.force_n(t, l, 5.0) / radius.force_n(t, l, 10.0), 5.570_796 / 10.570_796, 1e-6));
+        // A square end mill carried over to itself is itself.
+        assert_eq!(square.carried_over(6, 6, 0.0, 10.0), square);
     }
 
     #[test]

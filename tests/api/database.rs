@@ -9,8 +9,8 @@ async fn the_database_is_seeded_from_the_model_with_a_source_on_every_row() {
     for (path, count) in [
         ("/v1/materials", 1),
         ("/v1/tools", 18),
-        ("/v1/conditions/standard", 72),
-        ("/v1/force-models", 12),
+        ("/v1/conditions/standard", 78),
+        ("/v1/force-models", 18),
         ("/v1/tool-life", 18),
         ("/v1/machines", 1),
         ("/v1/cost-rates", 1),
@@ -126,7 +126,7 @@ async fn refused_writes_name_the_field_and_change_nothing() {
     let bad = [
         (json!({"name": "a", "tool_type": "square", "diameter_mm": -10, "flutes": 4}), 422, Some("diameter_mm")),
         (json!({"name": "a", "tool_type": "square", "diameter_mm": 10, "flutes": -4}), 422, Some("flutes")),
-        (json!({"name": "a", "tool_type": "ball", "diameter_mm": 10, "flutes": 2}), 422, Some("corner_radius_mm")),
+        (json!({"name": "a", "tool_type": "radius", "diameter_mm": 10, "flutes": 2}), 422, Some("corner_radius_mm")),
         (json!({"name": "a", "tool_type": "square", "diameter_mm": 10, "flutes": 4, "spin": 1}), 422, Some("spin")),
         // Values no end mill has.
         (json!({"name": "a", "tool_type": "square", "diameter_mm": 1e308, "flutes": 4}), 422, Some("diameter_mm")),

@@ -144,9 +144,15 @@ async fn a_ball_end_mill_finishing_a_valley_slows_down_to_hold_the_cutting_point
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn bad_feed_requests_are_refused_naming_the_field() {
     let app = TestApp::start().await;
-    let mut ball = concave_request();
-    ball["tool_type"] = json!("ball");
-    assert_problem(&app.post("/v1/feeds", ball).await, 422, Some("strategy"));
+    // A shop's own end mill without a force model cannot hold a constant force.
+    let own = app
+        .post("/v1/tools", json!({"name": "shop ball D10", "tool_type": "ball", "diameter_mm": 10, "flutes": 2}))
+        .await;
+    let mut no_model = concave_request();
+    no_model.as_object_mut().unwrap().remove("tool_type");
+    no_model.as_object_mut().unwrap().remove("diameter_mm");
+    no_model["tool_id"] = own.body["id"].clone();
+    assert_problem(&app.post("/v1/feeds", no_model).await, 422, Some("strategy"));
     let mut no_stock = concave_request();
     no_stock.as_object_mut().unwrap().remove("stock");
     assert_problem(&app.post("/v1/feeds", no_stock).await, 422, Some("stock"));

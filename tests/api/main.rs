@@ -3,6 +3,7 @@
 
 mod analysis;
 mod architecture;
+mod ball_tools;
 mod browser;
 mod common;
 mod conditions;

@@ -148,7 +148,7 @@ pub struct Resolved {
 pub async fn resolve(pool: &SqlitePool, refs: &PathJobRefs<'_>) -> Result<Resolved, ApiError> {
     let material = lookup::material(pool, refs.material_id, refs.material).await?;
     let tool = lookup::tool(pool, refs.tool_id, refs.tool_type, refs.diameter_mm).await?;
-    let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(ForceModelRef::from);
+    let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(|m| ForceModelRef::of_tool(m, &tool));
     let machine = match refs.machine_id {
         Some(id) => {
             sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = ?").bind(id).fetch_optional(pool).await?

@@ -135,15 +135,17 @@ impl From<&Tool> for ToolRef {
                 tool_type: tool.data.tool_type,
                 diameter_mm: tool.data.diameter_mm,
                 flutes: tool.data.flutes,
-                corner_radius_mm: tool.data.corner_radius_mm,
+                corner_radius_mm: tool.data.resolved_corner_radius_mm(),
             },
         }
     }
 }
 
-impl From<ForceModelRecord> for ForceModelRef {
-    fn from(m: ForceModelRecord) -> Self {
-        ForceModelRef { id: m.id, source: m.data.source, model: m.data.model(), reference: m.data.reference }
+impl ForceModelRef {
+    /// The model of a row for its tool: forces scale with that tool's engaged edge length.
+    pub fn of_tool(m: ForceModelRecord, tool: &Tool) -> Self {
+        let model = m.data.model(tool.data.resolved_corner_radius_mm());
+        ForceModelRef { id: m.id, source: m.data.source, model, reference: m.data.reference }
     }
 }
 
@@ -199,7 +201,7 @@ pub async fn prepare(pool: &SqlitePool, request: ConditionsRequest) -> Result<Co
         rd_mm: pick("rd_mm", request.rd_mm, base.rd_mm),
         ad_mm: pick("ad_mm", request.ad_mm, base.ad_mm),
     };
-    let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(ForceModelRef::from);
+    let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(|m| ForceModelRef::of_tool(m, &tool));
     let tool_ref = ToolRef::from(&tool);
     let geometry = tool_ref.geometry;
     // Refuse now what the computation would refuse later.

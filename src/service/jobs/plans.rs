@@ -417,7 +417,7 @@ async fn resolve_baseline(
         tool_type: d.tool_type,
         diameter_mm: d.diameter_mm,
         flutes: d.flutes,
-        corner_radius_mm: d.corner_radius_mm,
+        corner_radius_mm: d.resolved_corner_radius_mm(),
     };
     Ok(BaselinePrepared {
         tool_id: ball.id,

@@ -32,7 +32,10 @@ pub struct ForceModelData {
     /// Coefficient of determination of the fit.
     #[serde(default)]
     pub r_squared: Option<f64>,
-    /// Axial depth of cut of the experiments, mm: forces scale with Ad / Ad_ref.
+    /// Axial depth of cut of the experiments, mm: forces scale with the tool's engaged
+    /// cutting-edge length at Ad over that at Ad_ref: Ad / Ad_ref for a square end mill, the
+    /// corner arc and then the flank for radius and ball end mills (whose corner radius the
+    /// tool row gives).
     pub ad_ref_mm: f64,
     #[serde(default = "Source::user")]
     pub source: Source,
@@ -41,7 +44,9 @@ pub struct ForceModelData {
 }
 
 impl ForceModelData {
-    pub fn model(&self) -> ForceModel {
+    /// The model for a tool whose cutting edge has corner radius `corner_radius_mm` (the
+    /// tool's): its forces scale with that edge's engaged length at the axial depth.
+    pub fn model(&self, corner_radius_mm: f64) -> ForceModel {
         ForceModel {
             t0_um: self.t0_um,
             dt_um: self.dt_um,
@@ -56,6 +61,7 @@ impl ForceModelData {
                 b12: self.b12,
             },
             ad_ref_mm: self.ad_ref_mm,
+            corner_radius_mm,
         }
     }
 }

@@ -32,9 +32,11 @@ pub struct ToolData {
     pub diameter_mm: f64,
     /// Number of flutes z.
     pub flutes: u32,
-    /// Corner radius, mm: 0 for square, between 0 and D/2 for radius, D/2 for ball.
+    /// Corner radius, mm. Square end mill: 0 (the default when left out). Radius end mill:
+    /// required, between 0 and D/2. Ball end mill: D/2, which it takes when left out (when
+    /// given it must be D/2). A stored tool always has it.
     #[serde(default)]
-    pub corner_radius_mm: f64,
+    pub corner_radius_mm: Option<f64>,
     /// Length of cut, mm.
     #[serde(default)]
     pub flute_length_mm: Option<f64>,
@@ -52,13 +54,29 @@ pub struct ToolData {
     pub reference: String,
 }
 
+/// The corner radius an end mill of `tool_type` and diameter `D` has when none is given:
+/// 0 for a square end mill, D/2 for a ball; a radius end mill has none of its own.
+fn default_corner_radius_mm(tool_type: ToolType, diameter_mm: f64) -> Option<f64> {
+    match tool_type {
+        ToolType::Square => Some(0.0),
+        ToolType::Radius => None,
+        ToolType::Ball => Some(diameter_mm / 2.0),
+    }
+}
+
 impl ToolData {
+    /// The corner radius given, else its shape's ([`default_corner_radius_mm`]); 0 for a
+    /// radius end mill without one, which validation refuses, so never for a stored tool.
+    pub fn resolved_corner_radius_mm(&self) -> f64 {
+        self.corner_radius_mm.or(default_corner_radius_mm(self.tool_type, self.diameter_mm)).unwrap_or(0.0)
+    }
+
     pub fn end_mill(&self) -> EndMill {
         EndMill {
             tool_type: self.tool_type,
             diameter_mm: self.diameter_mm,
             flutes: self.flutes,
-            corner_radius_mm: self.corner_radius_mm,
+            corner_radius_mm: self.resolved_corner_radius_mm(),
         }
     }
 }
@@ -91,7 +109,7 @@ impl Resource for ToolData {
             self.tool_type.as_str().into(),
             self.diameter_mm.into(),
             i64::from(self.flutes).into(),
-            self.corner_radius_mm.into(),
+            self.resolved_corner_radius_mm().into(),
             self.flute_length_mm.into(),
             self.coating.clone().into(),
             self.substrate.clone().into(),
@@ -105,7 +123,9 @@ impl Resource for ToolData {
         v.not_blank("name", &self.name);
         v.within("diameter_mm", self.diameter_mm, MIN_DIAMETER_MM, MAX_DIAMETER_MM);
         v.check((1..=MAX_FLUTES).contains(&self.flutes), "flutes", format!("must be 1 to {MAX_FLUTES}"));
-        v.non_negative("corner_radius_mm", self.corner_radius_mm);
+        if let Some(rc) = self.corner_radius_mm {
+            v.non_negative("corner_radius_mm", rc);
+        }
         if let Some(l) = self.flute_length_mm {
             v.above_and_at_most("flute_length_mm", l, 0.0, MAX_FLUTE_LENGTH_MM);
         }
@@ -116,22 +136,26 @@ impl Resource for ToolData {
             return;
         }
         let half = self.diameter_mm / 2.0;
+        let rc = self.resolved_corner_radius_mm();
         match self.tool_type {
             ToolType::Square => v.check(
-                self.corner_radius_mm <= BALL_RADIUS_TOLERANCE_MM,
+                rc <= BALL_RADIUS_TOLERANCE_MM,
                 "corner_radius_mm",
                 "a square end mill has no corner radius: use tool_type radius",
             ),
+            ToolType::Radius if self.corner_radius_mm.is_none() => v.fail(
+                "corner_radius_mm",
+                format!("is required for a radius end mill: 0 < corner radius < D/2 = {half}"),
+            ),
             ToolType::Radius => v.check(
-                self.corner_radius_mm > BALL_RADIUS_TOLERANCE_MM
-                    && self.corner_radius_mm < half - BALL_RADIUS_TOLERANCE_MM,
+                rc > BALL_RADIUS_TOLERANCE_MM && rc < half - BALL_RADIUS_TOLERANCE_MM,
                 "corner_radius_mm",
                 format!("a radius end mill needs 0 < corner radius < D/2 = {half}"),
             ),
             ToolType::Ball => v.check(
-                (self.corner_radius_mm - half).abs() <= BALL_RADIUS_TOLERANCE_MM,
+                (rc - half).abs() <= BALL_RADIUS_TOLERANCE_MM,
                 "corner_radius_mm",
-                format!("a ball end mill's corner radius is D/2 = {half}"),
+                format!("a ball end mill's corner radius is D/2 = {half} (leave it out to take D/2)"),
             ),
         }
     }
