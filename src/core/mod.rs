@@ -5,6 +5,8 @@
 
 pub mod analysis;
 pub mod conditions;
+/// The coolant a program switches on.
+pub mod coolant;
 pub mod costing;
 pub mod curvature;
 pub mod cycles;
@@ -18,6 +20,8 @@ pub(crate) mod fixtures;
 pub mod force_fit;
 pub mod force_model;
 pub mod geometry;
+#[cfg(test)]
+pub(crate) mod golden;
 /// Trochoid insertion into contour-parallel paths (seed 004 §2).
 pub mod insertion;
 pub mod kinematics;

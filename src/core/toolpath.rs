@@ -1,5 +1,10 @@
 //! A tool path as plain data: the moves of an NC program (or of a JSON move list) with
-//! their source line numbers, and the events between them.
+//! their source line numbers, and the events between them. Paths that dieplan generates
+//! also label their parts with [`Section`] events (see `toolpath/section.rs`).
+
+mod section;
+
+pub use section::{labels_of, section_events, Section, Step};
 
 use serde::{Deserialize, Serialize};
 
@@ -79,6 +84,17 @@ pub enum EventKind {
     Stop,
     /// M2/M30: end of program (moves after it are not read).
     End,
+    /// The start of a part of a generated program (an operation of a layer): a label, which
+    /// the writer writes as a comment and the machine does not see.
+    Section(Section),
+}
+
+impl EventKind {
+    /// `true` for labels ([`EventKind::Section`]): nothing happens on the machine there, so
+    /// the motion does not stop; every other event is an M code or a dwell.
+    pub fn is_label(&self) -> bool {
+        matches!(self, EventKind::Section(_))
+    }
 }
 
 /// An event and where it happens: before move `before_move` (= the number of moves

@@ -87,3 +87,18 @@ impl utoipa::ToSchema for crate::core::cycles::CutDirection {
         Cow::Borrowed("CutDirection")
     }
 }
+
+impl utoipa::PartialSchema for crate::core::coolant::Coolant {
+    fn schema() -> RefOr<Schema> {
+        string_enum(
+            crate::core::coolant::Coolant::ALL.iter().map(|c| c.as_str()).collect(),
+            "Coolant a program switches on after the spindle starts and off (M9) at its end: off (dry, or an air blast the machine runs by itself; seed 001 and 003 cut dry with air), mist (M7: seed 004 §3.4 used oil air mist) or flood (M8).",
+        )
+    }
+}
+
+impl utoipa::ToSchema for crate::core::coolant::Coolant {
+    fn name() -> Cow<'static, str> {
+        Cow::Borrowed("Coolant")
+    }
+}

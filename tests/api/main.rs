@@ -17,5 +17,6 @@ mod fit;
 mod jobs;
 mod openapi;
 mod plans;
+mod programs;
 mod trochoids;
 mod web;

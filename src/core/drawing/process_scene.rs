@@ -11,17 +11,6 @@ use crate::core::process::{CandidateStatus, Cavity, ProcessPlan, Step};
 /// The chosen tool's program.
 pub const PROGRAM_PATH: &str = "program";
 
-fn step_name(step: Step) -> &'static str {
-    match step {
-        Step::HelicalBoring => "helical boring",
-        Step::SpiralHoleExpansion => "spiral hole expansion",
-        Step::TrochoidalGrooving => "trochoidal grooving",
-        Step::ZCutDivision => "z-cut division",
-        Step::RoughSideCutting => "rough side cutting",
-        Step::IntermediateRoughSideCutting => "intermediate-rough side cutting",
-    }
-}
-
 fn status_name(status: CandidateStatus) -> &'static str {
     match status {
         CandidateStatus::Chosen => "chosen",
@@ -70,7 +59,7 @@ fn step_charts(plan: &ProcessPlan, currency: &str) -> [ChartData; 2] {
         }
     }
     steps.sort_by_key(|s| s.0);
-    let names: Vec<String> = steps.iter().map(|s| step_name(s.0).to_string()).collect();
+    let names: Vec<String> = steps.iter().map(|s| Step::name(s.0).to_string()).collect();
     let time_total: f64 = steps.iter().map(|s| s.2).sum();
     let worn_total: f64 = steps.iter().map(|s| s.3).sum();
     let cost = &plan.evaluation.cost;

@@ -16,7 +16,7 @@ use crate::core::cycles::setup::DEFAULT_PLUNGE_FEED_RATIO;
 use crate::core::cycles::trochoid::Entry;
 use crate::core::cycles::{z_levels, CycleSetup};
 use crate::core::tolerance::LENGTH_EPS_MM;
-use crate::core::toolpath::{Motion, Move, P3};
+use crate::core::toolpath::{Motion, Move, Section, Step, P3};
 use crate::core::CoreError;
 
 /// The helical entries start this far above the level they enter from, mm (**assumed**: a
@@ -179,9 +179,32 @@ pub struct Composed {
     /// Per move: the stretch it belongs to (its index), or the number of stretches for the
     /// base path. The moves over the safe height that lead to a part belong to it.
     pub owner: Vec<usize>,
+    /// Per move: the part of the program it belongs to (level, step, region); `None` only
+    /// for a path with no cutting level.
+    pub labels: Vec<Option<Section>>,
     /// The cutting levels, in order.
     pub levels: Vec<f64>,
     pub per_level: Vec<LevelMoves>,
+}
+
+/// The section of the moves of stretch `i` (`None`: the base path) at level `k` (height
+/// `z_mm`): `entry` for the approach hole of a trochoid or an opening.
+fn stretch_section(
+    stretch: Option<(usize, &Stretch)>,
+    entry: bool,
+    k: usize,
+    z_mm: f64,
+    spec: &InsertionSpec,
+) -> Section {
+    let step = match stretch {
+        None => spec.base_step,
+        Some((_, Stretch::Trochoid(_) | Stretch::Opening(_))) if entry => Step::HelicalBoring,
+        Some((_, Stretch::Trochoid(_))) => Step::TrochoidalGrooving,
+        Some((_, Stretch::Opening(_))) => Step::SpiralHoleExpansion,
+        Some((_, Stretch::ZCut(_))) => Step::ZCutDivision,
+    };
+    let as_u32 = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+    Section { layer: as_u32(k), z_mm, step, region: stretch.map(|(i, _)| as_u32(i)) }
 }
 
 /// The program: every level's treatments, then its trimmed base path.
@@ -196,12 +219,16 @@ pub fn compose(
     let mut program = Vec::new();
     let mut entry: Vec<bool> = Vec::new();
     let mut owner: Vec<usize> = Vec::new();
+    let mut labels: Vec<Option<Section>> = Vec::new();
     let mut per_level = Vec::new();
     let mut z_from = spec.z_top_mm;
     for (k, part) in parts.iter().enumerate() {
         let Some(&z) = levels.get(k) else {
+            // Moves after the last level (the final retract) end the part before them.
             append_over(&mut program, part, spec.safe_z_mm);
             owner.resize(program.len(), stretches.len());
+            let last = labels.last().copied().flatten();
+            labels.resize(program.len(), last);
             continue;
         };
         let mut level = LevelMoves::default();
@@ -216,6 +243,9 @@ pub fn compose(
             owner.resize(program.len(), i);
             let first = program.len() - moves.len();
             entry[first..first + entry_moves].iter_mut().for_each(|e| *e = true);
+            // The link over the safe height belongs to the part it leads to.
+            labels.resize(first, Some(stretch_section(Some((i, s)), entry_moves > 0, k, z, spec)));
+            labels.extend((0..moves.len()).map(|m| Some(stretch_section(Some((i, s)), m < entry_moves, k, z, spec))));
             level.stretch_moves.push(moves);
         }
         let relink = Relink {
@@ -233,6 +263,7 @@ pub fn compose(
         let (trimmed, trim) = trim_path(part, zone, &relink);
         append_over(&mut program, &trimmed, spec.safe_z_mm);
         owner.resize(program.len(), stretches.len());
+        labels.resize(program.len(), Some(stretch_section(None, false, k, z, spec)));
         level.base = trimmed;
         level.trim = trim;
         per_level.push(level);
@@ -240,16 +271,17 @@ pub fn compose(
     }
     entry.resize(program.len(), false);
     owner.resize(program.len(), stretches.len());
+    labels.resize(program.len(), None);
     // Joins and trims can leave moves of no length; a program has none.
-    let kept: Vec<(Move, (bool, usize))> = program
-        .into_iter()
-        .zip(entry.into_iter().zip(owner))
-        .filter(|(m, _)| matches!(m.motion, Motion::Arc { .. }) || move_length(m) > LENGTH_EPS_MM)
-        .collect();
-    let (mut program, tags): (Vec<Move>, Vec<(bool, usize)>) = kept.into_iter().unzip();
-    let (entry, owner): (Vec<bool>, Vec<usize>) = tags.into_iter().unzip();
+    let keep: Vec<bool> =
+        program.iter().map(|m| matches!(m.motion, Motion::Arc { .. }) || move_length(m) > LENGTH_EPS_MM).collect();
+    let kept = |i: &usize| keep[*i];
+    let mut program: Vec<Move> = (0..program.len()).filter(kept).map(|i| program[i]).collect();
+    let entry: Vec<bool> = (0..keep.len()).filter(kept).map(|i| entry[i]).collect();
+    let owner: Vec<usize> = (0..keep.len()).filter(kept).map(|i| owner[i]).collect();
+    let labels: Vec<Option<Section>> = (0..keep.len()).filter(kept).map(|i| labels[i]).collect();
     for (i, m) in program.iter_mut().enumerate() {
         m.line = u32::try_from(i + 1).unwrap_or(u32::MAX);
     }
-    Ok(Composed { moves: program, entry, owner, levels, per_level })
+    Ok(Composed { moves: program, entry, owner, labels, levels, per_level })
 }

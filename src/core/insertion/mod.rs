@@ -18,6 +18,8 @@ mod treatments;
 mod verify;
 
 #[cfg(test)]
+pub(crate) mod program_tests;
+#[cfg(test)]
 mod tests;
 
 pub use cleared::{ClearedZone, TrimReport};
@@ -38,7 +40,7 @@ use crate::core::medial::{
 };
 use crate::core::pocketing::{contour_parallel, PocketingSpec};
 use crate::core::progress::Progress;
-use crate::core::toolpath::{Event, EventKind, Toolpath, Units};
+use crate::core::toolpath::{section_events, Event, EventKind, Section, Toolpath, Units};
 use crate::core::CoreError;
 use cleared::ClearedZone as Zone;
 use treatments::Stretch;
@@ -140,20 +142,31 @@ pub fn check_plan(pocket: &Pocket, spec: &InsertionSpec, existing: Option<&Toolp
 
 /// A tool path of `moves` with the spindle on (clockwise) before the first and off after the
 /// last, its moves of no length dropped and the others numbered from 1.
-pub fn program(mut moves: Vec<crate::core::toolpath::Move>) -> Toolpath {
+pub fn program(moves: Vec<crate::core::toolpath::Move>) -> Toolpath {
+    let unlabelled = vec![None; moves.len()];
+    labelled_program(moves, unlabelled)
+}
+
+/// [`program`] with a section event before each part: `labels` has one entry per move (the
+/// part it belongs to), and a section event starts each run of equal labels.
+pub fn labelled_program(moves: Vec<crate::core::toolpath::Move>, labels: Vec<Option<Section>>) -> Toolpath {
+    debug_assert_eq!(moves.len(), labels.len());
     // Joins and trims can leave moves of no length; a program has none (our parser drops them).
-    moves.retain(|m| {
-        matches!(m.motion, crate::core::toolpath::Motion::Arc { .. })
-            || crate::core::analysis::sampling::move_length(m) > crate::core::tolerance::LENGTH_EPS_MM
-    });
+    let (mut moves, labels): (Vec<_>, Vec<_>) = moves
+        .into_iter()
+        .zip(labels.into_iter().chain(std::iter::repeat(None)))
+        .filter(|(m, _)| {
+            matches!(m.motion, crate::core::toolpath::Motion::Arc { .. })
+                || crate::core::analysis::sampling::move_length(m) > crate::core::tolerance::LENGTH_EPS_MM
+        })
+        .unzip();
     for (i, m) in moves.iter_mut().enumerate() {
         m.line = u32::try_from(i + 1).unwrap_or(u32::MAX);
     }
     let last = u32::try_from(moves.len()).unwrap_or(u32::MAX);
-    let events = vec![
-        Event { kind: EventKind::SpindleOn { clockwise: true }, before_move: 0, line: 1 },
-        Event { kind: EventKind::SpindleOff, before_move: moves.len(), line: last },
-    ];
+    let mut events = vec![Event { kind: EventKind::SpindleOn { clockwise: true }, before_move: 0, line: 1 }];
+    events.extend(section_events(&labels));
+    events.push(Event { kind: EventKind::SpindleOff, before_move: moves.len(), line: last });
     Toolpath { moves, events, source_units: Units::Mm, warnings: Vec::new() }
 }
 
@@ -249,7 +262,7 @@ pub fn plan_insertion(
         let (air, zcut) = zones(&stretches, r);
         let composed = compose::compose(&base.moves, &stretches, &air, spec)?;
         let (levels, per_level) = (composed.levels, composed.per_level);
-        let path = program(composed.moves);
+        let path = labelled_program(composed.moves, composed.labels);
         debug_assert_eq!(path.moves.len(), composed.owner.len());
         let after = verify::check_engagement(&path, &analysis, &zcut, &composed.entry, progress)?;
         let more = map(&after.overloaded, REMAP_DISTANCE_RADII);

@@ -10,6 +10,7 @@ use crate::core::insertion::pitch::MIN_PITCH_MM;
 use crate::core::medial::{CLASS_A_RATIO_DEFAULT, CLASS_A_RATIO_MAX, CLASS_A_RATIO_MIN};
 use crate::core::tolerance::LENGTH_EPS_MM;
 use crate::core::tool::{EndMill, ToolType};
+use crate::core::toolpath::Step;
 use crate::core::CoreError;
 
 /// Default engagement limit, deg: a critical cutting region is where α exceeds it
@@ -80,6 +81,9 @@ pub struct InsertionSpec {
     pub sample_spacing_mm: Option<f64>,
     /// Gap between the trochoids' reach and the wall beyond the allowance, mm.
     pub wall_gap_mm: f64,
+    /// The step the contour-parallel path makes, for the program's section labels: rough
+    /// side cutting, or intermediate-rough on the last layer of a process plan.
+    pub base_step: Step,
 }
 
 impl InsertionSpec {
@@ -109,6 +113,7 @@ impl InsertionSpec {
             rapid_mm_min: crate::core::cycles::setup::DEFAULT_RAPID_MM_MIN,
             sample_spacing_mm: None,
             wall_gap_mm: DEFAULT_WALL_GAP_MM,
+            base_step: Step::RoughSideCutting,
         }
     }
 

@@ -28,7 +28,8 @@
 //! Assumptions (state them with the figures):
 //! - Rapids move along the straight line at the rapid rate with the axes' acceleration and
 //!   jerk limits (a real G0 may move each axis at its own rate, a "dog-leg").
-//! - Every event (tool change, dwell, M codes for spindle, coolant, stop) and every rapid
+//! - Every event (tool change, dwell, M codes for spindle, coolant, stop; not the section
+//!   labels of generated programs, which are comments) and every rapid
 //!   ([`TimeOptions::exact_stop_at_rapids`]) brings the machine to rest; a gap between moves
 //!   too. M0/M1 stops wait no time (the operator's is not counted).
 //! - Acceleration is zero at both ends of every speed change (symmetric S-curves); a change of

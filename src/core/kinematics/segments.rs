@@ -75,7 +75,7 @@ pub(super) fn build_segments(
     exact_stop_at_rapids: bool,
 ) -> Result<Segments, CoreError> {
     let mut stop_before_move = vec![false; path.moves.len() + 1];
-    for e in &path.events {
+    for e in path.events.iter().filter(|e| !e.kind.is_label()) {
         if let Some(slot) = stop_before_move.get_mut(e.before_move) {
             *slot = true;
         }

@@ -1,6 +1,7 @@
 //! NC programs out: a [`Toolpath`] written as G-code for a Fanuc (ISO) or a LinuxCNC
 //! control, the inverse of [`parse_gcode`](super::parse_gcode): reading the output back
-//! gives the same moves and events, to the written resolution.
+//! gives the same cutting moves and events, to the written resolution, and rapids to the
+//! same points (see "Safety" for the rapids the writer adds or splits).
 //!
 //! The program (Fanuc; LinuxCNC has no `%` lines and no O number, puts the title in a
 //! comment line of its own and ends with `M2`):
@@ -9,12 +10,18 @@
 //! %
 //! O0001 (TITLE)
 //! (TIMESTAMP, only if given)
-//! G21 G17 G90 G94 G40 G80 [G49 if the program changes tools]
-//! [T1 M6 if the path has no tool change and a tool is known]
-//! [S8000 M3 if the path does not start the spindle before its first feed move]
-//! [M8 after the first spindle start, if `coolant` and the path has no coolant events]
+//! G21 G17 G90 G94 G40 G80 G49
+//! T1 M6                    the tool (unless the path changes tools before its first move)
+//! G0 G43 H1 Z5.            its length offset, with Z alone to the safe height
+//! S8000 M3                 if the path does not start the spindle before its first feed move
+//! M7                       the options' coolant (M7 mist, M8 flood), if the path has none
+//! (LAYER 1 Z-10 HELICAL BORING REGION 1)   the path's section labels
+//! X50.606 Y25.             XY at the safe height
+//! Z1.                      then down
 //! …moves and events…
-//! [M9 if the coolant is on]
+//! G0 Z5.                   Z alone back to the safe height
+//! M5                       if the spindle runs
+//! M9                       if the coolant is on
 //! M30
 //! %
 //! ```
@@ -23,13 +30,18 @@
 //! - Modal: G0/G1/G2/G3 only when the motion changes, an axis only when its written value
 //!   changes (values equal after rounding to `decimals`, i.e. within half a unit of the last
 //!   digit, are not repeated), F when the written feed changes (never on a G0), S when the written speed
-//!   changes, G17/G18/G19 before an arc in another plane. The first move, and the first
-//!   after a tool change, writes all three axes.
-//! - Tool changes: `T.. M6`, then `G43 H..` (the tool's length offset) on the next move,
-//!   which restates all three axes (a Fanuc applies the offset with a Z move); on a line
-//!   of its own if that move is an arc. `G49` in the safety line cancels an earlier offset
-//!   only in programs that change tools, so a program without tool changes keeps the
-//!   offset the machine has.
+//!   changes, G17/G18/G19 before an arc in another plane.
+//! - Safety (any path, generated or sent as JSON moves; see `writer/safety.rs`): the safe
+//!   height is the options' `safe_z_mm` or the path's highest point, whichever is higher. The
+//!   tool is called with `T.. M6` and its length offset applied with `G43 H..` on a move of
+//!   Z alone to the safe height, at the start and at every tool change of the path (which
+//!   retracts Z alone to the safe height first). The first move after that goes to its XY
+//!   at the safe height, then down. A rapid that moves in Z and in XY is written as two: Z
+//!   first when it rises, XY first when it descends. The footer retracts Z alone to the safe
+//!   height, stops the spindle (`M5`) and the coolant (`M9`) if they run, and ends.
+//! - Sections: each [`EventKind::Section`] label of the path is a comment line before the
+//!   part it starts, `(LAYER 2 Z-20 TROCHOIDAL GROOVING REGION 1)`: layer and region counted
+//!   from 1, the height at the written resolution, upper-case words.
 //! - Arcs: centres as incremental I/J/K (the in-plane two, the default arc-centre mode of
 //!   both controls), chosen on the written grid so that the start and end radii agree; a
 //!   full circle (end = start in the plane) and a helix (axial motion) are one block.
@@ -45,31 +57,37 @@
 //!   feed (`X10.`: without it a Fanuc reads ten least increments). S, T, H, P and N are
 //!   whole numbers. Dwells: `G4 P<s>` (LinuxCNC) or `G4 X<s>.` (Fanuc, seconds).
 //! - Events go before the move they precede, in order; a stop is `M0`. The path's `End`
-//!   event is the footer (moves after it are not written). The spindle is not stopped with
-//!   `M5` at the end: `M30`/`M2` stop it.
-//! - N numbers (optional) on every line but `%` and the O line, restarting at `start`
-//!   after [`MAX_SEQUENCE_NUMBER`] (the largest both controls read).
+//!   event is the footer (moves after it are not written).
+//! - N numbers (optional) on every line but `%` and the O line, comments included,
+//!   restarting at `start` after [`MAX_SEQUENCE_NUMBER`] (the largest both controls read).
 //! - Deterministic: the same path and options give the same bytes; a timestamp appears
 //!   only when given.
 //! - Moves are taken as continuous (each starts where the one before ended), as the G-code
-//!   and JSON readers make them: only end points are written.
+//!   and JSON readers make them: only end points are written (and the start of the first
+//!   move, or of the first after a tool change, when it is a feed move).
 
 mod arc;
 pub(crate) mod format;
 mod options;
+mod safety;
 mod turns;
 
 #[cfg(test)]
 mod round_trip_tests;
 #[cfg(test)]
+mod safety_tests;
+#[cfg(test)]
 mod tests;
 
-use self::format::{comment_text, Fixed};
+use self::format::{comment_text, section_text, Fixed};
 use self::turns::split_turns;
 use crate::core::toolpath::{Event, EventKind, Motion, Move, Plane, Toolpath, P3};
 
 pub use self::format::MAX_DECIMALS;
-pub use self::options::{Dialect, LineNumbers, WriterOptions, DEFAULT_DECIMALS, DEFAULT_FEED_DECIMALS};
+pub use self::options::{
+    Coolant, Dialect, LineNumbers, WriterOptions, DEFAULT_DECIMALS, DEFAULT_FEED_DECIMALS, DEFAULT_TOOL_NUMBER,
+};
+pub use self::safety::highest_point_mm;
 
 /// Largest N number: LinuxCNC refuses larger ones and many Fanuc controls read 5 digits.
 pub const MAX_SEQUENCE_NUMBER: u32 = 99_999;
@@ -101,15 +119,15 @@ const M_SPINDLE_CLOCKWISE: u32 = 3;
 const M_SPINDLE_COUNTER_CLOCKWISE: u32 = 4;
 const M_SPINDLE_OFF: u32 = 5;
 const M_TOOL_CHANGE: u32 = 6;
-const M_COOLANT_ON: u32 = 8;
+const M_COOLANT_MIST: u32 = 7;
+const M_COOLANT_FLOOD: u32 = 8;
 const M_COOLANT_OFF: u32 = 9;
 const M_END_LINUXCNC: u32 = 2;
 const M_END_FANUC: u32 = 30;
 
 /// The safety line: mm, XY plane, absolute, feed per minute, no cutter compensation, no
-/// canned cycle. `G49` is added in programs that change tools.
-const SAFETY_LINE: &str = "G21 G17 G90 G94 G40 G80";
-const CANCEL_LENGTH_OFFSET: &str = " G49";
+/// canned cycle, no length offset (the tool call applies its own).
+const SAFETY_LINE: &str = "G21 G17 G90 G94 G40 G80 G49";
 
 /// Writes `path` as an NC program (see the module documentation for its layout).
 pub fn write_program(path: &Toolpath, options: &WriterOptions) -> String {
@@ -131,31 +149,41 @@ struct Writer<'a> {
     line: String,
     /// The next N number, if lines are numbered.
     sequence: Option<u32>,
-    /// Written axis values (units of 10^−decimals); `None` before the first move and after
-    /// a tool change.
+    /// Written axis values (units of 10^−decimals); `None` where unknown: X and Y before
+    /// the first move and after a tool change.
     position: [Option<i64>; 3],
     motion: Option<u32>,
     plane: Plane,
     feed: Option<i64>,
     spindle: Option<i64>,
+    spindle_running: bool,
     coolant_on: bool,
-    /// `M8` is still to be written after the next spindle start.
-    coolant_pending: bool,
-    /// `G43 H..` is still to be written for this tool.
-    length_offset_pending: Option<u32>,
+    /// Coolant still to switch on after the next spindle start.
+    coolant_pending: Option<Coolant>,
+    /// The header's spindle start, still to write before the first section or move.
+    start_pending: bool,
     /// `options.spindle_rpm` if no move has a speed.
     fallback_rpm: Option<f64>,
+    /// The safe height (units of 10^−decimals); `None` only for a path without moves and
+    /// options without a safe height.
+    safe_z: Option<i64>,
 }
 
 impl<'a> Writer<'a> {
     fn new(path: &'a Toolpath, options: &'a WriterOptions) -> Self {
         let has_speed = path.moves.iter().any(|m| m.spindle_rpm.is_some());
         let has_coolant = path.events.iter().any(|e| matches!(e.kind, EventKind::Coolant { .. }));
+        let decimals = options.decimals.min(MAX_DECIMALS);
+        let safe_z = [options.safe_z_mm, highest_point_mm(path)]
+            .into_iter()
+            .flatten()
+            .map(|z| Fixed::round(z, decimals).units)
+            .max();
         Writer {
             path,
             options,
             fanuc: options.dialect == Dialect::Fanuc,
-            decimals: options.decimals.min(MAX_DECIMALS),
+            decimals,
             out: String::with_capacity(path.moves.len() * 32 + 256),
             line: String::new(),
             sequence: options.line_numbers.map(|n| n.start.min(MAX_SEQUENCE_NUMBER)),
@@ -164,10 +192,12 @@ impl<'a> Writer<'a> {
             plane: Plane::Xy,
             feed: None,
             spindle: None,
+            spindle_running: false,
             coolant_on: false,
-            coolant_pending: options.coolant && !has_coolant,
-            length_offset_pending: None,
+            coolant_pending: (options.coolant != Coolant::Off && !has_coolant).then_some(options.coolant),
+            start_pending: false,
             fallback_rpm: if has_speed { None } else { options.spindle_rpm },
+            safe_z,
         }
     }
 
@@ -242,7 +272,7 @@ impl<'a> Writer<'a> {
         Fixed { units, decimals: self.decimals }.value()
     }
 
-    // --- header, events, footer ---
+    // --- header and events ---
 
     fn header(&mut self) {
         let path = self.path;
@@ -260,41 +290,37 @@ impl<'a> Writer<'a> {
         if let Some(timestamp) = &options.timestamp {
             self.comment_line(timestamp);
         }
-        let changes_tool = path.events.iter().any(|e| matches!(e.kind, EventKind::ToolChange { .. }));
-        let header_tool =
-            if changes_tool { None } else { options.tool_number.or_else(|| path.moves.first().and_then(|m| m.tool)) };
         self.line.push_str(SAFETY_LINE);
-        if changes_tool || header_tool.is_some() {
-            self.line.push_str(CANCEL_LENGTH_OFFSET);
-        }
         self.end_line();
-        if let Some(tool) = header_tool {
-            self.tool_change(tool);
+        let calls_tool_first =
+            path.events.iter().any(|e| matches!(e.kind, EventKind::ToolChange { .. }) && e.before_move == 0);
+        if !calls_tool_first {
+            let tool = options.tool_number.or_else(|| path.moves.first().and_then(|m| m.tool));
+            let tool = tool.unwrap_or(DEFAULT_TOOL_NUMBER);
+            self.call_tool(tool, options.length_offset.unwrap_or(tool));
         }
         let first_feed = path.moves.iter().position(|m| !matches!(m.motion, Motion::Rapid)).unwrap_or(path.moves.len());
-        let started =
-            path.events.iter().any(|e| matches!(e.kind, EventKind::SpindleOn { .. }) && e.before_move <= first_feed);
-        if !started {
-            let rpm = path.moves.first().and_then(|m| m.spindle_rpm).or(self.fallback_rpm);
-            self.spindle_on(true, rpm);
-        }
+        self.start_pending =
+            !path.events.iter().any(|e| matches!(e.kind, EventKind::SpindleOn { .. }) && e.before_move <= first_feed);
     }
 
-    /// Writes the moves and the events between them, up to the path's `End` event.
+    /// Writes the moves and the events between them, up to the path's `End` event; after
+    /// the last move, Z alone back to the safe height before the events that follow it.
     fn body(&mut self) {
         let path = self.path;
         let mut events: Vec<&Event> = path.events.iter().collect();
         events.sort_by_key(|e| e.before_move);
+        let end = events.iter().find(|e| e.kind == EventKind::End).map_or(usize::MAX, |e| e.before_move);
         let mut next = 0;
-        for (i, m) in path.moves.iter().enumerate() {
+        for (i, m) in path.moves.iter().enumerate().take(end) {
             while let Some(e) = events.get(next).filter(|e| e.before_move <= i) {
-                if !self.event(e) {
-                    return;
-                }
+                self.event(e);
                 next += 1;
             }
+            self.start_if_pending();
             self.write_move(m);
         }
+        self.retract();
         for e in &events[next..] {
             if !self.event(e) {
                 return;
@@ -305,12 +331,15 @@ impl<'a> Writer<'a> {
     /// Writes an event; `false` at the end of the program.
     fn event(&mut self, e: &Event) -> bool {
         match e.kind {
-            EventKind::ToolChange { tool } => self.tool_change(tool),
+            EventKind::ToolChange { tool } => self.call_tool(tool, tool),
             EventKind::SpindleOn { clockwise } => {
                 let rpm = self.path.moves.get(e.before_move).and_then(|m| m.spindle_rpm).or(self.fallback_rpm);
                 self.spindle_on(clockwise, rpm);
             }
-            EventKind::SpindleOff => self.code_line('M', M_SPINDLE_OFF),
+            EventKind::SpindleOff => {
+                self.spindle_running = false;
+                self.code_line('M', M_SPINDLE_OFF);
+            }
             EventKind::Dwell { seconds } => {
                 self.code('G', G_DWELL);
                 let letter = if self.fanuc { 'X' } else { 'P' };
@@ -319,52 +348,61 @@ impl<'a> Writer<'a> {
             }
             EventKind::Coolant { on } => {
                 self.coolant_on = on;
-                self.code_line('M', if on { M_COOLANT_ON } else { M_COOLANT_OFF });
+                let code = match (on, self.options.coolant) {
+                    (false, _) => M_COOLANT_OFF,
+                    (true, Coolant::Mist) => M_COOLANT_MIST,
+                    (true, _) => M_COOLANT_FLOOD,
+                };
+                self.code_line('M', code);
             }
             EventKind::Stop => self.code_line('M', M_STOP),
             EventKind::End => return false,
+            EventKind::Section(section) => {
+                self.start_if_pending();
+                let text = section_text(&section, self.decimals);
+                self.comment_line(&text);
+            }
         }
         true
     }
 
-    /// `T.. M6`; the next move restates every axis and applies the length offset.
-    fn tool_change(&mut self, tool: u32) {
-        self.code('T', tool);
-        self.code_line('M', M_TOOL_CHANGE);
-        self.length_offset_pending = Some(tool);
-        self.position = [None; 3];
-        self.motion = None;
+    /// The header's spindle start, if it is still to be written.
+    fn start_if_pending(&mut self) {
+        if std::mem::take(&mut self.start_pending) {
+            let rpm = self.path.moves.first().and_then(|m| m.spindle_rpm).or(self.fallback_rpm);
+            self.spindle_on(true, rpm);
+        }
     }
 
-    /// `S.. M3` (S if it changes), then `M8` if it is still to come.
+    /// `S.. M3` (S if it changes), then the coolant if it is still to come.
     fn spindle_on(&mut self, clockwise: bool, rpm: Option<f64>) {
         if let Some(rpm) = rpm {
             self.speed(rpm);
         }
         self.code_line('M', if clockwise { M_SPINDLE_CLOCKWISE } else { M_SPINDLE_COUNTER_CLOCKWISE });
-        if self.coolant_pending {
-            self.coolant_pending = false;
+        self.spindle_running = true;
+        if let Some(coolant) = self.coolant_pending.take() {
             self.coolant_on = true;
-            self.code_line('M', M_COOLANT_ON);
-        }
-    }
-
-    fn footer(&mut self) {
-        if self.coolant_on {
-            self.code_line('M', M_COOLANT_OFF);
-        }
-        self.code_line('M', if self.fanuc { M_END_FANUC } else { M_END_LINUXCNC });
-        if self.fanuc {
-            self.raw_line("%");
+            self.code_line('M', if coolant == Coolant::Mist { M_COOLANT_MIST } else { M_COOLANT_FLOOD });
         }
     }
 
     // --- moves ---
 
     fn write_move(&mut self, m: &Move) {
+        let rapid = matches!(m.motion, Motion::Rapid);
+        if self.position[0].is_none() || self.position[1].is_none() {
+            // Where the tool is in XY is unknown: go to the move's start (a rapid's end) over
+            // the safe height.
+            let target = self.units_of(if rapid { m.end } else { m.start });
+            self.rapid_to(target, Some(m));
+            if rapid {
+                return;
+            }
+        }
         match m.motion {
-            Motion::Rapid => self.straight(m, G_RAPID),
-            Motion::Linear => self.straight(m, G_LINEAR),
+            Motion::Rapid => self.rapid_to(self.units_of(m.end), Some(m)),
+            Motion::Linear => self.straight(m),
             Motion::Arc { turns, .. } if self.fanuc && turns > 0 => {
                 for piece in split_turns(m) {
                     self.arc(&piece);
@@ -374,15 +412,11 @@ impl<'a> Writer<'a> {
         }
     }
 
-    /// The G code if it changes, and a pending length offset.
+    /// The G code if it changes.
     fn motion_code(&mut self, code: u32) {
         if self.motion != Some(code) {
             self.code('G', code);
             self.motion = Some(code);
-        }
-        if let Some(tool) = self.length_offset_pending.take() {
-            self.code('G', G_LENGTH_OFFSET);
-            self.code('H', tool);
         }
     }
 
@@ -422,13 +456,13 @@ impl<'a> Writer<'a> {
         }
     }
 
-    /// A G0 or G1 move; nothing if no written axis changes.
-    fn straight(&mut self, m: &Move, code: u32) {
+    /// A G1 move; nothing if no written axis changes.
+    fn straight(&mut self, m: &Move) {
         let end = self.units_of(m.end);
         if (0..3).all(|axis| self.position[axis] == Some(end[axis])) {
             return;
         }
-        self.motion_code(code);
+        self.motion_code(G_LINEAR);
         self.axes(end);
         self.feed_and_speed(m);
         self.end_line();

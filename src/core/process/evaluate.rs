@@ -11,11 +11,11 @@ use crate::core::costing::cost::{cost, Cost, Rates};
 use crate::core::feed::blocks::BlockOptions;
 use crate::core::feed::plan::{optimize_side_milling, FeedSpec};
 use crate::core::feed::rule::{FeedRule, FeedStrategy};
-use crate::core::insertion::{append_over, program};
+use crate::core::insertion::{append_over, labelled_program};
 use crate::core::kinematics::{machining_time, MachiningTime, TimeOptions};
 use crate::core::progress::{Progress, Stage};
 use crate::core::tool_life::{Consumption, WearCut};
-use crate::core::toolpath::{Motion, Move, Toolpath};
+use crate::core::toolpath::{labels_of, Motion, Move, Section, Toolpath};
 use crate::core::CoreError;
 use serde::Serialize;
 
@@ -204,9 +204,11 @@ pub fn evaluate(
         let stage = Stage::nth(progress, 0.0, 0.95, k, originals.len());
         optimised[i] = Some(optimise_layer(&layers[i], candidate, &spec, &stage)?);
     }
-    // The program: every layer in order (copies moved down), joined over the safe height.
+    // The program: every layer in order (copies moved down), joined over the safe height,
+    // each part labelled with the cavity's layer.
     let mut moves = Vec::new();
     let (mut owner, mut step_of, mut wear_of, mut cut_of) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let mut labels: Vec<Option<Section>> = Vec::new();
     let mut removed = vec![0.0; layers.len()];
     let mut warnings = Vec::new();
     for l in layers {
@@ -220,6 +222,12 @@ pub fn evaluate(
         append_over(&mut moves, &path.moves, options.safe_z_mm);
         let links = moves.len() - before - path.moves.len();
         let first_step = o.steps.first().copied().unwrap_or(Step::RoughSideCutting);
+        let layer = u32::try_from(l.index).unwrap_or(u32::MAX);
+        let own: Vec<Option<Section>> = labels_of(&path.events, path.moves.len())
+            .into_iter()
+            .map(|label| label.map(|s| Section { layer, ..s }))
+            .collect();
+        labels.extend(std::iter::repeat_n(own.first().copied().flatten(), links).chain(own));
         owner.extend(std::iter::repeat_n(l.index, links + path.moves.len()));
         step_of.extend(std::iter::repeat_n(first_step, links).chain(o.steps.iter().copied()));
         wear_of.extend(std::iter::repeat_n(0.0, links).chain(o.wear_mm.iter().copied()));
@@ -229,7 +237,8 @@ pub fn evaluate(
             warnings.extend(o.warnings.iter().cloned());
         }
     }
-    let program = program(moves);
+    let program = labelled_program(moves, labels);
+    debug_assert_eq!(program.moves.len(), owner.len(), "the layers' paths have no moves of no length");
     let time = machining_time(&program, &options.machine, &TimeOptions { per_move: true, ..TimeOptions::default() })?;
     let per_move_s = time.per_move_s.clone().unwrap_or_default();
     let life_arc = candidate.life.life_edge_arc_mm();

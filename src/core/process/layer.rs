@@ -7,11 +7,11 @@
 use super::cavity::{Cavity, LayerRole};
 use super::spec::{ProcessOptions, ToolCandidate};
 use crate::core::analysis::AnalysisSpec;
-use crate::core::insertion::{analysis_spec, plan_insertion, InsertionPlan, InsertionSpec, TreatmentKind};
+use crate::core::insertion::{analysis_spec, plan_insertion, InsertionPlan, InsertionSpec};
 use crate::core::progress::{Progress, Stage};
-use crate::core::toolpath::{Motion, Toolpath};
+pub use crate::core::toolpath::Step;
+use crate::core::toolpath::{labels_of, EventKind, Motion, Toolpath};
 use crate::core::CoreError;
-use serde::Serialize;
 use std::sync::Arc;
 
 /// Layers whose thicknesses differ by less than this are alike, mm.
@@ -19,24 +19,6 @@ const SAME_THICKNESS_MM: f64 = 1e-6;
 
 /// Points this close below the safe height are at it (they stay when a plan is moved), mm.
 const AT_SAFE_Z_MM: f64 = 1e-6;
-
-/// A step of the process (seed 004 Table 1).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Step {
-    /// The approach holes: helical entries and the full circle at their bottom (step 1).
-    HelicalBoring,
-    /// Spiral expansion of a round region from its approach hole (step 2).
-    SpiralHoleExpansion,
-    /// Trochoid cycles along the critical stretches of the medial axis (step 3).
-    TrochoidalGrooving,
-    /// Class C stretches cut in passes of a small axial depth (seed 004 §2.3).
-    ZCutDivision,
-    /// Contour-parallel rough side cutting (step 4).
-    RoughSideCutting,
-    /// Contour-parallel intermediate-rough side cutting of the last layer (step 9).
-    IntermediateRoughSideCutting,
-}
 
 /// One layer's plan.
 #[derive(Debug, Clone)]
@@ -49,9 +31,10 @@ pub struct LayerPlan {
     pub copy_of: Option<usize>,
     /// The insertion planner's plan (shared by the copies, at the original's heights).
     pub insertion: Arc<InsertionPlan>,
-    /// The program of this layer, at its heights.
+    /// The program of this layer, at its heights, its parts labelled by section events
+    /// (layer counted within the insertion plan's levels).
     pub toolpath: Toolpath,
-    /// Per move: its step.
+    /// Per move: its step (from the section labels).
     pub steps: Vec<Step>,
     /// The simulation of this layer (with the candidate's force model).
     pub analysis: AnalysisSpec,
@@ -60,11 +43,12 @@ pub struct LayerPlan {
 /// The insertion spec of layer `index` for `candidate`.
 pub fn layer_spec(cavity: &Cavity, index: usize, candidate: &ToolCandidate, options: &ProcessOptions) -> InsertionSpec {
     let layer = &cavity.layers[index];
-    let roughing = match cavity.role(index) {
-        LayerRole::Rough => candidate.roughing,
-        LayerRole::IntermediateRough => candidate.intermediate,
+    let (roughing, base_step) = match cavity.role(index) {
+        LayerRole::Rough => (candidate.roughing, Step::RoughSideCutting),
+        LayerRole::IntermediateRough => (candidate.intermediate, Step::IntermediateRoughSideCutting),
     };
     let mut spec = InsertionSpec::new(candidate.tool, roughing, candidate.grooving, layer.z_top_mm, layer.z_bottom_mm);
+    spec.base_step = base_step;
     spec.safe_z_mm = options.safe_z_mm;
     spec.allowance_mm = options.allowance_mm;
     spec.alpha_limit_deg = options.alpha_limit_deg;
@@ -108,7 +92,7 @@ pub fn plan_layers(
             None => {
                 let stage = Stage::nth(progress, 0.0, 1.0, index, cavity.layers.len());
                 let insertion = plan_insertion(&layer.pocket, &spec, None, &stage)?;
-                let steps = steps_of(&insertion, role);
+                let steps = steps_of(&insertion.toolpath, role);
                 LayerPlan {
                     index,
                     role,
@@ -128,25 +112,18 @@ pub fn plan_layers(
     Ok(plans)
 }
 
-/// The step of every move of an insertion plan.
-fn steps_of(plan: &InsertionPlan, role: LayerRole) -> Vec<Step> {
-    plan.move_treatment
-        .iter()
-        .zip(&plan.move_entry)
-        .map(|(&t, &entry)| match (plan.treatments.get(t).map(|t| t.kind), entry) {
-            (Some(TreatmentKind::Trochoid | TreatmentKind::Opening), true) => Step::HelicalBoring,
-            (Some(TreatmentKind::Opening), false) => Step::SpiralHoleExpansion,
-            (Some(TreatmentKind::Trochoid), false) => Step::TrochoidalGrooving,
-            (Some(TreatmentKind::ZCut), _) => Step::ZCutDivision,
-            (Some(TreatmentKind::Kept) | None, _) => match role {
-                LayerRole::Rough => Step::RoughSideCutting,
-                LayerRole::IntermediateRough => Step::IntermediateRoughSideCutting,
-            },
-        })
-        .collect()
+/// The step of every move of a layer's program, from its section labels (a move before the
+/// first label, if any, is of the layer's contour-parallel step).
+fn steps_of(path: &Toolpath, role: LayerRole) -> Vec<Step> {
+    let base = match role {
+        LayerRole::Rough => Step::RoughSideCutting,
+        LayerRole::IntermediateRough => Step::IntermediateRoughSideCutting,
+    };
+    labels_of(&path.events, path.moves.len()).into_iter().map(|l| l.map_or(base, |s| s.step)).collect()
 }
 
-/// `path` moved by `dz_mm` in z, except the points at the safe height, which stay.
+/// `path` moved by `dz_mm` in z, except the points at the safe height, which stay; its
+/// section labels move with it.
 pub fn moved_down(path: &Toolpath, dz_mm: f64, safe_z_mm: f64) -> Toolpath {
     let shift = |z: f64| if z >= safe_z_mm - AT_SAFE_Z_MM { z } else { z + dz_mm };
     let mut out = path.clone();
@@ -155,6 +132,11 @@ pub fn moved_down(path: &Toolpath, dz_mm: f64, safe_z_mm: f64) -> Toolpath {
         m.end.z = shift(m.end.z);
         if let Motion::Arc { center, .. } = &mut m.motion {
             center.z = shift(center.z);
+        }
+    }
+    for e in &mut out.events {
+        if let EventKind::Section(s) = &mut e.kind {
+            s.z_mm = shift(s.z_mm);
         }
     }
     out

@@ -26,6 +26,8 @@ pub mod spec;
 pub mod tune;
 
 #[cfg(test)]
+mod program_tests;
+#[cfg(test)]
 mod tests;
 
 pub use baseline::{plan_baseline, Baseline, BaselineSpec};

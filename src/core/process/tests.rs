@@ -10,7 +10,7 @@ use crate::core::tool_life::ToolLifeModel;
 
 /// The 10 mm straight end mill of seeds 001–004 with its database rows (MODEL.md §5), named
 /// with `diameter_mm`.
-fn ten_mm(diameter_mm: f64) -> ToolCandidate {
+pub(super) fn ten_mm(diameter_mm: f64) -> ToolCandidate {
     let c = |s: f64, ad: f64| CuttingConditions { spindle_rpm: s, fz_mm: 0.1, rd_mm: 0.5, ad_mm: ad };
     ToolCandidate {
         name: format!("square D{diameter_mm}"),
@@ -27,7 +27,7 @@ fn ten_mm(diameter_mm: f64) -> ToolCandidate {
     }
 }
 
-fn options() -> ProcessOptions {
+pub(super) fn options() -> ProcessOptions {
     ProcessOptions {
         alpha_limit_deg: 40.0,
         allowance_mm: 0.0,

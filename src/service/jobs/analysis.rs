@@ -67,6 +67,10 @@ pub struct AnalysisPrepared {
     pub machine: NamedRef,
     pub rapid_mm_min: f64,
     pub default_spindle_rpm: Option<f64>,
+    /// The machine's coolant, for the programs the job writes (jobs stored before it was
+    /// kept: off).
+    #[serde(default)]
+    pub coolant: crate::core::coolant::Coolant,
 }
 
 /// Checks the request (parsing the program and the stock) and resolves it.
@@ -171,6 +175,7 @@ pub async fn resolve(pool: &SqlitePool, refs: &PathJobRefs<'_>) -> Result<Resolv
         machine: NamedRef { id: machine.id, name: machine.data.name.clone() },
         rapid_mm_min: machine.data.rapid_mm_min,
         default_spindle_rpm,
+        coolant: machine.data.coolant,
     };
     Ok(Resolved {
         prepared,

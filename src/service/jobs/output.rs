@@ -1,7 +1,11 @@
 //! How a job writes its NC program: the request's `output` object, turned into the
-//! core writer's options.
+//! core writer's options. Where the request is silent: the title is the tool's name, the
+//! tool `T1` (or the path's own tool) with its length offset `H` of the same number, the
+//! safe height the path's highest point (the planners' `safe_z`), the coolant the
+//! machine's row (`/v1/machines`, `coolant`), the spindle speed the conditions'.
 
 use super::analysis::AnalysisPrepared;
+use crate::core::coolant::Coolant;
 use crate::core::nc::{
     Dialect, LineNumbers, WriterOptions, DEFAULT_DECIMALS, DEFAULT_FEED_DECIMALS, MAX_DECIMALS, MAX_SEQUENCE_NUMBER,
 };
@@ -16,6 +20,54 @@ pub const MAX_TITLE_CHARS: usize = 120;
 /// Largest tool number written in the header's `T… M6` and `H…` (four digits, as most
 /// controls read).
 pub const MAX_TOOL_NUMBER: u32 = 9999;
+/// Largest safe height, mm, either way from the work zero (**assumed**: beyond the travel of
+/// any machining centre, and within the eight digits a Fanuc reads at 0.001 mm).
+pub const MAX_SAFE_Z_MM: f64 = 10_000.0;
+
+/// The coolant of a program: a name, or the older `true`/`false`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, ToSchema)]
+#[serde(untagged)]
+pub enum CoolantInput {
+    /// `off`, `mist` (M7) or `flood` (M8).
+    Named(Coolant),
+    /// The older form: `true` is `flood` (M8), `false` is `off`.
+    Switch(bool),
+}
+
+impl<'de> Deserialize<'de> for CoolantInput {
+    /// A name or a boolean, refused with a message that lists both.
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl serde::de::Visitor<'_> for Visitor {
+            type Value = CoolantInput;
+
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("off, mist, flood, true or false")
+            }
+
+            fn visit_bool<E: serde::de::Error>(self, on: bool) -> Result<CoolantInput, E> {
+                Ok(CoolantInput::Switch(on))
+            }
+
+            fn visit_str<E: serde::de::Error>(self, name: &str) -> Result<CoolantInput, E> {
+                Coolant::parse(name)
+                    .map(CoolantInput::Named)
+                    .ok_or_else(|| E::invalid_value(serde::de::Unexpected::Str(name), &self))
+            }
+        }
+        deserializer.deserialize_any(Visitor)
+    }
+}
+
+impl CoolantInput {
+    pub fn coolant(self) -> Coolant {
+        match self {
+            CoolantInput::Named(c) => c,
+            CoolantInput::Switch(true) => Coolant::Flood,
+            CoolantInput::Switch(false) => Coolant::Off,
+        }
+    }
+}
 
 /// The control a program is written for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
@@ -56,14 +108,25 @@ pub struct OutputOptions {
     /// same bytes).
     #[serde(default)]
     pub timestamp: bool,
-    /// M8 after the spindle starts and M9 at the end (default true).
-    pub coolant: Option<bool>,
+    /// Coolant switched on after the spindle starts and off (M9) at the end: `off`, `mist`
+    /// (M7) or `flood` (M8); default the machine's (`coolant` of `/v1/machines`: `mist` on
+    /// the seeded OKK VM-4, as seed 004 §3.4 cut). `true` and `false`, the older form, are
+    /// `flood` and `off`.
+    pub coolant: Option<CoolantInput>,
     /// Decimals of lengths (default 3, at most 6).
     pub decimals: Option<u32>,
     /// Decimals of feeds (default 1, at most 6).
     pub feed_decimals: Option<u32>,
-    /// Tool number of the header's tool change when the program has none.
+    /// Tool number of the header's `T… M6`, 1–9999, when the path has no tool change before
+    /// its first move (default: the path's own tool, if it names one, else 1).
     pub tool_number: Option<u32>,
+    /// H number of that tool's length offset (`G43 H…`), 1–9999 (default: the tool number).
+    pub length_offset: Option<u32>,
+    /// Safe height, mm: the program goes there with Z alone before its first XY move and
+    /// after each tool change, and back there before it ends. At least the path's highest
+    /// point, which is the default (for trochoids and plans their `safe_z`: the top + 5 mm
+    /// unless given).
+    pub safe_z: Option<f64>,
 }
 
 impl OutputOptions {
@@ -88,8 +151,13 @@ impl OutputOptions {
                 }
             }
         }
-        if let Some(t) = self.tool_number {
-            v.check((1..=MAX_TOOL_NUMBER).contains(&t), "output.tool_number", format!("1 to {MAX_TOOL_NUMBER}"));
+        for (field, value) in [("output.tool_number", self.tool_number), ("output.length_offset", self.length_offset)] {
+            if let Some(n) = value {
+                v.check((1..=MAX_TOOL_NUMBER).contains(&n), field, format!("1 to {MAX_TOOL_NUMBER}"));
+            }
+        }
+        if let Some(z) = self.safe_z {
+            v.within("output.safe_z", z, -MAX_SAFE_Z_MM, MAX_SAFE_Z_MM);
         }
         if let Some(t) = &self.title {
             v.check(
@@ -121,10 +189,12 @@ impl OutputOptions {
             }),
             title: Some(self.title.clone().unwrap_or_else(|| prepared.tool.name.clone())),
             timestamp: self.timestamp.then(now),
-            coolant: self.coolant.unwrap_or(true),
+            coolant: self.coolant.map_or(prepared.coolant, CoolantInput::coolant),
             decimals: self.decimals.unwrap_or(DEFAULT_DECIMALS),
             feed_decimals: self.feed_decimals.unwrap_or(DEFAULT_FEED_DECIMALS),
             tool_number: self.tool_number,
+            length_offset: self.length_offset,
+            safe_z_mm: self.safe_z,
             spindle_rpm: prepared.default_spindle_rpm,
         }
     }

@@ -1,12 +1,14 @@
 //! Machine tools and their limits: `/v1/machines`.
 
 use super::{NameFilter, Resource, Source, SqlValue};
+use crate::core::coolant::Coolant;
 use crate::service::error::Validator;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
 /// A machining centre: rapid rate, feed and spindle limits, per-axis acceleration and
-/// jerk (for the kinematic time estimate, MODEL.md §10) and tool-change time.
+/// jerk (for the kinematic time estimate, MODEL.md §10), tool-change time, and the coolant
+/// the programs written for it switch on.
 #[derive(Debug, Clone, Serialize, Deserialize, sqlx::FromRow, ToSchema)]
 #[serde(deny_unknown_fields)]
 #[schema(example = json!({"name": "shop VMC", "rapid_mm_min": 30000.0, "max_feed_mm_min": 20000.0, "max_spindle_rpm": 24000.0, "accel_x_mm_s2": 3000.0, "accel_y_mm_s2": 3000.0, "accel_z_mm_s2": 2500.0, "jerk_x_mm_s3": 60000.0, "jerk_y_mm_s3": 60000.0, "jerk_z_mm_s3": 50000.0, "tool_change_s": 5.0}))]
@@ -22,6 +24,12 @@ pub struct MachineData {
     pub jerk_y_mm_s3: f64,
     pub jerk_z_mm_s3: f64,
     pub tool_change_s: f64,
+    /// Coolant the programs switch on after the spindle starts: `off` (default: dry, or an
+    /// air blast the machine runs by itself), `mist` (M7) or `flood` (M8). A job's
+    /// `output.coolant` overrides it.
+    #[serde(default)]
+    #[sqlx(try_from = "String")]
+    pub coolant: Coolant,
     #[serde(default = "Source::user")]
     pub source: Source,
     #[serde(default)]
@@ -59,6 +67,7 @@ impl Resource for MachineData {
         "jerk_y_mm_s3",
         "jerk_z_mm_s3",
         "tool_change_s",
+        "coolant",
         "source",
         "reference",
     ];
@@ -66,7 +75,12 @@ impl Resource for MachineData {
     fn values(&self) -> Vec<SqlValue> {
         let mut values = vec![self.name.clone().into()];
         values.extend(self.limits().iter().map(|(_, v)| SqlValue::Real(*v)));
-        values.extend([self.tool_change_s.into(), self.source.as_str().into(), self.reference.clone().into()]);
+        values.extend([
+            self.tool_change_s.into(),
+            self.coolant.as_str().into(),
+            self.source.as_str().into(),
+            self.reference.clone().into(),
+        ]);
         values
     }
 

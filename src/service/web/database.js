@@ -10,7 +10,7 @@ const TABLES = {
   'standard-conditions': { path: '/v1/conditions/standard', title: 'Standard conditions', columns: ['tool_id', 'operation', 'spindle_rpm', 'fz_mm', 'rd_mm', 'ad_mm'] },
   'force-models': { path: '/v1/force-models', title: 'Force models', columns: ['tool_id', 't0_um', 'l0_mm', 'b0', 'b1', 'b2', 'r_squared'] },
   'tool-life': { path: '/v1/tool-life', title: 'Tool life', columns: ['tool_id', 'life_m', 'force_exponent'] },
-  machines: { path: '/v1/machines', title: 'Machines', columns: ['name', 'rapid_mm_min', 'max_feed_mm_min', 'max_spindle_rpm', 'tool_change_s'] },
+  machines: { path: '/v1/machines', title: 'Machines', columns: ['name', 'rapid_mm_min', 'max_feed_mm_min', 'max_spindle_rpm', 'tool_change_s', 'coolant'] },
   'cost-rates': { path: '/v1/cost-rates', title: 'Cost rates', columns: ['name', 'currency', 'machine_rate_per_hour', 'default_tool_price'] },
 };
 const READ_ONLY = new Set(['id', 'created_at', 'updated_at', 'edited']);

@@ -4,7 +4,7 @@
 use std::f64::consts::PI;
 
 use super::format::Fixed;
-use super::{Writer, CENTRE_LETTERS, G_CLOCKWISE, G_COUNTER_CLOCKWISE, G_LENGTH_OFFSET, G_LINEAR};
+use super::{Writer, CENTRE_LETTERS, G_CLOCKWISE, G_COUNTER_CLOCKWISE};
 use crate::core::analysis::sampling::arc_sweep;
 use crate::core::nc::arcs::{arc_radius_tolerance_mm, check_arc, coord, plane_axes, with_coord};
 use crate::core::toolpath::{Motion, Move, Plane, P3};
@@ -35,17 +35,13 @@ impl Writer<'_> {
             0
         };
         if closes && circles == 0 {
-            return self.straight(m, G_LINEAR);
+            return self.straight(m);
         }
         let (ca, cb) = self.centre_units(center, plane, start, end);
         let point = |units: [i64; 3]| P3::new(self.mm(units[0]), self.mm(units[1]), self.mm(units[2]));
         let written_centre = with_coord(with_coord(point(start), a, self.mm(ca)), b, self.mm(cb));
         if check_arc(point(start), written_centre, point(end), plane).is_err() {
-            return self.straight(m, G_LINEAR);
-        }
-        if let Some(tool) = self.length_offset_pending.take() {
-            self.code('G', G_LENGTH_OFFSET);
-            self.code_line('H', tool);
+            return self.straight(m);
         }
         if plane != self.plane {
             self.code('G', plane_code(plane));

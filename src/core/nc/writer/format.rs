@@ -8,6 +8,8 @@
 
 use std::fmt::Write as _;
 
+use crate::core::toolpath::Section;
+
 /// Most decimals written (0.1 µm for mm): more would be noise, and keeps [`Fixed`] exact.
 pub const MAX_DECIMALS: u32 = 6;
 
@@ -95,6 +97,20 @@ pub(crate) fn comment_text(text: &str, upper_ascii: bool) -> String {
     safe
 }
 
+/// The comment of a section label: `LAYER 2 Z-20 TROCHOIDAL GROOVING REGION 1`, the layer
+/// and the region counted from 1, the height at `decimals` (no point on whole numbers), the
+/// words upper case in both dialects.
+pub(crate) fn section_text(section: &Section, decimals: u32) -> String {
+    let mut text = format!("LAYER {} Z", u64::from(section.layer) + 1);
+    Fixed::round(section.z_mm, decimals).push_to(&mut text, false);
+    text.push(' ');
+    text.push_str(&section.step.name().to_ascii_uppercase());
+    if let Some(region) = section.region {
+        let _ = write!(text, " REGION {}", u64::from(region) + 1);
+    }
+    text
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -131,6 +147,17 @@ mod tests {
         assert_eq!(f.decimals, MAX_DECIMALS);
         assert_eq!(f.units, 1_234_568);
         assert!((f.value() - 1.234_568).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_section_is_its_layer_height_step_and_region_counted_from_one() {
+        use crate::core::toolpath::Step;
+        let s = Section { layer: 1, z_mm: -20.0, step: Step::TrochoidalGrooving, region: Some(0) };
+        assert_eq!(section_text(&s, 3), "LAYER 2 Z-20 TROCHOIDAL GROOVING REGION 1");
+        let s = Section { layer: 0, z_mm: -8.333_333, step: Step::ZCutDivision, region: Some(11) };
+        assert_eq!(section_text(&s, 3), "LAYER 1 Z-8.333 Z-CUT DIVISION REGION 12");
+        let s = Section { layer: 3, z_mm: -35.0, step: Step::IntermediateRoughSideCutting, region: None };
+        assert_eq!(section_text(&s, 3), "LAYER 4 Z-35 INTERMEDIATE-ROUGH SIDE CUTTING");
     }
 
     #[test]

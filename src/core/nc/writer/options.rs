@@ -1,15 +1,21 @@
 //! How to write a program: the dialect, numbering, header comments, resolution, and what
-//! the header may add (tool, spindle speed, coolant). Plain data that the service reads
-//! from JSON (`{"dialect": "linux_cnc", "line_numbers": {"start": 100}}`, every field
-//! optional, unknown fields refused).
+//! the header may add (tool and length offset, safe height, spindle speed, coolant). Plain
+//! data that the service reads from JSON (`{"dialect": "linux_cnc", "line_numbers":
+//! {"start": 100}}`, every field optional, unknown fields refused).
 
 use serde::{Deserialize, Serialize};
+
+pub use crate::core::coolant::Coolant;
 
 /// Default decimals of lengths: 3, a micron in mm.
 pub const DEFAULT_DECIMALS: u32 = 3;
 
 /// Default decimals of feeds: 1 (the planner rounds feeds already; `F1234.5` at most).
 pub const DEFAULT_FEED_DECIMALS: u32 = 1;
+
+/// The tool called when neither the options nor the path name one: `T1`, the first pocket
+/// (**assumed**: dieplan's programs use one tool, and the papers' programs name none).
+pub const DEFAULT_TOOL_NUMBER: u32 = 1;
 
 /// Default first N number and step.
 const DEFAULT_SEQUENCE_START: u32 = 10;
@@ -58,16 +64,22 @@ pub struct WriterOptions {
     /// A comment in the header, written only if given (the output is otherwise the same
     /// for the same input).
     pub timestamp: Option<String>,
-    /// `M8` after the spindle starts and `M9` at the end, unless the path has its own
-    /// coolant events (default true).
-    pub coolant: bool,
+    /// Coolant switched on after the spindle starts (`M7` mist, `M8` flood) and off (`M9`)
+    /// at the end, unless the path has its own coolant events (default: off).
+    pub coolant: Coolant,
     /// Decimals of lengths, mm (default 3, at most [`MAX_DECIMALS`](super::MAX_DECIMALS)).
     pub decimals: u32,
     /// Decimals of feeds, mm/min (default 1, at most [`MAX_DECIMALS`](super::MAX_DECIMALS)).
     pub feed_decimals: u32,
-    /// Tool loaded in the header when the path has no tool change (default: the first
-    /// move's tool, if it has one).
+    /// Tool called in the header when the path has no tool change before its first move
+    /// (default: the first move's tool, else [`DEFAULT_TOOL_NUMBER`]).
     pub tool_number: Option<u32>,
+    /// H number of that tool's length offset (default: its tool number).
+    pub length_offset: Option<u32>,
+    /// Height of the safe plane, mm: the program goes there with Z alone before its first XY
+    /// move and after each tool change, and ends there. Never below the path's highest
+    /// point, which is the default.
+    pub safe_z_mm: Option<f64>,
     /// Spindle speed for the header's spindle start, used only if no move has one, min⁻¹.
     pub spindle_rpm: Option<f64>,
 }
@@ -80,10 +92,12 @@ impl Default for WriterOptions {
             line_numbers: None,
             title: None,
             timestamp: None,
-            coolant: true,
+            coolant: Coolant::Off,
             decimals: DEFAULT_DECIMALS,
             feed_decimals: DEFAULT_FEED_DECIMALS,
             tool_number: None,
+            length_offset: None,
+            safe_z_mm: None,
             spindle_rpm: None,
         }
     }

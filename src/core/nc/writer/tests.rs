@@ -1,20 +1,13 @@
 //! The writer's output, line by line: golden files of a small hand-made path in both
 //! dialects, determinism and the modal rules.
 //!
-//! The golden files are in `src/core/nc/golden/`. After a deliberate change of the output,
-//! regenerate them with `DIEPLAN_UPDATE_GOLDEN=1 cargo test --lib golden` and review the
-//! diff before committing it.
+//! The golden files are in `src/core/nc/golden/` (see `core/golden.rs`).
 
 use super::*;
+use crate::core::golden::check_golden;
 use crate::core::nc::arcs::check_arc;
 use crate::core::nc::{parse_gcode, ParseOptions};
 use crate::core::toolpath::Units;
-
-/// The environment variable that rewrites the golden files instead of comparing.
-const UPDATE_GOLDEN: &str = "DIEPLAN_UPDATE_GOLDEN";
-
-/// Lines of context printed around the first difference from a golden file.
-const DIFF_CONTEXT_LINES: usize = 3;
 
 fn at(x: f64, y: f64, z: f64) -> P3 {
     P3::new(x, y, z)
@@ -79,36 +72,6 @@ fn options(dialect: Dialect, numbered: bool) -> WriterOptions {
         line_numbers: numbered.then(LineNumbers::default),
         ..WriterOptions::default()
     }
-}
-
-/// Compares `text` with golden file `name`, or rewrites it under [`UPDATE_GOLDEN`].
-fn check_golden(name: &str, text: &str) {
-    let path = format!("{}/src/core/nc/golden/{name}", env!("CARGO_MANIFEST_DIR"));
-    if std::env::var_os(UPDATE_GOLDEN).is_some() {
-        std::fs::write(&path, text).unwrap_or_else(|e| panic!("{path}: {e}"));
-        return;
-    }
-    let expected = std::fs::read_to_string(&path)
-        .unwrap_or_else(|e| panic!("{path}: {e} (create it with {UPDATE_GOLDEN}=1 cargo test --lib golden)"));
-    if expected == text {
-        return;
-    }
-    let (old, new): (Vec<&str>, Vec<&str>) = (expected.lines().collect(), text.lines().collect());
-    let first = old.iter().zip(&new).position(|(a, b)| a != b).unwrap_or(old.len().min(new.len()));
-    let from = first.saturating_sub(DIFF_CONTEXT_LINES);
-    let show = |lines: &[&str]| {
-        let end = (first + DIFF_CONTEXT_LINES + 1).min(lines.len());
-        lines[from.min(end)..end].iter().map(|l| format!("    {l}\n")).collect::<String>()
-    };
-    panic!(
-        "{name} differs from the writer's output at line {} ({} lines expected, {} written)\n\
-         expected:\n{}written:\n{}if the change is intended, run {UPDATE_GOLDEN}=1 cargo test --lib golden",
-        first + 1,
-        old.len(),
-        new.len(),
-        show(&old),
-        show(&new)
-    );
 }
 
 #[test]
@@ -187,7 +150,7 @@ fn an_axis_is_written_only_when_its_written_value_changes() {
     ];
     let path = path_of(chain(at(0.0, 0.0, 50.0), &steps), vec![]);
     let text = write_program(&path, &options(Dialect::LinuxCnc, false));
-    assert!(text.contains(" X1 Y2 Z3\nG1 X5 F100\nZ-3\nM9\n"), "{text}");
+    assert!(text.contains("\nX1 Y2\nZ3\nG1 X5 F100\nZ-3\nG0 Z50\n"), "{text}");
 }
 
 #[test]
@@ -205,9 +168,9 @@ fn fanuc_lengths_and_feeds_always_have_a_point_and_linuxcnc_ones_never_end_with_
 }
 
 #[test]
-fn the_header_loads_the_tool_and_starts_the_spindle_and_coolant_when_the_path_does_not() {
+fn the_header_calls_the_tool_goes_to_the_safe_height_and_starts_the_spindle_and_coolant_when_the_path_does_not() {
     let path = lines_with_feeds(&[300.0]);
-    let with_tool = WriterOptions { tool_number: Some(7), ..options(Dialect::Fanuc, false) };
+    let with_tool = WriterOptions { tool_number: Some(7), coolant: Coolant::Flood, ..options(Dialect::Fanuc, false) };
     let text = write_program(&path, &with_tool);
     let body: Vec<&str> = text.lines().collect();
     assert_eq!(
@@ -217,22 +180,28 @@ fn the_header_loads_the_tool_and_starts_the_spindle_and_coolant_when_the_path_do
             "O0001 (SMALL DIE [TEST])",
             "G21 G17 G90 G94 G40 G80 G49",
             "T7 M6",
+            "G0 G43 H7 Z50.",
             "S6000 M3",
             "M8",
-            "G0 G43 H7 X0. Y0. Z-1.",
+            "X0. Y0.",
+            "Z-1.",
             "G1 X10. F300.",
+            "G0 Z50.",
+            "M5",
             "M9",
             "M30",
             "%"
         ]
     );
-    // No speed in the path: the option's; no coolant; no tool: no G49.
+    // No speed in the path: the option's; no coolant; no tool: T1, H1.
     let mut bare = lines_with_feeds(&[300.0]);
     bare.moves.iter_mut().for_each(|m| (m.spindle_rpm, m.tool) = (None, None));
-    let bare_options = WriterOptions { spindle_rpm: Some(1234.4), coolant: false, ..options(Dialect::LinuxCnc, false) };
+    let bare_options = WriterOptions { spindle_rpm: Some(1234.4), ..options(Dialect::LinuxCnc, false) };
     let text = write_program(&bare, &bare_options);
-    assert!(text.starts_with("(Small die [test])\nG21 G17 G90 G94 G40 G80\nS1234 M3\nG0 X0 Y0 Z-1\n"), "{text}");
-    assert!(!text.contains("M8") && !text.contains("M9") && text.ends_with("G1 X10 F300\nM2\n"), "{text}");
+    assert_eq!(
+        text,
+        "(Small die [test])\nG21 G17 G90 G94 G40 G80 G49\nT1 M6\nG0 G43 H1 Z50\nS1234 M3\nX0 Y0\nZ-1\nG1 X10 F300\nG0 Z50\nM5\nM2\n"
+    );
 }
 
 #[test]
@@ -248,7 +217,7 @@ fn the_paths_own_coolant_spindle_and_end_events_are_not_doubled() {
     let mut ended = small_path();
     ended.events.last_mut().unwrap().before_move = 2;
     let text = write_program(&ended, &options(Dialect::LinuxCnc, false));
-    assert!(text.ends_with("G1 Z-1 F200\nM9\nM2\n"), "{text}");
+    assert!(text.ends_with("G1 Z-1 F200\nG0 Z50\nM5\nM2\n"), "{text}");
 }
 
 #[test]
@@ -280,7 +249,7 @@ fn an_arc_smaller_than_the_resolution_is_a_g1_and_a_nearly_full_one_a_full_circl
     let path = path_of(chain(at(0.0, 0.0, 50.0), &steps), vec![]);
     let text = write_program(&path, &options(Dialect::LinuxCnc, false));
     // The tiny arc ends where the written position is: nothing to write.
-    assert!(text.contains(" X5 Y0 Z0\nG3 I-5 J0 F100\nM9\n"), "{text}");
+    assert!(text.contains("\nX5 Y0\nZ0\nG3 I-5 J0 F100\nG0 Z50\n"), "{text}");
 }
 
 #[test]
@@ -303,7 +272,8 @@ fn an_arc_whose_rounded_centre_fails_the_radius_check_gets_a_neighbouring_grid_c
     let path = path_of(chain(at(0.0, 0.0, 50.0), &steps), vec![]);
     let text = write_program(&path, &options(Dialect::Fanuc, false));
     let read = parse_gcode(&text, &ParseOptions::default()).unwrap_or_else(|e| panic!("{e}\n{text}"));
-    let Motion::Arc { center, .. } = read.moves[1].motion else { panic!("not an arc: {text}") };
+    let arc = read.moves.iter().find(|m| matches!(m.motion, Motion::Arc { .. }));
+    let Some(Motion::Arc { center, .. }) = arc.map(|m| m.motion) else { panic!("no arc: {text}") };
     assert!((center.x - cx).abs() <= 1e-3 && (center.y - cy).abs() <= 1e-3, "{center:?}");
 }
 
@@ -314,7 +284,10 @@ fn options_come_from_json_with_defaults_and_unknown_fields_are_refused() {
     assert_eq!(options.dialect, Dialect::LinuxCnc);
     assert_eq!(options.line_numbers, Some(LineNumbers { start: 100, step: 10 }));
     assert_eq!((options.decimals, options.feed_decimals, options.program_number), (4, 1, 1));
-    assert!(options.coolant);
+    assert_eq!(options.coolant, Coolant::Off, "no coolant unless asked");
+    let mist: WriterOptions =
+        serde_json::from_str(r#"{"coolant": "mist", "length_offset": 21, "safe_z_mm": 25}"#).unwrap();
+    assert_eq!((mist.coolant, mist.length_offset, mist.safe_z_mm), (Coolant::Mist, Some(21), Some(25.0)));
     let alias: WriterOptions = serde_json::from_str(r#"{"dialect": "linuxcnc"}"#).unwrap();
     assert_eq!(alias.dialect, Dialect::LinuxCnc);
     assert!(serde_json::from_str::<WriterOptions>(r#"{"dialekt": "fanuc"}"#).is_err());
