@@ -178,7 +178,7 @@ proptest! {
         let s = spec(Objective::MinCost, limit_factor * F_STAR);
         let (f, _) = feed_of(&s, &c);
         let curve = ForceCurve::new(seed_001_ten_mm(), &c, 6, 9600.0, None);
-        prop_assert!(f >= 288.0 - 1e-9 && f <= 11_520.0 + 1e-9);
+        prop_assert!((288.0 - 1e-9..=11_520.0 + 1e-9).contains(&f));
         let under_limit = curve.force_n(288.0) <= limit_factor * F_STAR;
         let safe = curve.fastest_under(3.0 * F_STAR, 288.0, 11_520.0).unwrap_or(11_520.0);
         for k in 0..=40 {

@@ -302,17 +302,7 @@ pub fn assemble(
                 drawn_here.start += 1;
             }
         }
-        for piece in &pieces {
-            let mut sub = sub_move(m, piece.t0, piece.t1);
-            sub.feed_mm_min = Some(piece.feed_mm_min);
-            blocks.push(BlockFeed {
-                line: m.line,
-                length_mm: length * (piece.t1 - piece.t0),
-                programmed_mm_min: m.feed_mm_min,
-                feed_mm_min: Some(piece.feed_mm_min),
-            });
-            moves.push(sub);
-        }
+        push_pieces(m, &pieces, &mut moves, &mut blocks);
         move_pieces.push(pieces);
     }
     first_piece.push(moves.len());
@@ -443,22 +433,16 @@ pub fn written(input: &Toolpath, pieces: &[Vec<Piece>]) -> (Toolpath, Vec<BlockF
     let mut first_piece = Vec::with_capacity(input.moves.len() + 1);
     for (m, pieces) in input.moves.iter().zip(pieces) {
         first_piece.push(moves.len());
-        let length = move_length(m);
         if pieces.is_empty() {
-            blocks.push(BlockFeed { line: m.line, length_mm: length, programmed_mm_min: None, feed_mm_min: None });
-            moves.push(*m);
-        }
-        for piece in pieces {
-            let mut sub = sub_move(m, piece.t0, piece.t1);
-            sub.feed_mm_min = Some(piece.feed_mm_min);
             blocks.push(BlockFeed {
                 line: m.line,
-                length_mm: length * (piece.t1 - piece.t0),
-                programmed_mm_min: m.feed_mm_min,
-                feed_mm_min: Some(piece.feed_mm_min),
+                length_mm: move_length(m),
+                programmed_mm_min: None,
+                feed_mm_min: None,
             });
-            moves.push(sub);
+            moves.push(*m);
         }
+        push_pieces(m, pieces, &mut moves, &mut blocks);
     }
     first_piece.push(moves.len());
     let events = input
@@ -467,4 +451,21 @@ pub fn written(input: &Toolpath, pieces: &[Vec<Piece>]) -> (Toolpath, Vec<BlockF
         .map(|e| Event { before_move: first_piece[e.before_move.min(input.moves.len())], ..*e })
         .collect();
     (Toolpath { moves, events, source_units: input.source_units, warnings: input.warnings.clone() }, blocks)
+}
+
+/// Appends the pieces of `m` to `moves`, each the part of `m` between its fractions at its
+/// feed, and their blocks.
+fn push_pieces(m: &Move, pieces: &[Piece], moves: &mut Vec<Move>, blocks: &mut Vec<BlockFeed>) {
+    let length = move_length(m);
+    for piece in pieces {
+        let mut sub = sub_move(m, piece.t0, piece.t1);
+        sub.feed_mm_min = Some(piece.feed_mm_min);
+        blocks.push(BlockFeed {
+            line: m.line,
+            length_mm: length * (piece.t1 - piece.t0),
+            programmed_mm_min: m.feed_mm_min,
+            feed_mm_min: Some(piece.feed_mm_min),
+        });
+        moves.push(sub);
+    }
 }
