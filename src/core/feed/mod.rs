@@ -17,6 +17,8 @@ pub mod split;
 pub mod surface;
 
 #[cfg(test)]
+mod costed_tests;
+#[cfg(test)]
 mod objective_tests;
 #[cfg(test)]
 mod plan_tests;
