@@ -107,9 +107,20 @@ pub fn tooth_pass_chord_mm(centre_fz_mm: f64, cutting_point_ratio: f64, centre_r
         return fz_p;
     }
     let turn_rad = (centre_fz_mm / centre_radius_mm).min(PI);
+    if turn_rad < SMALL_TURN_RAD {
+        // 2·sin(Δθ/2) = Δθ·(1 − Δθ²/24 + …), the rest below 10⁻¹³ here.
+        return fz_p * (1.0 - turn_rad * turn_rad / 24.0);
+    }
     let po = cutting_point_ratio * centre_radius_mm;
     (2.0 * po * (turn_rad / 2.0).sin()).min(fz_p)
 }
+
+/// Below this turn per tooth the chord of [`tooth_pass_chord_mm`] is taken from its
+/// series (no sine on the simulation's hot path), rad.
+const SMALL_TURN_RAD: f64 = 1e-3;
+/// `1 − cos α ≥ α²/2 − α⁴/24 ≥ (1/2 − (π/2)²/24)·α²` for α ≤ π/2: a lower bound of the
+/// engaged depth that needs no cosine.
+const ENGAGED_DEPTH_LOWER_FACTOR: f64 = 0.5 - PI * PI / 4.0 / 24.0;
 
 /// Depth of material a tooth engaging `α` reaches from its edge, mm: the radial depth of
 /// the straight cut of the same engagement, `Rd = r·(1 − cos α)` (MODEL.md §2, inverted);
@@ -139,8 +150,15 @@ pub struct ToothCut {
 /// ([`engaged_depth_mm`]).
 pub fn tooth_chip_thickness_mm(centre_fz_mm: f64, cut: &ToothCut) -> f64 {
     let nominal = max_chip_thickness_mm(centre_fz_mm * cut.cutting_point_ratio, cut.alpha_rad);
-    let chord = tooth_pass_chord_mm(centre_fz_mm, cut.cutting_point_ratio, cut.centre_radius_mm);
-    nominal.min(chord).min(engaged_depth_mm(cut.tool_radius_mm, cut.alpha_rad))
+    let t = nominal.min(tooth_pass_chord_mm(centre_fz_mm, cut.cutting_point_ratio, cut.centre_radius_mm));
+    // The depth bound only where it can bite (it never does on the papers' cuts).
+    let (r, alpha) = (cut.tool_radius_mm, cut.alpha_rad);
+    let surely_deeper = if alpha >= PI / 2.0 { r } else { ENGAGED_DEPTH_LOWER_FACTOR * r * alpha * alpha };
+    if t <= surely_deeper {
+        t
+    } else {
+        t.min(engaged_depth_mm(r, alpha))
+    }
 }
 
 /// Engagement arc length `L = r·α` (MODEL.md §2), mm.
@@ -336,6 +354,10 @@ mod properties {
             prop_assert!(t >= 0.0);
             prop_assert!(t <= max_chip_thickness_mm(fz * ratio, alpha) + 1e-12);
             prop_assert!(t <= engaged_depth_mm(5.0, alpha) + 1e-12);
+            let exact = max_chip_thickness_mm(fz * ratio, alpha)
+                .min(2.0 * ratio * rc * ((fz / rc).min(PI) / 2.0).sin())
+                .min(engaged_depth_mm(5.0, alpha));
+            prop_assert!((t - exact).abs() <= 1e-9 * exact.max(1e-9), "{t} against {exact}");
         }
 
         #[test]

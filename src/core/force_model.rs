@@ -12,6 +12,9 @@ use serde::{Deserialize, Serialize};
 /// coded radius the model interpolates, beyond it it extrapolates.
 pub const DESIGN_REGION_CODED_RADIUS: f64 = std::f64::consts::SQRT_2;
 
+/// The design region's squared radius, with a rounding allowance.
+const DESIGN_REGION_SQUARED: f64 = (DESIGN_REGION_CODED_RADIUS + 1e-9) * (DESIGN_REGION_CODED_RADIUS + 1e-9);
+
 /// Coefficients of one response surface, in coded variables.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Coefficients {
@@ -50,12 +53,17 @@ impl Coded {
     /// The coded radius `|X| = √(X1² + X2²)`: how far the point lies from the design
     /// centre, in steps of the experiments (MODEL.md §3).
     pub fn radius(&self) -> f64 {
-        self.x1.hypot(self.x2)
+        self.radius_squared().sqrt()
+    }
+
+    /// `X1² + X2²` (cheaper to compare than the radius).
+    pub fn radius_squared(&self) -> f64 {
+        self.x1 * self.x1 + self.x2 * self.x2
     }
 
     /// `true` when the point lies inside the experiments' design region (|X| ≤ √2).
     pub fn within_design_region(&self) -> bool {
-        self.radius() <= DESIGN_REGION_CODED_RADIUS + 1e-9
+        self.radius_squared() <= DESIGN_REGION_SQUARED
     }
 }
 

@@ -320,11 +320,13 @@ fn evaluate(
             let (t, l) = (t_m(c), r * c.alpha_rad);
             force += m.force_n(t, l, thickness);
             let coded = m.coded(t, l);
-            if result.coded.is_none_or(|c| coded.radius() > c.radius()) {
+            if result.coded.is_none_or(|c| coded.radius_squared() > c.radius_squared()) {
                 result.coded = Some(coded);
             }
-            result.force_extrapolated |= !coded.within_design_region();
         }
+    }
+    if let Some(coded) = result.coded {
+        result.force_extrapolated = !coded.within_design_region();
     }
     if model.is_some() {
         result.force_n = Some(force);

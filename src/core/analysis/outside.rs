@@ -105,7 +105,7 @@ pub struct ModelDomain {
     model: ForceModel,
     cutting_mm: f64,
     outside_mm: f64,
-    max_radius: f64,
+    max_radius_squared: f64,
     x1: Extent,
     x2: Extent,
     furthest: Option<PathPoint>,
@@ -120,7 +120,7 @@ impl ModelDomain {
             model,
             cutting_mm: 0.0,
             outside_mm: 0.0,
-            max_radius: 0.0,
+            max_radius_squared: 0.0,
             x1: Extent::EMPTY,
             x2: Extent::EMPTY,
             furthest: None,
@@ -140,8 +140,8 @@ impl ModelDomain {
         if r.force_extrapolated {
             self.outside_mm += w;
         }
-        if coded.radius() > self.max_radius {
-            self.max_radius = coded.radius();
+        if coded.radius_squared() > self.max_radius_squared {
+            self.max_radius_squared = coded.radius_squared();
             self.furthest = Some(at);
         }
         if let Some(f) = r.force_n.filter(|f| *f > self.threshold_n) {
@@ -160,7 +160,7 @@ impl ModelDomain {
         let outside = OutsideModel {
             length_mm: self.outside_mm,
             share: if cut { self.outside_mm / self.cutting_mm } else { 0.0 },
-            max_coded_radius: self.max_radius,
+            max_coded_radius: self.max_radius_squared.sqrt(),
             design_coded_radius: DESIGN_REGION_CODED_RADIUS,
             x1,
             x2,

@@ -97,7 +97,8 @@ pub struct ReasonLengthsDto {
     pub clamped_max_mm: f64,
     /// Raised to the minimum feed: the force stays above the target.
     pub clamped_min_mm: f64,
-    /// No feed reaches the target (needs a trochoid or a z-cut division).
+    /// No feed reaches the target (constant_force: needs a trochoid or a z-cut
+    /// division), or none keeps the force under the limit (min_cost, min_time).
     pub infeasible_mm: f64,
     /// Feed moves in the air, at the air-cut feed.
     pub air_mm: f64,
