@@ -14,6 +14,9 @@ use serde::{Deserialize, Serialize};
 /// coded radius the model interpolates, beyond it it extrapolates.
 pub const DESIGN_REGION_CODED_RADIUS: f64 = std::f64::consts::SQRT_2;
 
+/// The design region's squared radius, with a rounding allowance.
+const DESIGN_REGION_SQUARED: f64 = (DESIGN_REGION_CODED_RADIUS + 1e-9) * (DESIGN_REGION_CODED_RADIUS + 1e-9);
+
 /// Coefficients of one response surface, in coded variables.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Coefficients {
@@ -73,9 +76,20 @@ pub struct Coded {
 }
 
 impl Coded {
+    /// The coded radius `|X| = √(X1² + X2²)`: how far the point lies from the design
+    /// centre, in steps of the experiments (MODEL.md §3).
+    pub fn radius(&self) -> f64 {
+        self.radius_squared().sqrt()
+    }
+
+    /// `X1² + X2²` (cheaper to compare than the radius).
+    pub fn radius_squared(&self) -> f64 {
+        self.x1 * self.x1 + self.x2 * self.x2
+    }
+
     /// `true` when the point lies inside the experiments' design region (|X| ≤ √2).
     pub fn within_design_region(&self) -> bool {
-        (self.x1 * self.x1 + self.x2 * self.x2).sqrt() <= DESIGN_REGION_CODED_RADIUS + 1e-9
+        self.radius_squared() <= DESIGN_REGION_SQUARED
     }
 }
 
@@ -105,6 +119,12 @@ impl ForceModel {
             crate::core::error::require_finite(name, v)?;
         }
         Ok(())
+    }
+
+    /// F* of MODEL.md §3: the force at the design centre (`X = 0`) and the reference
+    /// depth, `β0`, N. The experiments are centred on the tool's standard straight cut.
+    pub fn design_centre_force_n(&self) -> f64 {
+        self.coefficients.evaluate(0.0, 0.0)
     }
 
     /// The coded variables `X1 = (t_m − t0)/δt`, `X2 = (L − L0)/δL` (MODEL.md §3).

@@ -100,6 +100,24 @@ pub struct WearCut {
     pub force_n: Option<f64>,
 }
 
+impl WearCut {
+    /// The cut of a simulated sample run at centre feed `feed_mm_min` by `flutes` teeth at
+    /// `spindle_rpm`: `fz_p = F / (z·S) · |PO|/Rc` (MODEL.md §2 and §9). The costing and
+    /// the feed optimiser both weigh wear through this.
+    pub fn at_centre_feed(
+        alpha_deg: f64,
+        arc_length_mm: f64,
+        feed_mm_min: f64,
+        flutes: f64,
+        spindle_rpm: f64,
+        cutting_point_ratio: f64,
+        force_n: Option<f64>,
+    ) -> WearCut {
+        let fz_p_mm = feed_mm_min / (flutes * spindle_rpm) * cutting_point_ratio;
+        WearCut { alpha_deg, arc_length_mm, fz_p_mm, force_n }
+    }
+}
+
 /// Tool-life consumption of a path.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct Consumption {

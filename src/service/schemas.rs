@@ -2,6 +2,7 @@
 //! utoipa.
 
 use crate::core::feed::collect::ShortfallKind;
+use crate::core::feed::objective::Objective;
 use crate::core::feed::rule::FeedStrategy;
 use crate::core::operation::Operation;
 use crate::core::tool::ToolType;
@@ -55,6 +56,21 @@ impl utoipa::PartialSchema for FeedStrategy {
 impl utoipa::ToSchema for FeedStrategy {
     fn name() -> Cow<'static, str> {
         Cow::Borrowed("FeedStrategy")
+    }
+}
+
+impl utoipa::PartialSchema for Objective {
+    fn schema() -> RefOr<Schema> {
+        string_enum(
+            vec!["min_cost", "constant_force", "min_time"],
+            "What the feeds are chosen for: min_cost, the cheapest feed per millimetre (machine time and tool wear, seed 002 Eq. 4 and MODEL.md §9) under the force limit, never a program that costs more than the input; constant_force, the papers' rule as written (MODEL.md §3: the target force, the minimum feed where it cannot be held); min_time, the fastest feed under the force limit.",
+        )
+    }
+}
+
+impl utoipa::ToSchema for Objective {
+    fn name() -> Cow<'static, str> {
+        Cow::Borrowed("Objective")
     }
 }
 

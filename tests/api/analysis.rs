@@ -163,3 +163,49 @@ async fn bad_nc_and_bad_contours_are_refused_naming_the_line_or_vertex() {
     assert_eq!(app.get("/v1/jobs").await.body["total"], 0);
     app.stop().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_f9991300_slot_is_analysed_at_the_machines_maximum_feed_and_its_overload_is_named_by_line() {
+    let app = TestApp::start().await;
+    let gcode = "G21 G90 G17\nS9600 M3\nG0 X-10 Y20 Z5\nG1 Z-10 F1000\nG1 X110 F9991300\nM30\n";
+    let body = json!({
+        "program": {"gcode": gcode}, "tool_type": "square", "diameter_mm": 10,
+        "stock": {"box": {"x_min": 0, "y_min": 0, "z_min": -10, "x_max": 100, "y_max": 40, "z_max": 0}}
+    });
+    let a = app.post_wait("/v1/analysis", body).await;
+    assert_eq!(a.body["status"], "succeeded", "{}", a.text);
+    let s = &a.body["result"]["summary"];
+    // The seeded machine runs at most 15000 mm/min: fz = 15000 / (6 · 9600) = 260 µm.
+    assert!(close(&s["t_m_um"]["max"], 260.4, 0.5), "{}", s["t_m_um"]);
+    assert!(s["force_n"]["max"].as_f64().unwrap() < 20_000.0, "{}", s["force_n"]);
+    assert_eq!(s["force_extrapolated"], true);
+    let outside = &s["outside_model"];
+    assert!(outside["length_mm"].as_f64().unwrap() > 90.0, "{outside}");
+    assert!(outside["max_coded_radius"].as_f64().unwrap() > outside["design_coded_radius"].as_f64().unwrap());
+    assert!(close(&outside["design_t_m_um"]["max"], 43.6 + 15.0 * 2f64.sqrt(), 0.1), "{outside}");
+    assert_eq!(s["force_overload"]["lines"][0]["line"], 5);
+    assert!(close(&s["force_overload"]["threshold_n"], 3.0 * 269.1, 0.5), "{}", s["force_overload"]);
+    let warnings: Vec<&str> = s["warnings"].as_array().unwrap().iter().filter_map(|w| w.as_str()).collect();
+    assert!(warnings.iter().any(|w| w.contains("maximum feed of 15000") && w.contains("line 5")), "{warnings:?}");
+    assert!(
+        warnings.iter().any(|w| w.contains("3 × the tool's standard force") && w.contains("line 5")),
+        "{warnings:?}"
+    );
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_standard_cut_reports_its_forces_inside_the_models_experiments() {
+    let app = TestApp::start().await;
+    let body = json!({
+        "program": {"gcode": STANDARD_CUT}, "tool_type": "square", "diameter_mm": 10,
+        "stock": {"box": {"x_min": 0, "y_min": -40, "z_min": -10, "x_max": 100, "y_max": 0, "z_max": 0}}
+    });
+    let a = app.post_wait("/v1/analysis", body).await;
+    let s = &a.body["result"]["summary"];
+    let outside = &s["outside_model"];
+    assert!(outside["x1"]["max"].as_f64().unwrap() < 0.1 && outside["x2"]["max"].as_f64().unwrap() < 0.1, "{outside}");
+    assert!(outside["share"].as_f64().unwrap() < 0.05, "only the entry is lighter than the experiments: {outside}");
+    assert_eq!(s["force_overload"]["line_count"], 0);
+    app.stop().await;
+}

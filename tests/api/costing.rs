@@ -37,6 +37,9 @@ async fn the_standard_straight_cut_uses_the_tool_at_the_rate_of_its_320_m_life()
     assert!(close(&r["cost"]["total"], expected, 1e-9), "{}", r["cost"]);
     assert_eq!(r["cost"]["currency"], "USD");
     assert!(r["removal_rate_cm3_min"].as_f64().unwrap() > 0.0);
+    // Inside the experiments but for the entry into the block: hardly any extrapolation.
+    assert!(!r["analysis"]["outside_model"].is_null(), "{}", r["analysis"]);
+    assert!(r["tool_life"]["extrapolated_share"].as_f64().unwrap() < 0.05, "{}", r["tool_life"]);
     app.stop().await;
 }
 
@@ -95,5 +98,24 @@ async fn the_trochoidal_program_takes_longer_on_the_machine_than_at_its_programm
     let (nominal, kinematic) = (t["nominal_min"].as_f64().unwrap(), t["kinematic_min"].as_f64().unwrap());
     assert!(kinematic > nominal && kinematic < 1.5 * nominal, "{t}");
     assert!(t["exact_stops"].as_u64().unwrap() > 0, "{t}");
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_full_slot_marks_its_wear_and_cost_as_extrapolations() {
+    let app = TestApp::start().await;
+    let body = json!({
+        "program": {"gcode": "G21 G90 G17\nS9600 M3\nG0 X-10 Y20 Z5\nG1 Z-10 F1000\nG1 X110 F2000\nM30\n"},
+        "tool_type": "square", "diameter_mm": 10,
+        "stock": {"box": {"x_min": 0, "y_min": 0, "z_min": -10, "x_max": 100, "y_max": 40, "z_max": 0}}
+    });
+    let a = app.post_wait("/v1/costing", body).await;
+    assert_eq!(a.body["status"], "succeeded", "{}", a.text);
+    let r = &a.body["result"];
+    assert!(r["analysis"]["outside_model"]["length_mm"].as_f64().unwrap() > 90.0, "{}", r["analysis"]);
+    assert!(r["tool_life"]["extrapolated_share"].as_f64().unwrap() > 0.9, "{}", r["tool_life"]);
+    assert_eq!(r["tool_life"]["extrapolated"], true);
+    assert_eq!(r["cost"]["extrapolated"], true);
+    assert_eq!(r["analysis"]["force_overload"]["lines"][0]["line"], 5);
     app.stop().await;
 }

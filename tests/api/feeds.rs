@@ -46,10 +46,22 @@ fn assert_feeds_within_limits(path: &Toolpath, result: &Value, programmed: &Tool
     }
 }
 
+/// The feed of the longest block that comes from `line`.
+fn longest_block_feed(blocks: &Value, line: u64) -> f64 {
+    let n = blocks["line"].as_array().unwrap().len();
+    let longest = (0..n)
+        .filter(|&i| blocks["line"][i] == line)
+        .max_by(|&i, &j| blocks["length_mm"][i].as_f64().unwrap().total_cmp(&blocks["length_mm"][j].as_f64().unwrap()))
+        .unwrap();
+    blocks["feed_mm_min"][longest].as_f64().unwrap()
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_concave_arc_of_r_over_r_2_is_cut_at_the_constant_force_feed_of_model_section_3() {
     let app = TestApp::start().await;
-    let a = app.post_wait("/v1/feeds", concave_request()).await;
+    let mut papers = concave_request();
+    papers["objective"] = json!("constant_force");
+    let a = app.post_wait("/v1/feeds", papers).await;
     assert_eq!(a.status, 201, "{}", a.text);
     assert_eq!(a.body["status"], "succeeded", "{}", a.text);
     let r = &a.body["result"];
@@ -57,13 +69,7 @@ async fn a_concave_arc_of_r_over_r_2_is_cut_at_the_constant_force_feed_of_model_
     assert!(close(&r["target_force_n"], 269.1, 0.5), "{r}");
     assert!(close(&r["limits"]["max_feed_mm_min"], 11520.0, 0.5), "{}", r["limits"]);
     // The longest block of the circle (line 9) runs at ≈ 1160 mm/min.
-    let blocks = &r["blocks"];
-    let n = blocks["line"].as_array().unwrap().len();
-    let longest = (0..n)
-        .filter(|&i| blocks["line"][i] == 9)
-        .max_by(|&i, &j| blocks["length_mm"][i].as_f64().unwrap().total_cmp(&blocks["length_mm"][j].as_f64().unwrap()))
-        .unwrap();
-    assert!(close(&blocks["feed_mm_min"][longest], 1160.0, 1160.0 * 0.02), "{blocks}");
+    assert!((longest_block_feed(&r["blocks"], 9) - 1160.0).abs() < 1160.0 * 0.02, "{}", r["blocks"]);
     assert!(r["before"]["force_n"]["max"].as_f64().unwrap() > r["after"]["force_n"]["max"].as_f64().unwrap());
     assert!(r["after"]["time_min"].as_f64().unwrap() > r["before"]["time_min"].as_f64().unwrap());
     assert!(!r["shortfalls"].as_array().unwrap().is_empty(), "the head-on entry cannot hold the target: {r}");
@@ -75,6 +81,14 @@ async fn a_concave_arc_of_r_over_r_2_is_cut_at_the_constant_force_feed_of_model_
     assert!(arcs >= 2, "the circle is split into arcs, not lines:\n{text}");
     let input = parse_gcode(CONCAVE_CIRCLE, &ParseOptions::default()).unwrap();
     assert_feeds_within_limits(&path, r, &input);
+
+    // The default min_cost holds the same feed on the arc (the force limit is the target)
+    // and costs less than the program as written.
+    let m = app.post_wait("/v1/feeds", concave_request()).await;
+    let r = &m.body["result"];
+    assert_eq!(r["objective"], "min_cost");
+    assert!((longest_block_feed(&r["blocks"], 9) - 1160.0).abs() < 1160.0 * 0.02, "{}", r["blocks"]);
+    assert!(r["after"]["cost"]["total"].as_f64().unwrap() < r["before"]["cost"]["total"].as_f64().unwrap(), "{r}");
     app.stop().await;
 }
 
@@ -196,5 +210,120 @@ async fn bad_feed_requests_are_refused_naming_the_field() {
     assert_problem(&app.post("/v1/feeds", normals).await, 422, Some("strategy"));
     let jobs = app.get("/v1/jobs?kind=feeds").await;
     assert_eq!(jobs.body["total"], 0, "refused requests make no job: {}", jobs.text);
+    app.stop().await;
+}
+
+/// Two helical entries (10 turns down 10 mm about a 2 mm circle: a 14 mm hole, the 10 mm
+/// tool in a full slot all round), each followed by a full slot 28 mm long.
+const HELICAL_ENTRIES: &str = "G21 G90 G17\nS9600 M3\nG0 X17 Y20 Z2\nG1 Z0 F1000\nG2 X17 Y20 Z-10 I-2 J0 P10 F1500\nG1 X45 F2000\nG0 Z2\nG0 X17 Y60\nG1 Z0 F1000\nG2 X17 Y60 Z-10 I-2 J0 P10 F1500\nG1 X45 F2000\nG0 Z5\nM30\n";
+
+fn helical_request() -> Value {
+    json!({
+        "program": {"gcode": HELICAL_ENTRIES}, "tool_type": "square", "diameter_mm": 10,
+        "stock": {"box": {"x_min": 0, "y_min": 0, "z_min": -10, "x_max": 60, "y_max": 80, "z_max": 0}}
+    })
+}
+
+fn total(figures: &Value) -> f64 {
+    figures["cost"]["total"].as_f64().unwrap_or_else(|| panic!("no cost: {figures}"))
+}
+
+/// Posts a feeds job and asserts that it succeeded.
+async fn feeds(app: &TestApp, body: Value) -> Value {
+    let a = app.send(reqwest::Method::POST, "/v1/feeds", Some(body), &[("prefer", "wait=300")]).await;
+    assert_eq!(a.body["status"], "succeeded", "{}", &a.text[..a.text.len().min(3000)]);
+    a.body
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn on_trochoidal_ngc_the_default_min_cost_never_costs_more_than_the_input_with_6_or_10_mm_tools() {
+    let app = TestApp::start().await;
+    for diameter in [6.0, 10.0] {
+        let body = json!({
+            "program": {"gcode": shared("trochoidal.ngc")},
+            "tool_type": "square", "diameter_mm": diameter,
+            "stock": {"box": {"x_min": -60, "y_min": -10, "z_min": -10, "x_max": 40, "y_max": 90, "z_max": 0}}
+        });
+        let job = feeds(&app, body.clone()).await;
+        let r = &job["result"];
+        assert_eq!(r["objective"], "min_cost");
+        let (before, after) = (total(&r["before"]), total(&r["after"]));
+        assert!(after <= before, "D{diameter}: {before} → {after}");
+        for figures in [&r["before"], &r["after"]] {
+            for field in ["consumption", "nominal_time_min", "kinematic_time_min", "outside_model", "extrapolated"] {
+                assert!(!figures[field].is_null(), "D{diameter}: no {field} in {figures}");
+            }
+        }
+        // The costing job costs the written program as the feeds job did.
+        let mut costing = body;
+        costing.as_object_mut().unwrap().remove("program");
+        costing["job_id"] = job["id"].clone();
+        let c = app.send(reqwest::Method::POST, "/v1/costing", Some(costing), &[("prefer", "wait=300")]).await;
+        assert_eq!(c.body["status"], "succeeded", "{}", c.text);
+        let costed = c.body["result"]["cost"]["total"].as_f64().unwrap();
+        assert!((costed - after).abs() <= 0.02 * after, "D{diameter}: costing {costed}, feeds job {after}");
+    }
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn full_slot_helical_entries_cost_no_more_after_min_cost_and_never_drop_to_the_minimum_feed() {
+    let app = TestApp::start().await;
+    let job = feeds(&app, helical_request()).await;
+    let r = &job["result"];
+    assert!(total(&r["after"]) <= total(&r["before"]), "{} → {}", r["before"]["cost"], r["after"]["cost"]);
+    assert!(r["before"]["extrapolated"].as_bool().unwrap(), "a full slot at Ad 10 is outside the experiments");
+    let min_feed = r["limits"]["min_feed_mm_min"].as_f64().unwrap();
+    let blocks = &r["blocks"];
+    for (i, line) in blocks["line"].as_array().unwrap().iter().enumerate() {
+        if [5, 10].contains(&line.as_u64().unwrap()) {
+            let f = blocks["feed_mm_min"][i].as_f64().unwrap();
+            assert!(f > 2.0 * min_feed, "the helix on line {line} runs at F{f}: {blocks}");
+        }
+    }
+    // The papers' rule as written drops what it cannot hold to the minimum feed, and
+    // pays for it in tool wear.
+    let mut papers = helical_request();
+    papers["objective"] = json!("constant_force");
+    let constant = feeds(&app, papers).await;
+    let c = &constant["result"];
+    assert!(c["blocks"]["feed_mm_min"].as_array().unwrap().iter().any(|f| f.as_f64() == Some(min_feed)), "{c}");
+    assert!(total(&c["after"]) > total(&r["after"]), "{} vs {}", c["after"]["cost"], r["after"]["cost"]);
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn min_time_with_a_raised_force_limit_is_faster_than_the_constant_force() {
+    let app = TestApp::start().await;
+    let mut constant = concave_request();
+    constant["objective"] = json!("constant_force");
+    let mut fast = concave_request();
+    fast["objective"] = json!("min_time");
+    fast["max_force_n"] = json!(2.0 * 269.1);
+    let (c, f) = (feeds(&app, constant).await, feeds(&app, fast).await);
+    let time = |j: &Value| j["result"]["after"]["kinematic_time_min"].as_f64().unwrap();
+    assert!(time(&f) < time(&c), "{} ≥ {}", time(&f), time(&c));
+    assert!(close(&f["result"]["max_force_n"], 538.2, 0.5), "{}", f["result"]);
+    let peak = f["result"]["after"]["force_n"]["max"].as_f64().unwrap();
+    assert!(peak > 300.0, "the force rises above the target: {peak}");
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn objectives_that_cannot_apply_are_refused_naming_the_field() {
+    let app = TestApp::start().await;
+    let mut surface = concave_request();
+    surface.as_object_mut().unwrap().remove("stock");
+    surface["mode"] = json!("surface_finishing");
+    surface["tool_type"] = json!("ball");
+    surface["diameter_mm"] = json!(6);
+    surface["objective"] = json!("min_cost");
+    assert_problem(&app.post("/v1/feeds", surface).await, 422, Some("objective"));
+    let mut limit = concave_request();
+    limit["max_force_n"] = json!(-1);
+    assert_problem(&app.post("/v1/feeds", limit).await, 422, Some("max_force_n"));
+    let mut unknown = concave_request();
+    unknown["objective"] = json!("max_profit");
+    assert!(app.post("/v1/feeds", unknown).await.status.is_client_error());
     app.stop().await;
 }

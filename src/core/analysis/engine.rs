@@ -10,8 +10,8 @@ use super::same_below::SameBelow;
 use super::sampling::{for_each_sample, has_heading, move_curvatures, Sample};
 use super::scan_memory::{Line, ScanMemory};
 use super::slices::{self, Slice};
-use crate::core::engagement::max_chip_thickness_mm;
-use crate::core::force_model::ForceModel;
+use crate::core::engagement::{pivot_bounded_centre_radius_mm, tooth_chip_thickness_mm, ToothCut};
+use crate::core::force_model::{Coded, ForceModel};
 use crate::core::progress::Progress;
 use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
@@ -65,24 +65,46 @@ pub struct SampleResult {
     pub plunge: bool,
     /// The force model was evaluated outside its experiments' design region.
     pub force_extrapolated: bool,
+    /// The coded point (MODEL.md §3) of the engaged slice furthest from the design
+    /// centre, when a force model is given and the tool cuts.
+    pub coded: Option<Coded>,
     /// Feed at the cutting point over the feed at the tool centre (MODEL.md §2, seed 000
-    /// Eq. 1); 1 where the tool does not cut.
+    /// Eq. 1), pivot-bounded; 1 where the tool does not cut.
     pub cutting_point_ratio: f64,
+    /// The centre-path radius the ratio was computed at (pivot-bounded), mm; infinite
+    /// where there is no correction.
+    pub centre_radius_mm: f64,
+}
+
+impl SampleResult {
+    /// What bounds the chip of one tooth at this sample.
+    pub fn tooth_cut(&self, tool_radius_mm: f64) -> ToothCut {
+        ToothCut {
+            alpha_rad: self.contact.alpha_rad,
+            cutting_point_ratio: self.cutting_point_ratio,
+            centre_radius_mm: self.centre_radius_mm,
+            tool_radius_mm,
+        }
+    }
 }
 
 /// Feed per tooth at the cutting point over that at the centre, from the path's
-/// curvature and the side the material is on (MODEL.md §2, seed 000 Eq. 1).
-fn cutting_point_ratio(sample: &Sample, contact: &Contact, radius: f64) -> f64 {
+/// curvature and the side the material is on (MODEL.md §2, seed 000 Eq. 1), and the
+/// centre-path radius it was computed at (infinite where there is no correction). Where
+/// the centre path turns tighter than the tool follows (a pivot) the radius is bounded
+/// ([`pivot_bounded_centre_radius_mm`]), and so is the ratio.
+fn cutting_point_ratio(sample: &Sample, contact: &Contact, radius: f64) -> (f64, f64) {
     let rc = sample.curvature.radius_mm();
     if !rc.is_finite() || rc <= 0.0 || contact.alpha_rad >= SLOT_ALPHA_RAD {
-        return 1.0;
+        return (1.0, f64::INFINITY);
     }
     let material_left = (contact.entry_rad + contact.exit_rad) > 0.0;
     let centre_left = sample.curvature.kappa > 0.0;
     if material_left == centre_left {
-        ((rc - radius) / rc).max(MIN_CUTTING_POINT_RATIO)
+        (((rc - radius) / rc).max(MIN_CUTTING_POINT_RATIO), rc)
     } else {
-        (rc + radius) / rc
+        let rc = pivot_bounded_centre_radius_mm(rc, radius);
+        ((rc + radius) / rc, rc)
     }
 }
 
@@ -141,7 +163,9 @@ pub fn simulate(
             // The deepest slice cut holds the material of all above it (see `slices`).
             plunge: plunge && cut > 0 && slices[cut - 1].any_material_near(p.0, p.1, r),
             force_extrapolated: false,
+            coded: None,
             cutting_point_ratio: 1.0,
+            centre_radius_mm: f64::INFINITY,
         };
         if cut > 0 && !plunge {
             // All slices share one grid.
@@ -264,18 +288,25 @@ fn evaluate(
     };
     let rpm = result.sample.spindle_rpm.or(cutter.default_spindle_rpm).unwrap_or(0.0);
     let fz_c_mm = if rpm > 0.0 { result.sample.feed_mm_min / (f64::from(cutter.flutes) * rpm) } else { 0.0 };
-    let ratio = cutting_point_ratio(&result.sample, &best, r);
-    let t_m_best = max_chip_thickness_mm(fz_c_mm * ratio, best.alpha_rad) * UM_PER_MM;
+    let (ratio, centre_radius_mm) = cutting_point_ratio(&result.sample, &best, r);
+    let tooth = |c: &Contact| ToothCut {
+        alpha_rad: c.alpha_rad,
+        cutting_point_ratio: ratio,
+        centre_radius_mm,
+        tool_radius_mm: r,
+    };
+    let t_m_best = tooth_chip_thickness_mm(fz_c_mm, &tooth(&best)) * UM_PER_MM;
     // Slices engaged like the best one (most often all of them) share its chip thickness.
     let t_m = |c: &Contact| {
         if (c.alpha_rad - best.alpha_rad).abs() < SAME_ALPHA_RAD {
             t_m_best
         } else {
-            max_chip_thickness_mm(fz_c_mm * ratio, c.alpha_rad) * UM_PER_MM
+            tooth_chip_thickness_mm(fz_c_mm, &tooth(c)) * UM_PER_MM
         }
     };
     result.contact = best;
     result.cutting_point_ratio = ratio;
+    result.centre_radius_mm = centre_radius_mm;
     result.arc_length_mm = r * best.alpha_rad;
     result.t_m_um = t_m_best;
     let mut force = 0.0;
@@ -288,8 +319,14 @@ fn evaluate(
         if let Some(m) = model {
             let (t, l) = (t_m(c), r * c.alpha_rad);
             force += m.force_n(t, l, thickness);
-            result.force_extrapolated |= !m.coded(t, l).within_design_region();
+            let coded = m.coded(t, l);
+            if result.coded.is_none_or(|c| coded.radius_squared() > c.radius_squared()) {
+                result.coded = Some(coded);
+            }
         }
+    }
+    if let Some(coded) = result.coded {
+        result.force_extrapolated = !coded.within_design_region();
     }
     if model.is_some() {
         result.force_n = Some(force);

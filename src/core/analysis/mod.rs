@@ -5,7 +5,9 @@
 pub mod chunk;
 pub mod engages;
 pub mod engine;
+pub mod feed_cap;
 pub mod lines;
+pub mod outside;
 pub mod probe;
 pub mod recent;
 pub mod region;
@@ -23,6 +25,7 @@ use crate::core::tool::EndMill;
 use crate::core::toolpath::{Motion, Toolpath};
 use crate::core::CoreError;
 use engine::{simulate, Cutter};
+use outside::{ForceOverload, OutsideModel};
 pub use region::StockRegion;
 use report::{CriticalRegion, FinishedReport, HistogramBin, ReportBuilder, Series, Stats};
 use serde::Serialize;
@@ -111,6 +114,12 @@ pub struct Summary {
     pub alpha_histogram: Vec<HistogramBin>,
     pub alpha_limit_deg: f64,
     pub critical_length_mm: f64,
+    /// Where the forces rest on the force model outside its experiments (`None` without
+    /// a force model).
+    pub outside_model: Option<OutsideModel>,
+    /// Where the predicted force exceeds 3 × the tool's standard force (`None` without a
+    /// force model).
+    pub force_overload: Option<ForceOverload>,
     pub warnings: Vec<String>,
 }
 
@@ -227,7 +236,13 @@ pub fn analyze_with(
         spacing_mm: spacing,
         total_samples,
     };
-    let mut builder = ReportBuilder::new(spec.alpha_limit_deg, spec.tool.diameter_mm, spec.series_points, total_length);
+    let mut builder = ReportBuilder::new(
+        spec.alpha_limit_deg,
+        spec.tool.diameter_mm,
+        spec.series_points,
+        total_length,
+        spec.force_model,
+    );
     let simulation_stage = Stage { inner: progress, from: paint_share, span: 1.0 - paint_share };
     simulate(path, cutter, &mut slices, &simulation_stage, |r| {
         builder.add(r);
@@ -255,12 +270,9 @@ fn assemble(
     if report.plunge_samples > 0 {
         warnings.push(format!("{} samples plunge straight down (no leading half to measure)", report.plunge_samples));
     }
-    if report.force_extrapolated_mm > 0.0 {
-        warnings.push(format!(
-            "on {:.1} mm of the path the force model is extrapolated beyond its experiments (|X| > √2): treat those forces as indications",
-            report.force_extrapolated_mm
-        ));
-    }
+    let (outside_model, force_overload) = report.model_domain.clone().unzip();
+    warnings.extend(outside_model.as_ref().and_then(OutsideModel::warning));
+    warnings.extend(force_overload.as_ref().and_then(ForceOverload::warning));
     if !spec.tool.tool_type.cuts_with_flank() {
         warnings.push(
             "ball end mill: the stock simulation treats the tool as a cylinder of its diameter (2.5-D side milling)"
@@ -316,6 +328,8 @@ fn assemble(
             alpha_histogram: report.histogram,
             alpha_limit_deg: spec.alpha_limit_deg,
             critical_length_mm: report.regions.iter().map(|r| r.length_mm).sum(),
+            outside_model,
+            force_overload,
             warnings,
         },
         critical_regions: report.regions,
@@ -325,6 +339,8 @@ fn assemble(
 
 #[cfg(test)]
 mod accuracy_tests;
+#[cfg(test)]
+mod physical_tests;
 #[cfg(test)]
 mod probe_tests;
 

@@ -3,6 +3,8 @@
 //! path distance (the peak of every bin is kept).
 
 use super::engine::SampleResult;
+use super::outside::{ForceOverload, ModelDomain, OutsideModel};
+use crate::core::force_model::ForceModel;
 use serde::Serialize;
 
 /// Width of one bin of the engagement histogram, deg.
@@ -150,7 +152,7 @@ pub struct ReportBuilder {
     pub rapid_in_material: Vec<u32>,
     pub plunge_samples: usize,
     pub samples: usize,
-    extrapolated_mm: f64,
+    domain: Option<ModelDomain>,
     regions: Vec<CriticalRegion>,
     open: Option<CriticalRegion>,
     bins: Vec<Option<SampleResult>>,
@@ -162,8 +164,15 @@ fn point(r: &SampleResult) -> PathPoint {
 }
 
 impl ReportBuilder {
-    /// `series_points`: how many points of series to keep over `total_length_mm`.
-    pub fn new(alpha_limit_deg: f64, diameter_mm: f64, series_points: usize, total_length_mm: f64) -> Self {
+    /// `series_points`: how many points of series to keep over `total_length_mm`; the
+    /// force model's domain is followed when one is given.
+    pub fn new(
+        alpha_limit_deg: f64,
+        diameter_mm: f64,
+        series_points: usize,
+        total_length_mm: f64,
+        force_model: Option<ForceModel>,
+    ) -> Self {
         let bins = (MAX_ALPHA_DEG / HISTOGRAM_BIN_DEG).ceil() as usize;
         ReportBuilder {
             alpha_limit_deg,
@@ -177,7 +186,7 @@ impl ReportBuilder {
             rapid_in_material: Vec::new(),
             plunge_samples: 0,
             samples: 0,
-            extrapolated_mm: 0.0,
+            domain: force_model.map(ModelDomain::new),
             regions: Vec::new(),
             open: None,
             bins: vec![None; series_points],
@@ -214,8 +223,8 @@ impl ReportBuilder {
             return;
         }
         let w = r.sample.step_mm;
-        if r.force_extrapolated {
-            self.extrapolated_mm += w;
+        if let Some(domain) = self.domain.as_mut().filter(|_| alpha_deg > 0.0) {
+            domain.add(r, point(r));
         }
         if alpha_deg > 0.0 {
             self.cutting_length_mm += w;
@@ -307,7 +316,7 @@ impl ReportBuilder {
             rapid_in_material: self.rapid_in_material,
             plunge_samples: self.plunge_samples,
             samples: self.samples,
-            force_extrapolated_mm: self.extrapolated_mm,
+            model_domain: self.domain.map(ModelDomain::finish),
         }
     }
 }
@@ -326,6 +335,7 @@ pub struct FinishedReport {
     pub rapid_in_material: Vec<u32>,
     pub plunge_samples: usize,
     pub samples: usize,
-    /// Cut length where the force model was extrapolated beyond its design region, mm.
-    pub force_extrapolated_mm: f64,
+    /// Where the forces leave the force model's experiments, and where they overload the
+    /// tool (with a force model).
+    pub model_domain: Option<(OutsideModel, ForceOverload)>,
 }

@@ -2,4 +2,5 @@
 //! and §10): the tool life a path consumes and where, and the cost of machining it.
 
 pub mod cost;
+pub mod estimate;
 pub mod wear;

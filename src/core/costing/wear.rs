@@ -42,6 +42,9 @@ pub struct AlphaWear {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct WearReport {
     pub consumption: Consumption,
+    /// Share of the wear on samples whose force rests on the force model outside its
+    /// experiments (MODEL.md §3), 0–1: that much of the consumption is an extrapolation.
+    pub extrapolated_share: f64,
     /// The lines with the largest shares, largest first.
     pub by_line: Vec<LineWear>,
     pub by_alpha: Vec<AlphaWear>,
@@ -59,6 +62,8 @@ pub struct WearCounter<'a> {
     flutes: f64,
     default_rpm: Option<f64>,
     worn_mm: f64,
+    /// Wear on samples whose force rests on the model outside its experiments.
+    extrapolated_mm: f64,
     cutting_mm: f64,
     lines: HashMap<u32, (f64, f64, f64)>,
     bins: Vec<(f64, f64)>,
@@ -73,6 +78,7 @@ impl<'a> WearCounter<'a> {
             flutes: f64::from(flutes),
             default_rpm,
             worn_mm: 0.0,
+            extrapolated_mm: 0.0,
             cutting_mm: 0.0,
             lines: HashMap::new(),
             bins: vec![(0.0, 0.0); bins],
@@ -87,11 +93,21 @@ impl<'a> WearCounter<'a> {
         if alpha_deg <= 0.0 || rpm <= 0.0 || r.sample.rapid {
             return;
         }
-        let fz_p_mm = r.sample.feed_mm_min / (self.flutes * rpm) * r.cutting_point_ratio;
-        let cut = WearCut { alpha_deg, arc_length_mm: r.arc_length_mm, fz_p_mm, force_n: r.force_n };
+        let cut = WearCut::at_centre_feed(
+            alpha_deg,
+            r.arc_length_mm,
+            r.sample.feed_mm_min,
+            self.flutes,
+            rpm,
+            r.cutting_point_ratio,
+            r.force_n,
+        );
         let ds = r.sample.step_mm;
         let wear = self.model.wear_mm(ds, &cut);
         self.worn_mm += wear;
+        if r.force_extrapolated {
+            self.extrapolated_mm += wear;
+        }
         self.cutting_mm += ds;
         let line = self.lines.entry(r.sample.line).or_insert((0.0, 0.0, 0.0));
         line.0 += wear;
@@ -137,6 +153,7 @@ impl<'a> WearCounter<'a> {
         let life = self.model.life_edge_arc_mm();
         WearReport {
             consumption: Consumption::new(total, life, self.cutting_mm),
+            extrapolated_share: share(self.extrapolated_mm),
             by_line,
             by_alpha,
             move_consumption: self.moves.iter().map(|w| if life > 0.0 { w / life } else { 0.0 }).collect(),

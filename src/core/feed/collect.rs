@@ -2,12 +2,13 @@
 //! compactly, since the rate limit and the blocks need them all), the path length per
 //! reason, and the regions where the target force cannot be held.
 
+use super::objective::ObjectiveSpec;
 use super::rule::{FeedReason, FeedRule, SampleCut};
 use crate::core::analysis::report::PathPoint;
 use serde::Serialize;
 
-/// What the optimiser keeps of one sample (44 bytes: f32 values, so the 2.9 M samples of
-/// tiger.nc take about 130 MB).
+/// What the optimiser keeps of one sample (48 bytes: f32 values, so the 2.9 M samples of
+/// tiger.nc take about 140 MB).
 #[derive(Debug, Clone, Copy)]
 pub struct Kept {
     pub move_index: u32,
@@ -19,10 +20,30 @@ pub struct Kept {
     pub arc_length_mm: f32,
     pub ad_mm: f32,
     pub ratio: f32,
+    /// The centre-path radius of the ratio, mm (infinite: straight).
+    pub centre_radius_mm: f32,
     pub spindle_rpm: f32,
     /// Predicted force at the programmed feed, N (NaN when none).
     pub force_before_n: f32,
     pub programmed_mm_min: f32,
+}
+
+impl Kept {
+    /// The cut of this sample, as the rules read it (`tool_radius_mm`: the tool's).
+    pub fn cut(&self, tool_radius_mm: f64) -> SampleCut {
+        SampleCut {
+            alpha_rad: f64::from(self.alpha_rad),
+            arc_length_mm: f64::from(self.arc_length_mm),
+            ad_mm: f64::from(self.ad_mm),
+            cutting_point_ratio: f64::from(self.ratio),
+            centre_radius_mm: f64::from(self.centre_radius_mm),
+            tool_radius_mm,
+            programmed_feed_mm_min: f64::from(self.programmed_mm_min),
+            spindle_rpm: (self.spindle_rpm > 0.0).then_some(f64::from(self.spindle_rpm)),
+            plunge: self.reason == Some(FeedReason::Kept),
+            in_material: self.alpha_rad > 0.0,
+        }
+    }
 }
 
 /// Why a region could not be cut at the target force.
@@ -82,7 +103,11 @@ pub struct SampleIn {
 
 /// Collects samples in path order.
 pub struct Collector {
-    rule: FeedRule,
+    pub rule: FeedRule,
+    /// How the feeds are chosen beyond the papers' rule (`None`: the rule as written).
+    pub objective: Option<ObjectiveSpec>,
+    /// The tool's radius, mm.
+    pub tool_radius_mm: f64,
     pub kept: Vec<Kept>,
     pub lengths: ReasonLengths,
     pub shortfalls: Vec<Shortfall>,
@@ -90,21 +115,42 @@ pub struct Collector {
 }
 
 impl Collector {
+    /// A collector that sets the papers' feeds (the strategy of `rule`).
     pub fn new(rule: FeedRule) -> Self {
-        Collector { rule, kept: Vec::new(), lengths: ReasonLengths::default(), shortfalls: Vec::new(), open: None }
+        Collector::with_objective(rule, None, 0.0)
+    }
+
+    /// A collector that sets the feeds of `objective` (`None`: the papers' rule), for a
+    /// tool of radius `tool_radius_mm`.
+    pub fn with_objective(rule: FeedRule, objective: Option<ObjectiveSpec>, tool_radius_mm: f64) -> Self {
+        Collector {
+            rule,
+            objective,
+            tool_radius_mm,
+            kept: Vec::new(),
+            lengths: ReasonLengths::default(),
+            shortfalls: Vec::new(),
+            open: None,
+        }
     }
 
     pub fn add(&mut self, s: &SampleIn) {
-        let (feed, reason) = if s.rapid {
-            (f64::NAN, None)
+        // The papers' rule says where the target force cannot be held (the shortfalls);
+        // the objective sets the feed.
+        let (feed, reason, constant) = if s.rapid {
+            (f64::NAN, None, None)
         } else {
-            let (feed, reason) = self.rule.feed(&s.cut);
-            (feed, Some(reason))
+            let constant = self.rule.feed(&s.cut);
+            let (feed, reason) = match &self.objective {
+                Some(objective) => objective.feed(&self.rule, &s.cut, s.force_before_n, constant),
+                None => constant,
+            };
+            (feed, Some(reason), Some(constant.1))
         };
         if let Some(reason) = reason {
             self.lengths.add(reason, s.step_mm);
         }
-        let kind = match reason {
+        let kind = match constant {
             Some(FeedReason::Infeasible) => Some(ShortfallKind::Infeasible),
             Some(FeedReason::ClampedMin) => Some(ShortfallKind::BelowMinimumFeed),
             _ => None,
@@ -137,6 +183,7 @@ impl Collector {
             arc_length_mm: s.cut.arc_length_mm as f32,
             ad_mm: s.cut.ad_mm as f32,
             ratio: s.cut.cutting_point_ratio as f32,
+            centre_radius_mm: s.cut.centre_radius_mm as f32,
             spindle_rpm: s.cut.spindle_rpm.unwrap_or(0.0) as f32,
             force_before_n: s.force_before_n.map_or(f32::NAN, |f| f as f32),
             programmed_mm_min: s.cut.programmed_feed_mm_min as f32,

@@ -1,23 +1,24 @@
 //! The feed that holds the cutting force at a target (MODEL.md §3, "constant cutting
 //! force (feed-forward)"; seed 002 §2.3; seed 001).
 
+use crate::core::engagement::{tooth_chip_thickness_mm, ToothCut};
 use crate::core::force_model::{ForceModel, DESIGN_REGION_CODED_RADIUS};
 use std::f64::consts::FRAC_PI_2;
 
 /// Micrometres per millimetre.
 const UM_PER_MM: f64 = 1000.0;
+/// A bounded chip this much thinner than the one solved for means a bound holds it.
+const BOUND_SLACK: f64 = 1e-9;
 
 /// The engagement and cut at one point of the path.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Cut {
-    /// Engagement angle α, rad.
-    pub alpha_rad: f64,
+    /// Engagement angle, cutting-point ratio and what bounds the chip (MODEL.md §2).
+    pub tooth: ToothCut,
     /// Engagement arc length L, mm.
     pub arc_length_mm: f64,
     /// Axial depth of cut, mm.
     pub ad_mm: f64,
-    /// Feed per tooth at the cutting point over that at the centre (MODEL.md §2).
-    pub cutting_point_ratio: f64,
 }
 
 /// The spindle and the feed limits.
@@ -46,7 +47,8 @@ pub struct ForceFeed {
 pub fn constant_force_feed(model: &ForceModel, target_force_n: f64, cut: Cut, limits: FeedLimits) -> ForceFeed {
     let clamp = |f: f64| f.clamp(limits.min_feed_mm_min, limits.max_feed_mm_min);
     let infeasible = ForceFeed { feed_mm_min: limits.min_feed_mm_min, unclamped_mm_min: None, feasible: false };
-    if cut.alpha_rad <= 0.0 {
+    let alpha_rad = cut.tooth.alpha_rad;
+    if alpha_rad <= 0.0 {
         return ForceFeed { feed_mm_min: limits.max_feed_mm_min, unclamped_mm_min: None, feasible: true };
     }
     // Below the experiments' range of arc lengths the quadratic model turns upwards again
@@ -58,10 +60,16 @@ pub fn constant_force_feed(model: &ForceModel, target_force_n: f64, cut: Cut, li
         return infeasible;
     };
     // t_m = fz_p · sin α for α ≤ 90°, else fz_p (MODEL.md §2).
-    let fz_p_mm =
-        if cut.alpha_rad <= FRAC_PI_2 { t_m_um / UM_PER_MM / cut.alpha_rad.sin() } else { t_m_um / UM_PER_MM };
-    let fz_c_mm = fz_p_mm / cut.cutting_point_ratio;
-    let feed = fz_c_mm * f64::from(limits.flutes) * limits.spindle_rpm;
+    let fz_p_mm = if alpha_rad <= FRAC_PI_2 { t_m_um / UM_PER_MM / alpha_rad.sin() } else { t_m_um / UM_PER_MM };
+    let fz_c_mm = fz_p_mm / cut.tooth.cutting_point_ratio;
+    // Where the material between successive tooth paths bounds the chip below t_m, no
+    // feed makes the chip that thick: the force stays under the target at any feed.
+    let bounded = tooth_chip_thickness_mm(fz_c_mm, &cut.tooth) * UM_PER_MM;
+    let feed = if bounded < t_m_um * (1.0 - BOUND_SLACK) {
+        f64::INFINITY
+    } else {
+        fz_c_mm * f64::from(limits.flutes) * limits.spindle_rpm
+    };
     ForceFeed { feed_mm_min: clamp(feed), unclamped_mm_min: Some(feed), feasible: true }
 }
 
@@ -75,14 +83,23 @@ mod tests {
         FeedLimits { flutes: 6, spindle_rpm: 9600.0, min_feed_mm_min: 1.0, max_feed_mm_min: 2.0 * 5760.0 }
     }
 
+    fn straight(alpha_rad: f64) -> ToothCut {
+        ToothCut { alpha_rad, cutting_point_ratio: 1.0, centre_radius_mm: f64::INFINITY, tool_radius_mm: 5.0 }
+    }
+
     fn cut(contour: Contour) -> Cut {
         let e = engagement(contour, 5.0, 0.5).unwrap();
-        Cut {
+        let centre_radius_mm = match contour {
+            Contour::Concave { surface_radius_mm } => surface_radius_mm - 5.0,
+            _ => f64::INFINITY,
+        };
+        let tooth = ToothCut {
             alpha_rad: e.angle_rad,
-            arc_length_mm: e.arc_length_mm,
-            ad_mm: 10.0,
             cutting_point_ratio: e.cutting_point_feed_ratio,
-        }
+            centre_radius_mm,
+            tool_radius_mm: 5.0,
+        };
+        Cut { tooth, arc_length_mm: e.arc_length_mm, ad_mm: 10.0 }
     }
 
     #[test]
@@ -118,7 +135,7 @@ mod tests {
     fn a_cut_lighter_than_the_experiments_is_solved_at_their_edge_and_not_called_infeasible() {
         for alpha_deg in [2.0f64, 8.0, 15.0] {
             let a = alpha_deg.to_radians();
-            let light = Cut { alpha_rad: a, arc_length_mm: 5.0 * a, ad_mm: 10.0, cutting_point_ratio: 1.0 };
+            let light = Cut { tooth: straight(a), arc_length_mm: 5.0 * a, ad_mm: 10.0 };
             let f = constant_force_feed(&seed_001_ten_mm(), 269.1, light, limits());
             assert!(f.feasible && f.feed_mm_min > 5760.0, "α {alpha_deg}°: {f:?}");
         }
@@ -126,7 +143,7 @@ mod tests {
 
     #[test]
     fn a_light_cut_is_clamped_to_the_maximum_feed() {
-        let light = Cut { alpha_rad: 0.1, arc_length_mm: 0.5, ad_mm: 10.0, cutting_point_ratio: 1.0 };
+        let light = Cut { tooth: straight(0.1), arc_length_mm: 0.5, ad_mm: 10.0 };
         let f = constant_force_feed(&seed_001_ten_mm(), 269.1, light, limits());
         assert!((f.feed_mm_min - limits().max_feed_mm_min).abs() < 1e-9);
         assert!(f.unclamped_mm_min.unwrap() > limits().max_feed_mm_min);

@@ -6,13 +6,20 @@
 pub mod blocks;
 pub mod collect;
 pub mod constant_force;
+pub mod costed;
 pub mod cutting_point;
 pub mod edit;
+pub mod guarantee;
+pub mod objective;
 pub mod plan;
 pub mod rate_limit;
 pub mod rule;
 pub mod split;
 pub mod surface;
 
+#[cfg(test)]
+mod costed_tests;
+#[cfg(test)]
+mod objective_tests;
 #[cfg(test)]
 mod plan_tests;

@@ -2,17 +2,18 @@
 //! the feed every sample needs, the change-rate limit, one feed per NC block, and the
 //! figures before and after.
 
-use super::blocks::{split_feeds, BlockOptions};
+use super::blocks::{split_feeds, BlockOptions, Piece};
 use super::collect::{Collector, Kept, ReasonLengths, Shortfall};
+use super::guarantee::pieces_pay;
+use super::objective::{ForceCurve, ObjectiveSpec};
 use super::rate_limit::limit_feed_change;
 use super::rule::{FeedReason, FeedRule, SampleCut};
 use super::split::sub_move;
+use crate::core::analysis::engine::SampleResult;
 use crate::core::analysis::report::{Accumulator, PathPoint, Stats};
 use crate::core::analysis::sampling::move_length;
 use crate::core::analysis::{analyze_with, Analysis, AnalysisSpec};
 use crate::core::drawing::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE_BINS};
-use crate::core::engagement::max_chip_thickness_mm;
-use crate::core::force_model::ForceModel;
 use crate::core::progress::Progress;
 use crate::core::toolpath::{Event, Motion, Move, Toolpath};
 use crate::core::CoreError;
@@ -27,8 +28,6 @@ pub const MAX_FEED_SAMPLES: f64 = 10_000_000.0;
 /// The slowest feed a written program may carry, mm/min (`F1`): feed limits below it are
 /// refused (a feed rounded to `F0` would not be a feed).
 pub const MIN_FEED_MM_MIN: f64 = 1.0;
-/// Micrometres per millimetre.
-const UM_PER_MM: f64 = 1000.0;
 /// A limited feed this far below the required one counts as lowered by the rate limit.
 const RATE_LIMITED_SLACK_MM_MIN: f64 = 1e-6;
 
@@ -69,7 +68,16 @@ pub struct BlockFeed {
 #[derive(Debug, Clone, PartialEq)]
 pub struct FeedPlan {
     pub path: Toolpath,
+    /// The rapid rate the time figures use, mm/min.
+    pub rapid_mm_min: f64,
     pub blocks: Vec<BlockFeed>,
+    /// Per move of the input (by index): its pieces, from fraction `t0` to `t1` of its
+    /// length, each with its feed (one piece `0..1` at the programmed feed where the move
+    /// keeps it; none for rapids). `path` holds the same pieces as moves.
+    pub pieces: Vec<Vec<Piece>>,
+    /// Moves whose new feeds would have cost more than their programmed feed, and that
+    /// keep it (min_cost).
+    pub kept_moves: usize,
     pub before: Figures,
     pub after: Figures,
     pub lengths: ReasonLengths,
@@ -146,20 +154,37 @@ pub fn check_sample_count((spacing_mm, samples): (f64, f64)) -> Result<(), CoreE
     Ok(())
 }
 
-/// Optimises the feeds of a 2.5-D side-milling path, simulating the stock of `analysis`.
+/// Optimises the feeds of a 2.5-D side-milling path by the papers' rule of its strategy,
+/// simulating the stock of `analysis`.
 pub fn optimize_side_milling(
     path: &Toolpath,
     analysis: &AnalysisSpec,
     spec: &FeedSpec,
     progress: &dyn Progress,
 ) -> Result<FeedPlan, CoreError> {
+    optimize_side_milling_with(path, analysis, spec, None, progress, |_| {})
+}
+
+/// Optimises the feeds of a 2.5-D side-milling path for `objective` (`None`: the papers'
+/// rule of the strategy), simulating the stock of `analysis` and handing every sample of
+/// that simulation to `sink` too.
+pub fn optimize_side_milling_with(
+    path: &Toolpath,
+    analysis: &AnalysisSpec,
+    spec: &FeedSpec,
+    objective: Option<ObjectiveSpec>,
+    progress: &dyn Progress,
+    mut sink: impl FnMut(&SampleResult),
+) -> Result<FeedPlan, CoreError> {
     check_spec(spec)?;
     check_sample_count(crate::core::analysis::sample_count(path, analysis))?;
-    let mut collector = Collector::new(spec.rule);
+    let tool_radius_mm = analysis.tool.radius_mm();
+    let mut collector = Collector::with_objective(spec.rule, objective, tool_radius_mm);
     let total_length_mm: f64 = path.moves.iter().map(move_length).sum();
     let mut drawing = SampleCollector::new(total_length_mm, DRAWING_SAMPLE_BINS);
     let default_rpm = analysis.default_spindle_rpm;
     let report = analyze_with(path, analysis, progress, |r| {
+        sink(r);
         drawing.add(r);
         let s = &r.sample;
         let in_material = r.contact.alpha_rad > 0.0;
@@ -168,6 +193,8 @@ pub fn optimize_side_milling(
             arc_length_mm: r.arc_length_mm,
             ad_mm: r.ad_mm,
             cutting_point_ratio: r.cutting_point_ratio,
+            centre_radius_mm: r.centre_radius_mm,
+            tool_radius_mm,
             programmed_feed_mm_min: s.feed_mm_min,
             spindle_rpm: s.spindle_rpm.or(default_rpm),
             // A move straight down keeps its feed, in material or not.
@@ -205,13 +232,14 @@ pub fn assemble(
     let (analysis, before) = analysis.unzip();
     let drawn: Vec<usize> = before.as_ref().map(|b| b.index.clone()).unwrap_or_default();
     let mut after_values: Vec<(Option<f64>, Option<f64>)> = Vec::with_capacity(drawn.len());
-    let Collector { kept, lengths, shortfalls, .. } = collector;
+    let Collector { kept, lengths, shortfalls, objective, tool_radius_mm, .. } = collector;
     let (limited, rate_limited_mm) = rate_limited(&kept, spec.max_change_per_mm);
     let model = spec.rule.force_model;
-    let flutes = spec.rule.flutes;
     let (mut force_before, mut force_after) = (Accumulator::default(), Accumulator::default());
     let mut moves: Vec<Move> = Vec::with_capacity(path.moves.len());
     let mut blocks: Vec<BlockFeed> = Vec::with_capacity(path.moves.len());
+    let mut move_pieces: Vec<Vec<Piece>> = Vec::with_capacity(path.moves.len());
+    let mut kept_moves = 0;
     let mut first_piece = Vec::with_capacity(path.moves.len() + 1);
     let mut i = 0;
     for (index, m) in path.moves.iter().enumerate() {
@@ -233,6 +261,10 @@ pub fn assemble(
                 programmed_mm_min: None,
                 feed_mm_min: None,
             });
+            move_pieces.push(match (m.motion, m.feed_mm_min) {
+                (Motion::Rapid, _) | (_, None) => vec![],
+                (_, Some(f)) => vec![Piece { t0: 0.0, t1: 1.0, feed_mm_min: f }],
+            });
             moves.push(*m);
             continue;
         }
@@ -243,7 +275,14 @@ pub fn assemble(
         feeds.extend_from_slice(&limited[start..i]);
         let lowest = feeds.iter().copied().fold(f64::INFINITY, f64::min);
         let length = move_length(m);
-        let pieces = split_feeds(length, &feeds, spec.rule.min_feed_mm_min.min(lowest), &spec.blocks);
+        let mut pieces = split_feeds(length, &feeds, spec.rule.min_feed_mm_min.min(lowest), &spec.blocks);
+        // min_cost keeps the programmed feed where the new ones would not pay.
+        if let (Some(objective), Some(programmed)) = (&objective, m.feed_mm_min) {
+            if !pieces_pay(samples, &pieces, &spec.rule, objective, tool_radius_mm) {
+                pieces = vec![Piece { t0: 0.0, t1: 1.0, feed_mm_min: programmed }];
+                kept_moves += 1;
+            }
+        }
         let n = samples.len() as f64;
         let mut p = 0;
         for (k, s) in samples.iter().enumerate() {
@@ -252,8 +291,8 @@ pub fn assemble(
                 p += 1;
             }
             let mut after_n = None;
-            if let (Some(model), Some(before)) = (model.as_ref(), finite(s.force_before_n)) {
-                let after = force_at_feed(model, s, pieces[p].feed_mm_min, flutes, before);
+            if let (Some(model), Some(before)) = (model, finite(s.force_before_n)) {
+                let after = force_at_feed(model, s, pieces[p].feed_mm_min, spec.rule.flutes, tool_radius_mm);
                 force_before.add(before, f64::from(s.step_mm));
                 force_after.add(after, f64::from(s.step_mm));
                 after_n = Some(after);
@@ -263,17 +302,8 @@ pub fn assemble(
                 drawn_here.start += 1;
             }
         }
-        for piece in &pieces {
-            let mut sub = sub_move(m, piece.t0, piece.t1);
-            sub.feed_mm_min = Some(piece.feed_mm_min);
-            blocks.push(BlockFeed {
-                line: m.line,
-                length_mm: length * (piece.t1 - piece.t0),
-                programmed_mm_min: m.feed_mm_min,
-                feed_mm_min: Some(piece.feed_mm_min),
-            });
-            moves.push(sub);
-        }
+        push_pieces(m, &pieces, &mut moves, &mut blocks);
+        move_pieces.push(pieces);
     }
     first_piece.push(moves.len());
     let events: Vec<Event> = path
@@ -281,6 +311,11 @@ pub fn assemble(
         .iter()
         .map(|e| Event { before_move: first_piece[e.before_move.min(path.moves.len())], ..*e })
         .collect();
+    if kept_moves > 0 {
+        warnings.push(format!(
+            "{kept_moves} move(s) keep their programmed feed: their new feeds would have cost more (min_cost)"
+        ));
+    }
     if lengths.kept_mm > 0.0 {
         warnings.push(format!(
             "{:.1} mm of cutting kept its programmed feed (plunges, or no spindle speed to compute with)",
@@ -293,7 +328,10 @@ pub fn assemble(
         before: figures(&path.moves, has_force.then(|| force_before.stats()), spec.rapid_mm_min),
         after: figures(&new_path.moves, has_force.then(|| force_after.stats()), spec.rapid_mm_min),
         path: new_path,
+        rapid_mm_min: spec.rapid_mm_min,
         blocks,
+        pieces: move_pieces,
+        kept_moves,
         lengths,
         rate_limited_mm,
         shortfalls,
@@ -352,26 +390,25 @@ fn rate_limited(kept: &[Kept], max_change_per_mm: Option<f64>) -> (Vec<f64>, f64
 }
 
 /// The force at a sample when run at `feed` instead of the programmed feed: the force
-/// before, scaled by the model's ratio of the two (exact for a single slice).
-fn force_at_feed(model: &ForceModel, s: &Kept, feed_mm_min: f64, flutes: u32, before_n: f64) -> f64 {
-    let single = |feed: f64| {
-        let rpm = f64::from(s.spindle_rpm);
-        if rpm <= 0.0 {
-            return 0.0;
-        }
-        let fz_p = feed / (f64::from(flutes) * rpm) * f64::from(s.ratio);
-        let t_m_um = max_chip_thickness_mm(fz_p, f64::from(s.alpha_rad)) * UM_PER_MM;
-        model.force_n(t_m_um, f64::from(s.arc_length_mm), f64::from(s.ad_mm))
-    };
-    let old = single(f64::from(s.programmed_mm_min));
-    if old > 0.0 && s.reason != Some(FeedReason::Air) {
-        before_n * single(feed_mm_min) / old
-    } else {
-        single(feed_mm_min)
+/// before, scaled by the model's ratio of the two (exact for a single slice; see
+/// [`ForceCurve`]).
+fn force_at_feed(
+    model: crate::core::force_model::ForceModel,
+    s: &Kept,
+    feed_mm_min: f64,
+    flutes: u32,
+    tool_radius_mm: f64,
+) -> f64 {
+    let rpm = f64::from(s.spindle_rpm);
+    if rpm <= 0.0 {
+        return 0.0;
     }
+    let before = finite(s.force_before_n).filter(|_| s.reason != Some(FeedReason::Air));
+    ForceCurve::new(model, &s.cut(tool_radius_mm), flutes, rpm, before).force_n(feed_mm_min)
 }
 
-fn figures(moves: &[Move], force_n: Option<Stats>, rapid_mm_min: f64) -> Figures {
+/// The optimiser's figures of `moves`: feed statistics and the time at their feeds.
+pub fn figures(moves: &[Move], force_n: Option<Stats>, rapid_mm_min: f64) -> Figures {
     let mut feed = Accumulator::default();
     let mut minutes = 0.0;
     for m in moves {
@@ -386,4 +423,49 @@ fn figures(moves: &[Move], force_n: Option<Stats>, rapid_mm_min: f64) -> Figures
         }
     }
     Figures { force_n, feed_mm_min: feed.stats(), time_min: minutes }
+}
+
+/// The program of `input` with every move cut into its `pieces` (one per input move; a
+/// move without pieces, a rapid, stays as it is), and its blocks.
+pub fn written(input: &Toolpath, pieces: &[Vec<Piece>]) -> (Toolpath, Vec<BlockFeed>) {
+    let mut moves = Vec::with_capacity(input.moves.len());
+    let mut blocks = Vec::with_capacity(input.moves.len());
+    let mut first_piece = Vec::with_capacity(input.moves.len() + 1);
+    for (m, pieces) in input.moves.iter().zip(pieces) {
+        first_piece.push(moves.len());
+        if pieces.is_empty() {
+            blocks.push(BlockFeed {
+                line: m.line,
+                length_mm: move_length(m),
+                programmed_mm_min: None,
+                feed_mm_min: None,
+            });
+            moves.push(*m);
+        }
+        push_pieces(m, pieces, &mut moves, &mut blocks);
+    }
+    first_piece.push(moves.len());
+    let events = input
+        .events
+        .iter()
+        .map(|e| Event { before_move: first_piece[e.before_move.min(input.moves.len())], ..*e })
+        .collect();
+    (Toolpath { moves, events, source_units: input.source_units, warnings: input.warnings.clone() }, blocks)
+}
+
+/// Appends the pieces of `m` to `moves`, each the part of `m` between its fractions at its
+/// feed, and their blocks.
+fn push_pieces(m: &Move, pieces: &[Piece], moves: &mut Vec<Move>, blocks: &mut Vec<BlockFeed>) {
+    let length = move_length(m);
+    for piece in pieces {
+        let mut sub = sub_move(m, piece.t0, piece.t1);
+        sub.feed_mm_min = Some(piece.feed_mm_min);
+        blocks.push(BlockFeed {
+            line: m.line,
+            length_mm: length * (piece.t1 - piece.t0),
+            programmed_mm_min: m.feed_mm_min,
+            feed_mm_min: Some(piece.feed_mm_min),
+        });
+        moves.push(sub);
+    }
 }

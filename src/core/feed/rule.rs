@@ -3,6 +3,7 @@
 //! cuts at the air-cut feed; everything clamped to the limits.
 
 use super::constant_force::{constant_force_feed, Cut, FeedLimits};
+use crate::core::engagement::ToothCut;
 use crate::core::force_model::ForceModel;
 use serde::{Deserialize, Serialize};
 
@@ -49,14 +50,29 @@ pub struct SampleCut {
     pub alpha_rad: f64,
     pub arc_length_mm: f64,
     pub ad_mm: f64,
-    /// Feed at the cutting point over feed at the tool centre.
+    /// Feed at the cutting point over feed at the tool centre (pivot-bounded).
     pub cutting_point_ratio: f64,
+    /// The centre-path radius the ratio was computed at, mm (infinite: straight).
+    pub centre_radius_mm: f64,
+    pub tool_radius_mm: f64,
     pub programmed_feed_mm_min: f64,
     pub spindle_rpm: Option<f64>,
     /// A plunge (no XY motion) into material.
     pub plunge: bool,
     /// The tool touches material (α > 0 in side milling; always in surface finishing).
     pub in_material: bool,
+}
+
+impl SampleCut {
+    /// What bounds the chip of one tooth here (MODEL.md §2).
+    pub fn tooth(&self) -> ToothCut {
+        ToothCut {
+            alpha_rad: self.alpha_rad,
+            cutting_point_ratio: self.cutting_point_ratio,
+            centre_radius_mm: self.centre_radius_mm,
+            tool_radius_mm: self.tool_radius_mm,
+        }
+    }
 }
 
 /// The strategy with its model, target and limits.
@@ -104,12 +120,7 @@ impl FeedRule {
             min_feed_mm_min: self.min_feed_mm_min,
             max_feed_mm_min: self.max_feed_mm_min,
         };
-        let c = Cut {
-            alpha_rad: cut.alpha_rad,
-            arc_length_mm: cut.arc_length_mm,
-            ad_mm: cut.ad_mm,
-            cutting_point_ratio: cut.cutting_point_ratio,
-        };
+        let c = Cut { tooth: cut.tooth(), arc_length_mm: cut.arc_length_mm, ad_mm: cut.ad_mm };
         let f = constant_force_feed(&model, self.target_force_n, c, limits);
         match f.unclamped_mm_min {
             None => (f.feed_mm_min, FeedReason::Infeasible),
@@ -169,6 +180,8 @@ mod tests {
             arc_length_mm: e.arc_length_mm,
             ad_mm: 10.0,
             cutting_point_ratio: e.cutting_point_feed_ratio,
+            centre_radius_mm: 5.0 * ratio - 5.0,
+            tool_radius_mm: 5.0,
             programmed_feed_mm_min: 5760.0,
             spindle_rpm: Some(9600.0),
             plunge: false,

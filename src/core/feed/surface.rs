@@ -308,6 +308,8 @@ pub fn optimize_surface_finishing(
                     arc_length_mm: 0.0,
                     ad_mm: 0.0,
                     cutting_point_ratio: ratio,
+                    centre_radius_mm: f64::INFINITY,
+                    tool_radius_mm: surface.ball_radius_mm,
                     programmed_feed_mm_min: m.feed_mm_min.unwrap_or(0.0),
                     spindle_rpm: m.spindle_rpm,
                     plunge: false,

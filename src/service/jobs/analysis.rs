@@ -4,6 +4,7 @@
 use super::analysis_result::AnalysisResult;
 use super::conditions::{ForceModelRef, NamedRef, ToolRef};
 use super::inputs::{read_program, read_stock, ProgramInput, StockInput};
+use crate::core::analysis::feed_cap::cap_feeds;
 use crate::core::analysis::sampling::move_length;
 use crate::core::analysis::{
     analyze_with, check, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_ALPHA_LIMIT_DEG, MAX_SERIES_POINTS,
@@ -66,11 +67,31 @@ pub struct AnalysisPrepared {
     pub force_model: Option<ForceModelRef>,
     pub machine: NamedRef,
     pub rapid_mm_min: f64,
+    /// The machine's largest feed, mm/min: faster feeds are analysed at it (absent in
+    /// jobs stored before it was kept).
+    #[serde(default)]
+    pub max_feed_mm_min: Option<f64>,
     pub default_spindle_rpm: Option<f64>,
     /// The machine's coolant, for the programs the job writes (jobs stored before it was
     /// kept: off).
     #[serde(default)]
     pub coolant: crate::core::coolant::Coolant,
+}
+
+impl AnalysisPrepared {
+    /// Reads the program and lowers every feed above the machine's maximum to it, as the
+    /// machine runs it (the warning goes with the path's).
+    pub fn read_program(&self, program: &ProgramInput) -> Result<Toolpath, ApiError> {
+        let path = read_program(program)?;
+        Ok(match self.max_feed_mm_min {
+            Some(max) => {
+                let (mut capped, warning) = cap_feeds(&path, max);
+                capped.warnings.extend(warning);
+                capped
+            }
+            None => path,
+        })
+    }
 }
 
 /// Checks the request (parsing the program and the stock) and resolves it.
@@ -174,6 +195,7 @@ pub async fn resolve(pool: &SqlitePool, refs: &PathJobRefs<'_>) -> Result<Resolv
         force_model,
         machine: NamedRef { id: machine.id, name: machine.data.name.clone() },
         rapid_mm_min: machine.data.rapid_mm_min,
+        max_feed_mm_min: Some(machine.data.max_feed_mm_min),
         default_spindle_rpm,
         coolant: machine.data.coolant,
     };
@@ -202,7 +224,7 @@ pub fn run(
 
 /// Reads the program and the stock and puts the analysis together.
 pub fn build(request: &AnalysisRequest, prepared: &AnalysisPrepared) -> Result<(Toolpath, AnalysisSpec), ApiError> {
-    let path = read_program(&request.program)?;
+    let path = prepared.read_program(&request.program)?;
     let stock = read_stock(&request.stock)?;
     let spec = AnalysisSpec {
         tool: prepared.tool.geometry.into(),

@@ -2,6 +2,7 @@
 
 use super::analysis::AnalysisPrepared;
 use super::conditions::{NamedRef, ToolRef};
+use crate::core::analysis::outside::{Extent, ForceOverload, OutsideModel};
 use crate::core::analysis::report::{CriticalRegion, HistogramBin, PathPoint, RegionKind, Series, Stats};
 use crate::core::analysis::{Analysis, SliceSummary, Summary};
 use serde::Serialize;
@@ -38,6 +39,104 @@ pub struct SliceDto {
     pub removed_area_mm2: f64,
 }
 
+/// The smallest and largest value of a quantity.
+#[derive(Debug, Clone, Copy, Serialize, ToSchema)]
+pub struct ExtentDto {
+    pub min: f64,
+    pub max: f64,
+}
+
+impl From<Extent> for ExtentDto {
+    fn from(e: Extent) -> Self {
+        ExtentDto { min: e.min, max: e.max }
+    }
+}
+
+/// Where the forces rest on the force model outside its experiments: the
+/// central-composite designs of seed 001 reach a coded radius of √2 (MODEL.md §3). The
+/// forces of those samples, and the tool wear and cost computed from them, are
+/// extrapolations.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct OutsideModelDto {
+    /// Cutting length outside the design region (|X| > √2), mm.
+    pub length_mm: f64,
+    /// That length over the cutting length, 0–1.
+    pub share: f64,
+    /// Largest coded radius |X| = √(X1² + X2²) reached.
+    pub max_coded_radius: f64,
+    /// √2, where the experiments end.
+    pub design_coded_radius: f64,
+    /// Coded chip thickness X1 = (t_m − t0)/δt over the cutting samples.
+    pub x1: ExtentDto,
+    /// Coded arc length X2 = (L − L0)/δL over the cutting samples.
+    pub x2: ExtentDto,
+    /// Chip thickness over the cutting samples, µm.
+    pub t_m_um: ExtentDto,
+    /// The experiments' chip thickness, t0 ± √2·δt, µm.
+    pub design_t_m_um: ExtentDto,
+    /// Engagement arc length over the cutting samples, mm.
+    pub arc_length_mm: ExtentDto,
+    /// The experiments' arc length, L0 ± √2·δL, mm.
+    pub design_arc_length_mm: ExtentDto,
+    /// The sample furthest outside.
+    pub furthest: Option<PathPointDto>,
+}
+
+impl From<OutsideModel> for OutsideModelDto {
+    fn from(o: OutsideModel) -> Self {
+        OutsideModelDto {
+            length_mm: o.length_mm,
+            share: o.share,
+            max_coded_radius: o.max_coded_radius,
+            design_coded_radius: o.design_coded_radius,
+            x1: o.x1.into(),
+            x2: o.x2.into(),
+            t_m_um: o.t_m_um.into(),
+            design_t_m_um: o.design_t_m_um.into(),
+            arc_length_mm: o.arc_length_mm.into(),
+            design_arc_length_mm: o.design_arc_length_mm.into(),
+            furthest: o.furthest.map(Into::into),
+        }
+    }
+}
+
+/// An NC line whose predicted force exceeds the overload threshold.
+#[derive(Debug, Clone, Copy, Serialize, ToSchema)]
+pub struct OverloadLineDto {
+    pub line: u32,
+    pub max_force_n: f64,
+}
+
+/// Where the predicted force exceeds 3 × the tool's standard force F* (the tool may
+/// break there).
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct ForceOverloadDto {
+    /// F*: the force model's force at its design centre, the standard cut, N.
+    pub standard_force_n: f64,
+    /// 3 × F*, N.
+    pub threshold_n: f64,
+    /// Cutting length above the threshold, mm.
+    pub length_mm: f64,
+    pub max_force_n: f64,
+    /// The lines above it, largest force first (at most 20).
+    pub lines: Vec<OverloadLineDto>,
+    /// How many lines are above it in all.
+    pub line_count: usize,
+}
+
+impl From<ForceOverload> for ForceOverloadDto {
+    fn from(o: ForceOverload) -> Self {
+        ForceOverloadDto {
+            standard_force_n: o.standard_force_n,
+            threshold_n: o.threshold_n,
+            length_mm: o.length_mm,
+            max_force_n: o.max_force_n,
+            lines: o.lines.iter().map(|l| OverloadLineDto { line: l.line, max_force_n: l.max_force_n }).collect(),
+            line_count: o.line_count,
+        }
+    }
+}
+
 /// The figures of the whole path.
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct SummaryDto {
@@ -61,6 +160,15 @@ pub struct SummaryDto {
     pub t_m_um: StatsDto,
     /// Predicted XY force, N (null without a force model).
     pub force_n: Option<StatsDto>,
+    /// `true` when some of these forces rest on the force model outside its experiments
+    /// (see `outside_model`): they are extrapolations.
+    pub force_extrapolated: bool,
+    /// Where the forces leave the force model's experimental domain, and how far (null
+    /// without a force model).
+    pub outside_model: Option<OutsideModelDto>,
+    /// Where the predicted force exceeds 3 × the tool's standard force, by line (null
+    /// without a force model).
+    pub force_overload: Option<ForceOverloadDto>,
     /// Cut length per 10° of engagement.
     pub alpha_histogram: Vec<HistogramBinDto>,
     pub alpha_limit_deg: f64,
@@ -200,6 +308,9 @@ pub fn summary(moves: usize, s: Summary, regions: usize) -> SummaryDto {
         alpha_deg: s.alpha_deg.into(),
         t_m_um: s.t_m_um.into(),
         force_n: s.force_n.map(Into::into),
+        force_extrapolated: s.outside_model.as_ref().is_some_and(|o| o.length_mm > 0.0),
+        outside_model: s.outside_model.map(Into::into),
+        force_overload: s.force_overload.map(Into::into),
         alpha_histogram: s
             .alpha_histogram
             .iter()

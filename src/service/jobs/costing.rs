@@ -8,11 +8,11 @@ use super::inputs::{ProgramInput, StockInput};
 use super::store;
 use crate::core::analysis::check;
 use crate::core::conditions::standard_centres;
-use crate::core::costing::cost::{cost, Rates};
-use crate::core::costing::wear::path_wear;
+use crate::core::costing::cost::Rates;
+use crate::core::costing::estimate::{estimate, CostModel};
 use crate::core::drawing::costing_scene::costing_scene;
 use crate::core::drawing::scene::Scene;
-use crate::core::kinematics::{machining_time, MachineLimits, TimeOptions};
+use crate::core::kinematics::MachineLimits;
 use crate::core::progress::Progress;
 use crate::core::tool::ToolType;
 use crate::core::tool_life::ToolLifeModel;
@@ -20,6 +20,7 @@ use crate::core::CoreError;
 use crate::service::error::{excerpt, ApiError, Validator};
 use crate::service::lookup;
 use crate::service::resources::machines::Machine;
+use crate::service::resources::standard_conditions::StandardConditions;
 use serde::{Deserialize, Serialize};
 use sqlx::SqlitePool;
 use utoipa::ToSchema;
@@ -66,6 +67,13 @@ pub struct CostingPrepared {
     pub base: AnalysisPrepared,
     /// The program text when it came from a job.
     pub job_program: Option<String>,
+    #[serde(flatten)]
+    pub cost: CostSetup,
+}
+
+/// The tool life, machine and rates a program is costed with (MODEL.md §9 and §10).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct CostSetup {
     pub tool_life_id: i64,
     pub life_m: f64,
     pub gamma_table: Vec<(f64, f64)>,
@@ -153,6 +161,29 @@ pub async fn prepare(pool: &SqlitePool, request: CostingRequest) -> Result<Costi
         spindle_rpm: request.spindle_rpm,
     };
     let Resolved { prepared: base, standard, .. } = resolve(pool, &refs).await?;
+    let cost = resolve_cost(pool, &base, standard.as_ref(), request.cost_rates_id, request.tool_price).await?;
+    let prepared = CostingPrepared { job_program, cost, base };
+    let checked = prepared.clone();
+    tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
+        let analysis = request.analysis(request.program(&checked)?);
+        let (path, spec) = build(&analysis, &checked.base)?;
+        check(&path, &spec)?;
+        Ok(())
+    })
+    .await
+    .map_err(|e| ApiError::Internal(e.to_string()))??;
+    Ok(prepared)
+}
+
+/// The tool life, standard force, rates, tool price and machine limits a program cut by
+/// the tool of `base` is costed with; errors name the field to change.
+pub async fn resolve_cost(
+    pool: &SqlitePool,
+    base: &AnalysisPrepared,
+    standard: Option<&StandardConditions>,
+    cost_rates_id: Option<i64>,
+    tool_price: Option<f64>,
+) -> Result<CostSetup, ApiError> {
     let life = lookup::tool_life(pool, base.tool.id, base.material.id).await?.ok_or_else(|| {
         ApiError::field(
             "tool_id",
@@ -167,14 +198,12 @@ pub async fn prepare(pool: &SqlitePool, request: CostingRequest) -> Result<Costi
     })?;
     let (t_um, arc_mm) = standard_centres(base.tool.geometry.diameter_mm / 2.0, standard.data.conditions())?;
     let standard_force_n = base.force_model.as_ref().map(|m| m.model.force_n(t_um, arc_mm, m.model.ad_ref_mm));
-    let rates = lookup::cost_rates(pool, request.cost_rates_id).await?;
-    let tool_price = sqlx::query_scalar::<_, Option<f64>>("SELECT price FROM tools WHERE id = ?")
+    let rates = lookup::cost_rates(pool, cost_rates_id).await?;
+    let price = sqlx::query_scalar::<_, Option<f64>>("SELECT price FROM tools WHERE id = ?")
         .bind(base.tool.id)
         .fetch_one(pool)
         .await?;
-    let limits = machine_limits(pool, base.machine.id).await?;
-    let prepared = CostingPrepared {
-        job_program,
+    let setup = CostSetup {
         tool_life_id: life.id,
         life_m: life.data.life_m,
         gamma_table: life.data.gamma_table.iter().map(|g| (g.0, g.1)).collect(),
@@ -184,22 +213,12 @@ pub async fn prepare(pool: &SqlitePool, request: CostingRequest) -> Result<Costi
         standard_force_n,
         cost_rates: NamedRef { id: rates.id, name: rates.data.name.clone() },
         machine_rate_per_hour: rates.data.machine_rate_per_hour,
-        tool_price: request.tool_price.or(tool_price).unwrap_or(rates.data.default_tool_price),
+        tool_price: tool_price.or(price).unwrap_or(rates.data.default_tool_price),
         currency: rates.data.currency.clone(),
-        limits,
-        base,
+        limits: machine_limits(pool, base.machine.id).await?,
     };
-    prepared.life_model().validate()?;
-    let checked = prepared.clone();
-    tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
-        let analysis = request.analysis(request.program(&checked)?);
-        let (path, spec) = build(&analysis, &checked.base)?;
-        check(&path, &spec)?;
-        Ok(())
-    })
-    .await
-    .map_err(|e| ApiError::Internal(e.to_string()))??;
-    Ok(prepared)
+    setup.life_model().validate()?;
+    Ok(setup)
 }
 
 /// The kinematic limits of machine `id` (which must exist); errors name `machine_id`.
@@ -217,7 +236,7 @@ pub async fn machine_limits(pool: &SqlitePool, id: i64) -> Result<MachineLimits,
     Ok(limits)
 }
 
-impl CostingPrepared {
+impl CostSetup {
     fn life_model(&self) -> ToolLifeModel {
         ToolLifeModel {
             life_m: self.life_m,
@@ -236,6 +255,11 @@ impl CostingPrepared {
             currency: self.currency.clone(),
         }
     }
+
+    /// The costing's model.
+    pub fn cost_model(&self) -> CostModel {
+        CostModel { life: self.life_model(), machine: self.limits, rates: self.rates() }
+    }
 }
 
 /// Runs the costing.
@@ -247,9 +271,7 @@ pub fn run(
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
     let analysis = request.analysis(request.program(&prepared).map_err(reread)?);
     let (path, spec) = build(&analysis, &prepared.base).map_err(reread)?;
-    let (report, wear) = path_wear(&path, &spec, &prepared.life_model(), progress)?;
-    let time = machining_time(&path, &prepared.limits, &TimeOptions::default())?;
-    let cost = cost(time.kinematic_min, wear.consumption.ratio, &prepared.rates())?;
-    let scene = costing_scene(&path, &spec, &report, &wear, &time, &cost);
-    Ok((CostingResult::new(prepared, &path, report, wear, time)?, scene))
+    let (report, estimate) = estimate(&path, &spec, &prepared.cost.cost_model(), progress)?;
+    let scene = costing_scene(&path, &spec, &report, &estimate.wear, &estimate.time, &estimate.cost);
+    Ok((CostingResult::new(prepared, &path, report, estimate)?, scene))
 }

@@ -2,10 +2,11 @@
 
 use super::analysis_result::{summary, SummaryDto};
 use super::conditions::{NamedRef, ToolRef};
-use super::costing::CostingPrepared;
+use super::costing::{CostSetup, CostingPrepared};
 use crate::core::analysis::Analysis;
 use crate::core::costing::cost::{cost, Cost};
-use crate::core::costing::wear::{AlphaWear, LineWear, WearReport};
+use crate::core::costing::estimate::Estimate;
+use crate::core::costing::wear::{AlphaWear, LineWear};
 use crate::core::kinematics::MachiningTime;
 use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
@@ -100,6 +101,11 @@ pub struct ToolLifeDto {
     pub standard_life_m: f64,
     /// The machined length one tool lasts at this program's mix of cuts, m.
     pub equivalent_life_m: f64,
+    /// Share of the wear on samples whose force rests on the force model outside its
+    /// experiments (see the analysis' `outside_model`), 0–1.
+    pub extrapolated_share: f64,
+    /// `true` when some of the consumption rests on extrapolated forces.
+    pub extrapolated: bool,
     /// The lines that wear the tool most (at most 20), largest share first.
     pub by_line: Vec<LineWearDto>,
     pub by_alpha: Vec<AlphaWearDto>,
@@ -119,6 +125,26 @@ pub struct CostDto {
     pub currency: String,
     pub machine_rate_per_hour: f64,
     pub tool_price: f64,
+    /// `true` when the tool part rests on wear computed from forces outside the force
+    /// model's experiments: an extrapolation.
+    pub extrapolated: bool,
+}
+
+impl CostDto {
+    /// The cost of `estimate` with the rates of `setup`.
+    pub fn new(setup: &CostSetup, estimate: &Estimate) -> Result<CostDto, CoreError> {
+        let Cost { machine, tool, total, currency } = estimate.cost.clone();
+        Ok(CostDto {
+            machine,
+            machine_at_nominal_time: cost(estimate.time.nominal_min, 0.0, &setup.rates())?.machine,
+            tool,
+            total,
+            currency,
+            machine_rate_per_hour: setup.machine_rate_per_hour,
+            tool_price: setup.tool_price,
+            extrapolated: estimate.wear.extrapolated_share > 0.0,
+        })
+    }
 }
 
 /// The answer of a `costing` job.
@@ -145,15 +171,14 @@ impl CostingResult {
         prepared: CostingPrepared,
         path: &Toolpath,
         analysis: Analysis,
-        wear: WearReport,
-        time: MachiningTime,
+        estimate: Estimate,
     ) -> Result<CostingResult, CoreError> {
+        let (wear, time) = (&estimate.wear, &estimate.time);
         let c = wear.consumption;
-        let Cost { machine, tool, total, currency } = cost(time.kinematic_min, c.ratio, &prepared.rates())?;
-        let machine_at_nominal_time = cost(time.nominal_min, 0.0, &prepared.rates())?.machine;
+        let setup = &prepared.cost;
         let mut warnings = analysis.summary.warnings.clone();
         warnings.extend(time.warnings.iter().cloned());
-        if prepared.standard_force_n.is_none() {
+        if setup.standard_force_n.is_none() {
             warnings.push("no force model: tool wear is not increased for forces above the standard".to_string());
         }
         let removed = analysis.summary.removed_volume_mm3;
@@ -163,16 +188,18 @@ impl CostingResult {
             material: base.material,
             tool: base.tool,
             machine: base.machine,
-            cost_rates: prepared.cost_rates.clone(),
+            cost_rates: setup.cost_rates.clone(),
             force_model_id: base.force_model.map(|f| f.id),
-            time: TimeDto::from(&time),
+            time: TimeDto::from(time),
             tool_life: ToolLifeDto {
-                tool_life_id: prepared.tool_life_id,
+                tool_life_id: setup.tool_life_id,
                 consumption: c.ratio,
                 worn_edge_arc_mm: c.worn_edge_arc_mm,
                 life_edge_arc_mm: c.life_edge_arc_mm,
-                standard_life_m: prepared.life_m,
+                standard_life_m: setup.life_m,
                 equivalent_life_m: c.equivalent_life_m,
+                extrapolated_share: wear.extrapolated_share,
+                extrapolated: wear.extrapolated_share > 0.0,
                 by_line: wear
                     .by_line
                     .iter()
@@ -194,15 +221,7 @@ impl CostingResult {
                     })
                     .collect(),
             },
-            cost: CostDto {
-                machine,
-                machine_at_nominal_time,
-                tool,
-                total,
-                currency,
-                machine_rate_per_hour: prepared.machine_rate_per_hour,
-                tool_price: prepared.tool_price,
-            },
+            cost: CostDto::new(setup, &estimate)?,
             removed_volume_mm3: removed,
             removal_rate_cm3_min: if time.kinematic_min > 0.0 {
                 removed / MM3_PER_CM3 / time.kinematic_min

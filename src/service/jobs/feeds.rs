@@ -3,27 +3,30 @@
 //! both, written back as an NC program.
 
 use super::analysis::{resolve, AnalysisPrepared, PathJobRefs, Resolved};
+use super::costing::{machine_limits, resolve_cost, CostSetup};
 use super::feeds_result::FeedsResult;
-use super::inputs::{read_program, read_stock, ProgramInput, StockInput};
+use super::inputs::{read_stock, ProgramInput, StockInput};
 use super::output::OutputOptions;
 use crate::core::analysis::{check, sample_count, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_ALPHA_LIMIT_DEG};
 use crate::core::conditions::{feed_mm_min, standard_centres};
 use crate::core::drawing::feeds_scene::feeds_scene;
 use crate::core::drawing::scene::Scene;
 use crate::core::feed::blocks::{BlockOptions, DEFAULT_FEED_STEP_MM_MIN, DEFAULT_FEED_TOLERANCE, DEFAULT_MIN_BLOCK_MM};
-use crate::core::feed::plan::{
-    check_sample_count, check_spec, optimize_side_milling, FeedPlan, FeedSpec, DEFAULT_MAX_FEED_CHANGE_PER_MM,
-};
+use crate::core::feed::costed::{optimize_costed, Costed};
+use crate::core::feed::objective::{Objective, ObjectiveSpec};
+use crate::core::feed::plan::{check_sample_count, check_spec, FeedPlan, FeedSpec, DEFAULT_MAX_FEED_CHANGE_PER_MM};
 use crate::core::feed::rule::{FeedRule, FeedStrategy};
 use crate::core::feed::surface::{
     self, optimize_surface_finishing, ContactNormal, SurfaceSpec, DEFAULT_SURFACE_FIT_HALF_WIDTH_MM,
 };
+use crate::core::kinematics::{machining_time, MachineLimits, TimeOptions};
 use crate::core::nc::write_program;
 use crate::core::progress::Progress;
 use crate::core::tool::ToolType;
 use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
+use crate::service::lookup;
 use serde::{Deserialize, Serialize};
 use sqlx::SqlitePool;
 use utoipa::ToSchema;
@@ -83,6 +86,21 @@ pub struct FeedsRequest {
     /// cutting-point rule). Default: `constant_force` for side milling, `cutting_point`
     /// for surface finishing.
     pub strategy: Option<FeedStrategy>,
+    /// What the feeds are chosen for, within the strategy: `min_cost` (default for side
+    /// milling: the cheapest feed per millimetre under the force limit, and never a
+    /// program that costs more than the input), `constant_force` (the papers' rule as
+    /// written: hold the target force, the minimum feed where it cannot be held) or
+    /// `min_time` (the fastest feed under the force limit). Surface finishing takes
+    /// `constant_force` only.
+    pub objective: Option<Objective>,
+    /// The most force min_cost and min_time may ask of the tool, N (default: the target
+    /// force, so both hold the constant force wherever it can be held; raise it to let
+    /// them trade force for cost or time).
+    pub max_force_n: Option<f64>,
+    /// Cost rates of the costs before and after and of min_cost (default: the first).
+    pub cost_rates_id: Option<i64>,
+    /// Price of one tool (default: the tool's price, else the rates' default).
+    pub tool_price: Option<f64>,
     /// Force to hold, N (default: the model's force at the tool's standard straight
     /// conditions, β0).
     pub target_force_n: Option<f64>,
@@ -132,6 +150,25 @@ pub struct FeedsPrepared {
     pub air_feed_mm_min: f64,
     pub max_feed_change_per_mm: Option<f64>,
     pub standard_conditions_id: Option<i64>,
+    /// Jobs stored before objectives existed ran the papers' rule.
+    #[serde(default = "papers_rule")]
+    pub objective: Objective,
+    #[serde(default)]
+    pub max_force_n: Option<f64>,
+    /// The costing's tool life, rates and machine (null: the figures before and after
+    /// have no wear or cost).
+    #[serde(default)]
+    pub cost: Option<CostSetup>,
+    /// The machine's limits for the nominal and kinematic time.
+    #[serde(default)]
+    pub limits: Option<MachineLimits>,
+    /// What the request resolved to that the user should know.
+    #[serde(default)]
+    pub notes: Vec<String>,
+}
+
+fn papers_rule() -> Objective {
+    Objective::ConstantForce
 }
 
 fn validate(request: &FeedsRequest) -> Result<(), ApiError> {
@@ -142,10 +179,14 @@ fn validate(request: &FeedsRequest) -> Result<(), ApiError> {
         ("max_feed_mm_min", request.max_feed_mm_min),
         ("air_feed_mm_min", request.air_feed_mm_min),
         ("spindle_rpm", request.spindle_rpm),
+        ("max_force_n", request.max_force_n),
     ] {
         if let Some(x) = value {
             v.positive(field, x);
         }
+    }
+    if let Some(p) = request.tool_price {
+        v.within("tool_price", p, 0.0, crate::service::resources::tools::MAX_PRICE);
     }
     for (field, value) in [
         ("max_feed_change_per_mm", request.max_feed_change_per_mm),
@@ -183,6 +224,11 @@ fn validate(request: &FeedsRequest) -> Result<(), ApiError> {
                 !(request.contact.is_some() && request.contact_normals.is_some()),
                 "contact",
                 "give contact or contact_normals, not both",
+            );
+            v.check(
+                request.objective.is_none_or(|o| o == Objective::ConstantForce),
+                "objective",
+                "surface finishing holds the programmed feed at the cutting point (seed 000): only constant_force applies; min_cost and min_time need the stock simulation of side milling",
             );
         }
     }
@@ -268,7 +314,44 @@ pub async fn prepare(pool: &SqlitePool, request: FeedsRequest) -> Result<FeedsPr
             Some(model.model.force_n(t_um, l_mm, model.model.ad_ref_mm))
         }
     };
+    let side_milling = request.mode == CutMode::SideMilling;
+    let costable =
+        side_milling && standard.is_some() && lookup::tool_life(pool, base.tool.id, base.material.id).await?.is_some();
+    let cost = match costable {
+        true => Some(resolve_cost(pool, &base, standard.as_ref(), request.cost_rates_id, request.tool_price).await?),
+        false => None,
+    };
+    let mut notes = Vec::new();
+    let objective = match (request.objective, &cost) {
+        (Some(Objective::MinCost), None) if side_milling => {
+            return Err(ApiError::field(
+                "objective",
+                format!(
+                    "min_cost weighs tool wear and needs tool-life data and standard side-cutting conditions for tool {} in {} (add them at /v1/tool-life and /v1/conditions/standard), or choose constant_force or min_time",
+                    base.tool.id, base.material.name
+                ),
+            ))
+        }
+        (Some(o), _) => o,
+        (None, Some(_)) => Objective::MinCost,
+        (None, None) => {
+            if side_milling {
+                notes.push(format!(
+                    "no tool-life data or standard conditions for tool {} in {}: the feeds follow the papers' rule (objective constant_force) and the figures before and after have no wear or cost",
+                    base.tool.id, base.material.name
+                ));
+            }
+            Objective::ConstantForce
+        }
+    };
+    let max_force_n = request.max_force_n.or(target_force_n);
+    let limits = Some(machine_limits(pool, base.machine.id).await?);
     let prepared = FeedsPrepared {
+        objective,
+        max_force_n,
+        cost,
+        limits,
+        notes,
         standard_conditions_id: standard.as_ref().map(|c| c.id),
         strategy,
         target_force_n,
@@ -305,13 +388,14 @@ pub async fn prepare(pool: &SqlitePool, request: FeedsRequest) -> Result<FeedsPr
 struct Built {
     path: Toolpath,
     spec: FeedSpec,
+    objective: ObjectiveSpec,
     analysis: Option<AnalysisSpec>,
     surface: Option<SurfaceSpec>,
 }
 
 fn build(request: &FeedsRequest, prepared: &FeedsPrepared) -> Result<Built, ApiError> {
-    let path = read_program(&request.program)?;
     let base = &prepared.base;
+    let path = base.read_program(&request.program)?;
     let tool: crate::core::tool::EndMill = base.tool.geometry.into();
     let spec = FeedSpec {
         rule: FeedRule {
@@ -366,7 +450,12 @@ fn build(request: &FeedsRequest, prepared: &FeedsPrepared) -> Result<Built, ApiE
             (None, Some(surface))
         }
     };
-    Ok(Built { path, spec, analysis, surface })
+    let objective = ObjectiveSpec {
+        objective: prepared.objective,
+        max_force_n: prepared.max_force_n.unwrap_or(f64::INFINITY),
+        cost: prepared.cost.as_ref().map(CostSetup::cost_model),
+    };
+    Ok(Built { path, spec, objective, analysis, surface })
 }
 
 /// Runs the optimisation and writes the program.
@@ -377,13 +466,23 @@ pub fn run(
 ) -> Result<(FeedsResult, String, Scene), CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
     let job = build(&request, &prepared).map_err(reread)?;
-    let plan: FeedPlan = match (&job.analysis, &job.surface) {
-        (Some(analysis), _) => optimize_side_milling(&job.path, analysis, &job.spec, progress)?,
-        (None, Some(surface)) => optimize_surface_finishing(&job.path, surface, &job.spec, progress)?,
+    let (plan, costed): (FeedPlan, Option<Costed>) = match (&job.analysis, &job.surface) {
+        (Some(analysis), _) => optimize_costed(&job.path, analysis, &job.spec, job.objective.clone(), progress)?,
+        (None, Some(surface)) => (optimize_surface_finishing(&job.path, surface, &job.spec, progress)?, None),
         (None, None) => return Err(CoreError::invalid("mode", "nothing to optimise")),
     };
     let options = request.output.to_writer(&prepared.base);
     let program = write_program(&plan.path, &options);
     let scene = feeds_scene(&job.path, &plan, job.analysis.as_ref());
-    Ok((FeedsResult::new(prepared, request.mode, job.path.moves.len(), &program, plan), program, scene))
+    let times = match (&costed, &prepared.limits) {
+        (Some(c), _) => Some((c.before.time.clone(), c.after.time.clone())),
+        (None, Some(limits)) => {
+            let time = |p: &Toolpath| machining_time(p, limits, &TimeOptions::default());
+            Some((time(&job.path)?, time(&plan.path)?))
+        }
+        (None, None) => None,
+    };
+    let moves_in = job.path.moves.len();
+    let result = FeedsResult::new(prepared, request.mode, moves_in, &program, plan, costed, times)?;
+    Ok((result, program, scene))
 }

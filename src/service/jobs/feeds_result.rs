@@ -1,16 +1,27 @@
 //! The answer of a `feeds` job, as the API documents it.
 
-use super::analysis_result::{summary, CriticalRegionDto, PathPointDto, StatsDto, SummaryDto};
+use super::analysis_result::{
+    summary, CriticalRegionDto, ForceOverloadDto, OutsideModelDto, PathPointDto, StatsDto, SummaryDto,
+};
 use super::conditions::{NamedRef, ToolRef};
+use super::costing::CostSetup;
+use super::costing_result::CostDto;
 use super::feeds::{CutMode, FeedsPrepared};
+use crate::core::analysis::Analysis;
+use crate::core::costing::estimate::Estimate;
 use crate::core::feed::collect::{ReasonLengths, Shortfall, ShortfallKind};
+use crate::core::feed::costed::Costed;
+use crate::core::feed::objective::Objective;
 use crate::core::feed::plan::{FeedPlan, Figures};
 use crate::core::feed::rule::FeedStrategy;
+use crate::core::kinematics::MachiningTime;
+use crate::core::CoreError;
 use serde::Serialize;
 use utoipa::ToSchema;
 
-/// Figures of a program.
-#[derive(Debug, Clone, Copy, Serialize, ToSchema)]
+/// Figures of a program: the optimiser's, and the costing's for the same tool, machine
+/// and cost rates (the costing job gives the same numbers for the same program).
+#[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct FiguresDto {
     /// Predicted XY force over the cutting samples, N (null without a force model).
     pub force_n: Option<StatsDto>,
@@ -18,11 +29,52 @@ pub struct FiguresDto {
     pub feed_mm_min: StatsDto,
     /// Feed moves at their feeds plus rapids at the machine's rapid rate, min.
     pub time_min: f64,
+    /// The costing's nominal time (feeds, rapids, tool changes, dwells), min.
+    pub nominal_time_min: Option<f64>,
+    /// The costing's kinematic time (the machine's feed, acceleration and jerk limits),
+    /// min: the time of the cost.
+    pub kinematic_time_min: Option<f64>,
+    /// Share of one tool's life the program uses, L_t/L_f (MODEL.md §9; null where the
+    /// costing cannot run: surface finishing, no tool-life data).
+    pub consumption: Option<f64>,
+    /// The costing's cost, `C = c_m·T_m + c_t·L_t/L_f` (seed 002 Eq. 4).
+    pub cost: Option<CostDto>,
+    /// Where this program's forces leave the force model's experiments (null when not
+    /// simulated or without a force model).
+    pub outside_model: Option<OutsideModelDto>,
+    /// Where this program's predicted force exceeds 3 × the standard force, by line.
+    pub force_overload: Option<ForceOverloadDto>,
+    /// `true` when force, consumption or cost rest on forces outside the force model's
+    /// experiments: extrapolations.
+    pub extrapolated: bool,
 }
 
-impl From<Figures> for FiguresDto {
-    fn from(f: Figures) -> Self {
-        FiguresDto { force_n: f.force_n.map(Into::into), feed_mm_min: f.feed_mm_min.into(), time_min: f.time_min }
+impl FiguresDto {
+    fn new(
+        f: Figures,
+        time: Option<&MachiningTime>,
+        estimate: Option<(&CostSetup, &Estimate)>,
+        analysis: Option<&Analysis>,
+    ) -> Result<Self, CoreError> {
+        let s = analysis.map(|a| &a.summary);
+        let outside = s.and_then(|s| s.outside_model.clone());
+        let force_extrapolated = outside.as_ref().is_some_and(|o| o.length_mm > 0.0);
+        let wear_extrapolated = estimate.is_some_and(|(_, e)| e.wear.extrapolated_share > 0.0);
+        // The simulation's forces where the program was simulated (the optimiser's
+        // prediction otherwise).
+        let force_n = s.map_or(f.force_n, |s| s.force_n);
+        Ok(FiguresDto {
+            force_n: force_n.map(Into::into),
+            feed_mm_min: f.feed_mm_min.into(),
+            time_min: f.time_min,
+            nominal_time_min: time.map(|t| t.nominal_min),
+            kinematic_time_min: time.map(|t| t.kinematic_min),
+            consumption: estimate.map(|(_, e)| e.wear.consumption.ratio),
+            cost: estimate.map(|(setup, e)| CostDto::new(setup, e)).transpose()?,
+            outside_model: outside.map(Into::into),
+            force_overload: s.and_then(|s| s.force_overload.clone()).map(Into::into),
+            extrapolated: force_extrapolated || wear_extrapolated,
+        })
     }
 }
 
@@ -45,7 +97,8 @@ pub struct ReasonLengthsDto {
     pub clamped_max_mm: f64,
     /// Raised to the minimum feed: the force stays above the target.
     pub clamped_min_mm: f64,
-    /// No feed reaches the target (needs a trochoid or a z-cut division).
+    /// No feed reaches the target (constant_force: needs a trochoid or a z-cut
+    /// division), or none keeps the force under the limit (min_cost, min_time).
     pub infeasible_mm: f64,
     /// Feed moves in the air, at the air-cut feed.
     pub air_mm: f64,
@@ -107,13 +160,25 @@ pub struct FeedsResult {
     pub standard_conditions_id: Option<i64>,
     pub mode: CutMode,
     pub strategy: FeedStrategy,
+    /// What the feeds were chosen for.
+    pub objective: Objective,
     /// The force held, N (null for cutting_point).
     pub target_force_n: Option<f64>,
+    /// The most force min_cost and min_time may ask of the tool, N.
+    pub max_force_n: Option<f64>,
     pub limits: LimitsDto,
+    /// The cost rates of the costs (null where there are no costs).
+    pub cost_rates: Option<NamedRef>,
     /// The input program at its programmed feeds.
     pub before: FiguresDto,
     /// The optimised program.
     pub after: FiguresDto,
+    /// min_cost found every new feed dearer than the program's own and returned it
+    /// unchanged.
+    pub kept_input: bool,
+    /// Moves that keep their programmed feed because the new feeds would cost more
+    /// (min_cost).
+    pub kept_moves: usize,
     pub lengths: ReasonLengthsDto,
     pub shortfalls: Vec<ShortfallDto>,
     /// The analysis of the input path (side milling).
@@ -125,7 +190,35 @@ pub struct FeedsResult {
 }
 
 impl FeedsResult {
-    pub fn new(prepared: FeedsPrepared, mode: CutMode, moves_in: usize, program: &str, plan: FeedPlan) -> Self {
+    pub fn new(
+        prepared: FeedsPrepared,
+        mode: CutMode,
+        moves_in: usize,
+        program: &str,
+        plan: FeedPlan,
+        costed: Option<Costed>,
+        times: Option<(MachiningTime, MachiningTime)>,
+    ) -> Result<Self, CoreError> {
+        let setup = prepared.cost.as_ref();
+        let before = FiguresDto::new(
+            plan.before,
+            times.as_ref().map(|t| &t.0),
+            setup.zip(costed.as_ref().map(|c| &c.before)),
+            plan.analysis.as_ref(),
+        )?;
+        let after = FiguresDto::new(
+            plan.after,
+            times.as_ref().map(|t| &t.1),
+            setup.zip(costed.as_ref().map(|c| &c.after)),
+            costed.as_ref().and_then(|c| c.after_analysis.as_ref()),
+        )?;
+        let kept_input = costed.as_ref().is_some_and(|c| c.kept_input);
+        let mut warnings = prepared.notes.clone();
+        warnings.extend(plan.warnings.iter().cloned());
+        if let Some(a) = costed.as_ref().and_then(|c| c.after_analysis.as_ref()).filter(|_| !kept_input) {
+            let overload = a.summary.force_overload.as_ref().and_then(|o| o.warning());
+            warnings.extend(overload.map(|w| format!("after: {w}")));
+        }
         let ReasonLengths { target_mm, clamped_max_mm, clamped_min_mm, infeasible_mm, air_mm, kept_mm } = plan.lengths;
         let mut blocks = BlocksDto::default();
         for b in &plan.blocks {
@@ -142,7 +235,7 @@ impl FeedsResult {
             None => (None, vec![]),
         };
         let base = prepared.base;
-        FeedsResult {
+        Ok(FeedsResult {
             material: base.material,
             tool: base.tool,
             machine: base.machine,
@@ -150,15 +243,20 @@ impl FeedsResult {
             standard_conditions_id: prepared.standard_conditions_id,
             mode,
             strategy: prepared.strategy,
+            objective: prepared.objective,
             target_force_n: prepared.target_force_n,
+            max_force_n: prepared.max_force_n.filter(|_| prepared.strategy.needs_force_model()),
+            cost_rates: prepared.cost.map(|c| c.cost_rates),
             limits: LimitsDto {
                 min_feed_mm_min: prepared.min_feed_mm_min,
                 max_feed_mm_min: prepared.max_feed_mm_min,
                 air_feed_mm_min: prepared.air_feed_mm_min,
                 max_feed_change_per_mm: prepared.max_feed_change_per_mm,
             },
-            before: plan.before.into(),
-            after: plan.after.into(),
+            before,
+            after,
+            kept_input,
+            kept_moves: plan.kept_moves,
             lengths: ReasonLengthsDto {
                 target_mm,
                 clamped_max_mm,
@@ -178,7 +276,7 @@ impl FeedsResult {
                 bytes: program.len(),
             },
             blocks,
-            warnings: plan.warnings,
-        }
+            warnings,
+        })
     }
 }
