@@ -3,20 +3,19 @@
 
 use dieplan::core::analysis::{analyze, AnalysisSpec, StockRegion, DEFAULT_ALPHA_LIMIT_DEG};
 use dieplan::core::feed::blocks::BlockOptions;
+use dieplan::core::feed::edit::edit_feeds;
 use dieplan::core::feed::plan::{optimize_side_milling, FeedSpec, DEFAULT_MAX_FEED_CHANGE_PER_MM};
 use dieplan::core::feed::rule::{FeedRule, FeedStrategy};
 use dieplan::core::force_model::{Coefficients, ForceModel};
-use dieplan::core::nc::{parse_gcode, write_program, ParseOptions, WriterOptions};
+use dieplan::core::nc::{interpret, parse_gcode, write_program, Interpreted, ParseOptions, WriterOptions};
 use dieplan::core::progress::NoProgress;
 use dieplan::core::stock::Rect;
 use dieplan::core::tool::{EndMill, ToolType};
-use dieplan::core::toolpath::Toolpath;
 use std::time::Instant;
 
-fn data(name: &str) -> Toolpath {
+fn data(name: &str) -> String {
     let path = format!("{}/../shared/data/{name}", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    parse_gcode(&text, &ParseOptions::default()).expect("parses")
+    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
 }
 
 fn analysis_spec(tool: EndMill, stock: Rect, z_bottom: f64, model: Option<ForceModel>) -> AnalysisSpec {
@@ -53,7 +52,14 @@ fn feed_spec(strategy: FeedStrategy, model: Option<ForceModel>, flutes: u32, sta
     }
 }
 
-fn run(label: &str, path: &Toolpath, analysis: &AnalysisSpec, spec: &FeedSpec) {
+fn run(label: &str, text: &str, analysis: &AnalysisSpec, spec: &FeedSpec) {
+    let start = Instant::now();
+    let path = &parse_gcode(text, &ParseOptions::default()).expect("parses");
+    let parsing = start.elapsed().as_secs_f64();
+    let start = Instant::now();
+    let Interpreted { path: mapped, map } = interpret(text, &ParseOptions::default()).expect("parses");
+    let interpreting = start.elapsed().as_secs_f64();
+    assert_eq!(mapped.moves.len(), path.moves.len());
     let start = Instant::now();
     let a = analyze(path, analysis, &NoProgress).expect("analyses");
     let simulation = start.elapsed().as_secs_f64();
@@ -63,6 +69,21 @@ fn run(label: &str, path: &Toolpath, analysis: &AnalysisSpec, spec: &FeedSpec) {
     let start = Instant::now();
     let program = write_program(&plan.path, &WriterOptions::default());
     let writing = start.elapsed().as_secs_f64();
+    let start = Instant::now();
+    let edited = edit_feeds(text, path, &map, &plan.pieces);
+    let editing = start.elapsed().as_secs_f64();
+    let mb = text.len() as f64 / 1e6;
+    println!(
+        "feeds {label}: input {mb:.2} MB read in {:.1} ms ({:.0} MB/s), with the line map in {:.1} ms ({:.0} MB/s); edited in place in {:.1} ms ({:.0} MB/s of input): {} lines changed, {} split",
+        parsing * 1e3,
+        mb / parsing,
+        interpreting * 1e3,
+        mb / interpreting,
+        editing * 1e3,
+        mb / editing,
+        edited.changes.len(),
+        edited.split_blocks,
+    );
     println!(
         "feeds {label}: {} samples; simulation alone {:.2} s, simulation + optimisation {:.2} s (optimiser {:+.2} s = {:.0} %); {} moves → {} blocks; program {:.2} MB written in {:.1} ms ({:.0} MB/s); time {:.2} → {:.2} min",
         a.summary.samples,

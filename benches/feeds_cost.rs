@@ -50,7 +50,7 @@ struct Tool {
 fn seeded(diameter_mm: f64, standard: [f64; 4], price: f64, row: [f64; 9]) -> Tool {
     let [t0_um, dt_um, l0_mm, dl_mm, b0, b1, b2, b22, b12] = row;
     let coefficients = Coefficients { b0, b1, b2, b11: 0.0, b22, b12 };
-    let model = ForceModel { t0_um, dt_um, l0_mm, dl_mm, coefficients, ad_ref_mm: diameter_mm };
+    let model = ForceModel { t0_um, dt_um, l0_mm, dl_mm, coefficients, ad_ref_mm: diameter_mm, corner_radius_mm: 0.0 };
     let [spindle_rpm, fz_mm, fz_min_mm, rd_mm] = standard;
     Tool { diameter_mm, flutes: 6, spindle_rpm, fz_mm, fz_min_mm, rd_mm, price, model: Some(model) }
 }

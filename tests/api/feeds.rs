@@ -75,8 +75,21 @@ async fn a_concave_arc_of_r_over_r_2_is_cut_at_the_constant_force_feed_of_model_
     assert!(!r["shortfalls"].as_array().unwrap().is_empty(), "the head-on entry cannot hold the target: {r}");
 
     let (text, path) = program(&app, &a.body).await;
-    assert!(text.starts_with("%\nO0001 ("), "{text}");
+    // The program sent comes back edited: its own lines, only F words changed, the
+    // circle split where its feed changes, and every changed line listed.
+    assert!(text.starts_with("%\nO0100 (R/r 2)\nG21 G90 G17\nT1 M6\nS9600 M3\n"), "{text}");
+    assert!(text.ends_with("G0 Z5\nM30\n%\n"), "{text}");
     assert_eq!(path.moves.len(), r["program"]["moves_out"].as_u64().unwrap() as usize);
+    let changes = r["edit"]["changed_lines"].as_array().unwrap();
+    assert!(changes.iter().any(|c| c["line"] == 9 && c["after"].as_str().unwrap().contains('\n')), "{changes:?}");
+    assert!(r["edit"]["split_blocks"].as_u64().unwrap() >= 1);
+    for (k, line) in CONCAVE_CIRCLE.lines().enumerate() {
+        let changed = changes.iter().find(|c| c["line"] == k as u64 + 1);
+        match changed {
+            Some(c) => assert_eq!(c["before"], line),
+            None => assert!(text.contains(&format!("{line}\n")), "line {} is kept: {line}", k + 1),
+        }
+    }
     let arcs = path.moves.iter().filter(|m| matches!(m.motion, Motion::Arc { .. })).count();
     assert!(arcs >= 2, "the circle is split into arcs, not lines:\n{text}");
     let input = parse_gcode(CONCAVE_CIRCLE, &ParseOptions::default()).unwrap();
@@ -93,18 +106,39 @@ async fn a_concave_arc_of_r_over_r_2_is_cut_at_the_constant_force_feed_of_model_
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn the_linuxcnc_dialect_with_line_numbers_reads_back_and_the_same_input_gives_the_same_bytes() {
+async fn json_moves_are_written_in_the_asked_dialect_and_the_same_input_gives_the_same_bytes() {
     let app = TestApp::start().await;
     let mut body = concave_request();
+    body["program"] = json!({"moves": {"start": {"x": 0, "y": 0, "z": 5}, "spindle_rpm": 9600, "tool": 1, "moves": [
+        {"type": "linear", "z": -10, "f": 1000},
+        {"type": "linear", "x": 5, "f": 5760},
+        {"type": "arc", "x": 5, "y": 0, "center": {"x": 0, "y": 0}, "clockwise": false},
+        {"type": "rapid", "z": 5}
+    ]}});
     body["strategy"] = json!("both");
     body["output"] = json!({"dialect": "linux_cnc", "line_numbers": {"start": 100, "step": 5}, "title": "corner test"});
     let first = app.post_wait("/v1/feeds", body.clone()).await;
     let second = app.post_wait("/v1/feeds", body).await;
+    assert_eq!(first.body["status"], "succeeded", "{}", first.text);
     let (a, path) = program(&app, &first.body).await;
     let (b, _) = program(&app, &second.body).await;
     assert_eq!(a, b);
     assert!(!a.contains('%') && a.contains("N100 ") && a.trim_end().ends_with("M2"), "{a}");
     assert!(path.moves.len() > 3);
+    assert!(first.body["result"]["edit"].is_null());
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn g_code_keeps_its_own_dialect_and_output_options_only_warn() {
+    let app = TestApp::start().await;
+    let mut body = concave_request();
+    body["output"] = json!({"dialect": "linux_cnc", "line_numbers": {"start": 100}});
+    let a = app.post_wait("/v1/feeds", body).await;
+    let (text, _) = program(&app, &a.body).await;
+    assert!(text.starts_with("%\nO0100") && !text.contains("N100"), "{text}");
+    let warnings = a.body["result"]["warnings"].as_array().unwrap();
+    assert!(warnings.iter().any(|w| w.as_str().unwrap().contains("output options")), "{warnings:?}");
     app.stop().await;
 }
 

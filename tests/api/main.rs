@@ -15,6 +15,7 @@ mod errors;
 mod feeds;
 mod fit;
 mod jobs;
+mod nc_programs;
 mod openapi;
 mod plans;
 mod programs;

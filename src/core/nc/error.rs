@@ -91,7 +91,8 @@ pub(crate) struct Diagnostics {
 impl Diagnostics {
     /// Records an error (dropped once [`MAX_NC_ERRORS`] are recorded).
     pub fn error(&mut self, error: NcError) {
-        if self.errors.len() < MAX_NC_ERRORS {
+        // A line in a loop or a subprogram fails the same way each time it runs: once.
+        if self.errors.len() < MAX_NC_ERRORS && !self.errors.contains(&error) {
             self.errors.push(error);
         }
     }

@@ -69,7 +69,7 @@ pub use map::{Affine, ArcFormat, FeedMode, LineMotion, LineRecord, MotionContext
 pub use options::{
     ArcTolerance, Control, ToolEntry, ARC_TOLERANCE_ABSOLUTE_INCH, ARC_TOLERANCE_ABSOLUTE_MM,
     ARC_TOLERANCE_MAXIMUM_INCH, ARC_TOLERANCE_MAXIMUM_MM, ARC_TOLERANCE_RELATIVE, DEFAULT_MAX_CALL_DEPTH,
-    DEFAULT_MAX_LOOP_ITERATIONS,
+    DEFAULT_MAX_LOOP_ITERATIONS, RETRACT_CLEARANCE_MM,
 };
 pub use parse::{interpret, parse_gcode, Interpreted};
 pub use report::MAX_QUOTED_WORD_CHARS;

@@ -76,6 +76,10 @@ impl ArcTolerance {
     }
 }
 
+/// How far above the stock G53, G28 and G30 retract by default, mm (**assumed**: the
+/// clearance the planners keep above the stock).
+pub const RETRACT_CLEARANCE_MM: f64 = 5.0;
+
 /// Most times a program's loops may repeat, all loops together, by default.
 pub const DEFAULT_MAX_LOOP_ITERATIONS: u64 = 1_000_000;
 

@@ -3,7 +3,8 @@
 
 use super::analysis_result::AnalysisResult;
 use super::conditions::{ForceModelRef, NamedRef, ToolRef};
-use super::inputs::{read_program, read_stock, ProgramInput, StockInput};
+use super::inputs::{read_stock, StockInput};
+use super::program_input::{read_program, ProgramContext, ProgramInput, ReadProgram};
 use crate::core::analysis::feed_cap::cap_feeds;
 use crate::core::analysis::sampling::move_length;
 use crate::core::analysis::{
@@ -81,15 +82,16 @@ pub struct AnalysisPrepared {
 impl AnalysisPrepared {
     /// Reads the program and lowers every feed above the machine's maximum to it, as the
     /// machine runs it (the warning goes with the path's).
-    pub fn read_program(&self, program: &ProgramInput) -> Result<Toolpath, ApiError> {
-        let path = read_program(program)?;
+    pub fn read_program(&self, program: &ProgramInput, stock_top_mm: Option<f64>) -> Result<ReadProgram, ApiError> {
+        let context = ProgramContext { tool_radius_mm: Some(self.tool.geometry.diameter_mm / 2.0), stock_top_mm };
+        let read = read_program(program, context)?;
         Ok(match self.max_feed_mm_min {
             Some(max) => {
-                let (mut capped, warning) = cap_feeds(&path, max);
+                let (mut capped, warning) = cap_feeds(&read.path, max);
                 capped.warnings.extend(warning);
-                capped
+                ReadProgram { path: capped, ..read }
             }
-            None => path,
+            None => read,
         })
     }
 }
@@ -224,8 +226,8 @@ pub fn run(
 
 /// Reads the program and the stock and puts the analysis together.
 pub fn build(request: &AnalysisRequest, prepared: &AnalysisPrepared) -> Result<(Toolpath, AnalysisSpec), ApiError> {
-    let path = prepared.read_program(&request.program)?;
     let stock = read_stock(&request.stock)?;
+    let path = prepared.read_program(&request.program, Some(stock.z_top))?.path;
     let spec = AnalysisSpec {
         tool: prepared.tool.geometry.into(),
         stock: stock.regions,

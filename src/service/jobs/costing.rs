@@ -4,7 +4,8 @@
 use super::analysis::{build, resolve, AnalysisPrepared, AnalysisRequest, PathJobRefs, Resolved};
 use super::conditions::NamedRef;
 use super::costing_result::CostingResult;
-use super::inputs::{ProgramInput, StockInput};
+use super::inputs::StockInput;
+use super::program_input::ProgramInput;
 use super::store;
 use crate::core::analysis::check;
 use crate::core::conditions::standard_centres;
@@ -67,6 +68,10 @@ pub struct CostingPrepared {
     pub base: AnalysisPrepared,
     /// The program text when it came from a job.
     pub job_program: Option<String>,
+    /// How that job read its own program (its control, tool table, arc tolerance…), so
+    /// that the program it wrote is read the same way (absent in jobs stored before).
+    #[serde(default)]
+    pub job_program_options: Option<ProgramInput>,
     #[serde(flatten)]
     pub cost: CostSetup,
 }
@@ -112,12 +117,7 @@ impl CostingRequest {
     fn program(&self, prepared: &CostingPrepared) -> Result<ProgramInput, ApiError> {
         match (&self.program, &prepared.job_program) {
             (Some(p), None) => Ok(p.clone()),
-            (None, Some(text)) => Ok(ProgramInput {
-                gcode: Some(text.clone()),
-                moves: None,
-                unknown_words: Default::default(),
-                canned_cycles: Default::default(),
-            }),
+            (None, Some(text)) => Ok(ProgramInput::of_text(text.clone(), prepared.job_program_options.as_ref())),
             _ => Err(ApiError::field("program", "give exactly one of program and job_id")),
         }
     }
@@ -140,16 +140,18 @@ pub async fn prepare(pool: &SqlitePool, request: CostingRequest) -> Result<Costi
         }
     }
     v.finish()?;
-    let job_program = match &request.job_id {
+    let (job_program, job_program_options) = match &request.job_id {
         Some(id) => {
             let row = store::get(pool, id)
                 .await
                 .map_err(|_| ApiError::field("job_id", format!("no job with id {}", excerpt(id))))?;
-            Some(row.program.ok_or_else(|| {
+            let options = ProgramInput::options_of_job_input(&row.input);
+            let text = row.program.ok_or_else(|| {
                 ApiError::field("job_id", format!("job {id} ({}, {}) has no NC program", row.kind, row.status))
-            })?)
+            })?;
+            (Some(text), options)
         }
-        None => None,
+        None => (None, None),
     };
     let refs = PathJobRefs {
         tool_id: request.tool_id,
@@ -162,7 +164,7 @@ pub async fn prepare(pool: &SqlitePool, request: CostingRequest) -> Result<Costi
     };
     let Resolved { prepared: base, standard, .. } = resolve(pool, &refs).await?;
     let cost = resolve_cost(pool, &base, standard.as_ref(), request.cost_rates_id, request.tool_price).await?;
-    let prepared = CostingPrepared { job_program, cost, base };
+    let prepared = CostingPrepared { job_program, job_program_options, cost, base };
     let checked = prepared.clone();
     tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
         let analysis = request.analysis(request.program(&checked)?);

@@ -5,14 +5,16 @@
 use super::analysis::{resolve, AnalysisPrepared, PathJobRefs, Resolved};
 use super::costing::{machine_limits, resolve_cost, CostSetup};
 use super::feeds_result::FeedsResult;
-use super::inputs::{read_stock, ProgramInput, StockInput};
+use super::inputs::{read_stock, StockInput};
 use super::output::OutputOptions;
+use super::program_input::ProgramInput;
 use crate::core::analysis::{check, sample_count, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_ALPHA_LIMIT_DEG};
 use crate::core::conditions::{feed_mm_min, standard_centres};
 use crate::core::drawing::feeds_scene::feeds_scene;
 use crate::core::drawing::scene::Scene;
 use crate::core::feed::blocks::{BlockOptions, DEFAULT_FEED_STEP_MM_MIN, DEFAULT_FEED_TOLERANCE, DEFAULT_MIN_BLOCK_MM};
 use crate::core::feed::costed::{optimize_costed, Costed};
+use crate::core::feed::edit::edit_feeds;
 use crate::core::feed::objective::{Objective, ObjectiveSpec};
 use crate::core::feed::plan::{check_sample_count, check_spec, FeedPlan, FeedSpec, DEFAULT_MAX_FEED_CHANGE_PER_MM};
 use crate::core::feed::rule::{FeedRule, FeedStrategy};
@@ -20,7 +22,7 @@ use crate::core::feed::surface::{
     self, optimize_surface_finishing, ContactNormal, SurfaceSpec, DEFAULT_SURFACE_FIT_HALF_WIDTH_MM,
 };
 use crate::core::kinematics::{machining_time, MachineLimits, TimeOptions};
-use crate::core::nc::write_program;
+use crate::core::nc::{write_program, ProgramMap};
 use crate::core::progress::Progress;
 use crate::core::tool::ToolType;
 use crate::core::toolpath::Toolpath;
@@ -387,6 +389,8 @@ pub async fn prepare(pool: &SqlitePool, request: FeedsRequest) -> Result<FeedsPr
 /// A feeds job ready to run.
 struct Built {
     path: Toolpath,
+    /// How each line of G-code input ran (none for JSON moves).
+    map: Option<ProgramMap>,
     spec: FeedSpec,
     objective: ObjectiveSpec,
     analysis: Option<AnalysisSpec>,
@@ -395,7 +399,12 @@ struct Built {
 
 fn build(request: &FeedsRequest, prepared: &FeedsPrepared) -> Result<Built, ApiError> {
     let base = &prepared.base;
-    let path = base.read_program(&request.program)?;
+    let stock_top = match (request.mode, &request.stock) {
+        (CutMode::SideMilling, Some(stock)) => Some(read_stock(stock)?.z_top),
+        _ => None,
+    };
+    let read = base.read_program(&request.program, stock_top)?;
+    let (path, map) = (read.path, read.map);
     let tool: crate::core::tool::EndMill = base.tool.geometry.into();
     let spec = FeedSpec {
         rule: FeedRule {
@@ -455,7 +464,7 @@ fn build(request: &FeedsRequest, prepared: &FeedsPrepared) -> Result<Built, ApiE
         max_force_n: prepared.max_force_n.unwrap_or(f64::INFINITY),
         cost: prepared.cost.as_ref().map(CostSetup::cost_model),
     };
-    Ok(Built { path, spec, objective, analysis, surface })
+    Ok(Built { path, map, spec, objective, analysis, surface })
 }
 
 /// Runs the optimisation and writes the program.
@@ -471,8 +480,14 @@ pub fn run(
         (None, Some(surface)) => (optimize_surface_finishing(&job.path, surface, &job.spec, progress)?, None),
         (None, None) => return Err(CoreError::invalid("mode", "nothing to optimise")),
     };
-    let options = request.output.to_writer(&prepared.base);
-    let program = write_program(&plan.path, &options);
+    // G-code is edited (only its F words change); JSON moves are written anew.
+    let (program, edit) = match (&request.program.gcode, &job.map) {
+        (Some(text), Some(map)) => {
+            let edited = edit_feeds(text, &job.path, map, &plan.pieces);
+            (edited.text.clone(), Some(edited))
+        }
+        _ => (write_program(&plan.path, &request.output.to_writer(&prepared.base)), None),
+    };
     let scene = feeds_scene(&job.path, &plan, job.analysis.as_ref());
     let times = match (&costed, &prepared.limits) {
         (Some(c), _) => Some((c.before.time.clone(), c.after.time.clone())),
@@ -483,6 +498,16 @@ pub fn run(
         (None, None) => None,
     };
     let moves_in = job.path.moves.len();
-    let result = FeedsResult::new(prepared, request.mode, moves_in, &program, plan, costed, times)?;
+    let mut result = FeedsResult::new(prepared, request.mode, moves_in, &program, plan, costed, times)?;
+    if let Some(edited) = edit {
+        if request.output.is_set() {
+            result.warnings.push(
+                "the output options apply to programs written from JSON moves: the G-code sent keeps its own dialect, numbering and header, only its F words change"
+                    .to_string(),
+            );
+        }
+        result.warnings.extend(edited.warnings.iter().cloned());
+        result.edit = Some(edited.into());
+    }
     Ok((result, program, scene))
 }

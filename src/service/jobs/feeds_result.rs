@@ -185,8 +185,42 @@ pub struct FeedsResult {
     pub analysis: Option<SummaryDto>,
     pub critical_regions: Vec<CriticalRegionDto>,
     pub program: ProgramInfoDto,
+    /// How the G-code sent was edited: only its F words changed, blocks split where the
+    /// feed changes inside them (null for JSON moves, whose program is written anew).
+    pub edit: Option<EditDto>,
     pub blocks: BlocksDto,
     pub warnings: Vec<String>,
+}
+
+/// The lines of the input program that the feed optimisation changed.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct EditDto {
+    /// Every changed line, in order: its 1-based number in the input, the line as it was
+    /// and as it is now (several lines where the block was split).
+    pub changed_lines: Vec<ChangedLineDto>,
+    /// Blocks split into several.
+    pub split_blocks: u32,
+}
+
+/// One changed line.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct ChangedLineDto {
+    pub line: u32,
+    pub before: String,
+    pub after: String,
+}
+
+impl From<crate::core::feed::edit::Edited> for EditDto {
+    fn from(e: crate::core::feed::edit::Edited) -> Self {
+        EditDto {
+            changed_lines: e
+                .changes
+                .into_iter()
+                .map(|c| ChangedLineDto { line: c.line, before: c.before, after: c.after })
+                .collect(),
+            split_blocks: e.split_blocks,
+        }
+    }
 }
 
 impl FeedsResult {
@@ -275,6 +309,7 @@ impl FeedsResult {
                 lines: program.lines().count(),
                 bytes: program.len(),
             },
+            edit: None,
             blocks,
             warnings,
         })

@@ -1,91 +1,13 @@
-//! Request parts shared by the planning jobs: the NC program and the stock of a layer,
-//! turned into the core's tool path and stock regions with field-named errors.
+//! Request parts shared by the planning jobs: the stock of a layer and pocket contours,
+//! turned into the core's stock regions with field-named errors (the NC program is in
+//! `program_input.rs`).
 
 use crate::core::analysis::StockRegion;
 use crate::core::geometry::{loops_from_dxf, pocket_from_loops, Loop, Pocket, Vertex};
-use crate::core::nc::{parse_gcode, toolpath_from_json, CannedCycles, JsonProgram, ParseOptions, UnknownWords};
 use crate::core::stock::Rect;
-use crate::core::toolpath::Toolpath;
 use crate::service::error::{ApiError, FieldError};
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
-
-/// A tool path: G-code text or the JSON move list (exactly one).
-#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
-#[serde(deny_unknown_fields)]
-pub struct ProgramInput {
-    /// G-code (ISO/Fanuc or LinuxCNC dialect).
-    pub gcode: Option<String>,
-    /// The same moves as JSON: `{"start": {"x","y","z"}, "moves": [{"type": "rapid"|"linear"|"arc", "x", "y", "z", "f", "center": {"x","y"}, "clockwise"}]}`.
-    #[schema(value_type = Option<Object>)]
-    pub moves: Option<JsonProgram>,
-    /// `reject` (default) or `warn` about words the parser does not know.
-    #[serde(default)]
-    pub unknown_words: UnknownWordsInput,
-    /// `expand` (default) or `refuse` canned drilling cycles (G81–G83).
-    #[serde(default)]
-    pub canned_cycles: CannedCyclesInput,
-}
-
-#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, ToSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum UnknownWordsInput {
-    #[default]
-    Reject,
-    Warn,
-}
-
-#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, ToSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum CannedCyclesInput {
-    #[default]
-    Expand,
-    Refuse,
-}
-
-/// Reads the program; errors name `program.gcode` with the line, or `program.moves[i]`.
-pub fn read_program(input: &ProgramInput) -> Result<Toolpath, ApiError> {
-    let options = ParseOptions {
-        unknown_words: match input.unknown_words {
-            UnknownWordsInput::Reject => UnknownWords::Reject,
-            UnknownWordsInput::Warn => UnknownWords::Warn,
-        },
-        canned_cycles: match input.canned_cycles {
-            CannedCyclesInput::Expand => CannedCycles::Expand,
-            CannedCyclesInput::Refuse => CannedCycles::Refuse,
-        },
-        ..ParseOptions::default()
-    };
-    let (path, field) = match (&input.gcode, &input.moves) {
-        (Some(text), None) => (parse_gcode(text, &options), "program.gcode"),
-        (None, Some(moves)) => (toolpath_from_json(moves), "program.moves"),
-        _ => return Err(ApiError::field("program", "give exactly one of gcode and moves")),
-    };
-    let path = path.map_err(|errors| {
-        ApiError::Validation(
-            errors
-                .0
-                .iter()
-                .map(|e| FieldError {
-                    field: if field == "program.moves" {
-                        format!("program.moves[{}]", e.line.saturating_sub(1))
-                    } else {
-                        field.to_string()
-                    },
-                    reason: if e.word.is_empty() {
-                        format!("line {}, column {}: {}", e.line, e.column, e.reason)
-                    } else {
-                        format!("line {}, column {} ({}): {}", e.line, e.column, e.word, e.reason)
-                    },
-                })
-                .collect(),
-        )
-    })?;
-    if path.moves.is_empty() {
-        return Err(ApiError::field(field, "the program has no moves"));
-    }
-    Ok(path)
-}
 
 /// An axis-aligned stock box, mm.
 #[derive(Debug, Clone, Copy, Serialize, Deserialize, ToSchema)]

@@ -15,6 +15,7 @@ pub mod model;
 pub mod output;
 pub mod plans;
 pub mod plans_result;
+pub mod program_input;
 pub mod queue;
 pub mod routes;
 pub mod store;

@@ -130,6 +130,11 @@ pub struct OutputOptions {
 }
 
 impl OutputOptions {
+    /// Whether the request set any option (they apply to the programs dieplan writes).
+    pub fn is_set(&self) -> bool {
+        serde_json::to_value(self).ok() != serde_json::to_value(OutputOptions::default()).ok()
+    }
+
     pub fn validate(&self, v: &mut Validator) {
         if let Some(n) = self.program_number {
             v.check(

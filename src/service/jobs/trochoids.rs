@@ -4,8 +4,9 @@
 //! the report of which region got which treatment out.
 
 use super::analysis::{resolve, AnalysisPrepared, PathJobRefs, Resolved};
-use super::inputs::{read_contour, read_dxf, read_program, ContourInput, ProgramInput};
+use super::inputs::{read_contour, read_dxf, ContourInput};
 use super::output::OutputOptions;
+use super::program_input::{read_program, ProgramContext, ProgramInput};
 use super::trochoids_result::TrochoidsResult;
 use crate::core::conditions::{feed_mm_min, CuttingConditions};
 use crate::core::cycles::trochoid::default_loop_radius_mm;
@@ -283,8 +284,9 @@ type Built = (Pocket, InsertionSpec, Option<crate::core::toolpath::Toolpath>);
 
 fn build(request: &TrochoidsRequest, prepared: &TrochoidsPrepared) -> Result<Built, ApiError> {
     let pocket = read_pocket(request)?;
-    let path = request.program.as_ref().map(read_program).transpose()?;
     let tool: crate::core::tool::EndMill = prepared.base.tool.geometry.into();
+    let context = ProgramContext { tool_radius_mm: Some(tool.radius_mm()), stock_top_mm: Some(request.z_top) };
+    let path = request.program.as_ref().map(|p| read_program(p, context)).transpose()?.map(|r| r.path);
     let mut spec = InsertionSpec::new(tool, prepared.roughing, prepared.grooving, request.z_top, request.z_bottom);
     spec.safe_z_mm = request.safe_z.unwrap_or(request.z_top + DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM);
     spec.rapid_mm_min = prepared.base.rapid_mm_min;

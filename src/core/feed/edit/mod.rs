@@ -31,8 +31,15 @@ use serde::Serialize;
 use super::blocks::Piece;
 use crate::core::analysis::sampling::move_length;
 use crate::core::nc::words::{feed_down, Fixed, LineWords, Style, MIN_DECIMALS_INCH, MIN_DECIMALS_MM};
-use crate::core::nc::{FeedMode, Interpreted, LineMotion, MotionContext};
-use crate::core::toolpath::{Motion, Units};
+use crate::core::nc::{FeedMode, LineMotion, MotionContext, ProgramMap};
+use crate::core::toolpath::{Motion, Toolpath, Units};
+
+/// The program as the interpreter read it.
+#[derive(Clone, Copy)]
+pub(crate) struct Program<'a> {
+    pub path: &'a Toolpath,
+    pub map: &'a ProgramMap,
+}
 
 /// One changed line of the program.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
@@ -144,10 +151,11 @@ struct LineMoves {
     pieces_differ: bool,
 }
 
-/// Edits `text` (the program `program` was read from) so that each move `i` runs at the
-/// feeds of `pieces[i]` (pieces of its length, as the feed optimiser cut it; empty for
-/// rapids and for moves that keep their feed).
-pub fn edit_feeds(text: &str, program: &Interpreted, pieces: &[Vec<Piece>]) -> Edited {
+/// Edits `text` (the program the interpreter read into `path`, running as `map` says) so
+/// that each move `i` runs at the feeds of `pieces[i]` (pieces of its length, as the feed
+/// optimiser cut it; empty for rapids and for moves that keep their feed).
+pub fn edit_feeds(text: &str, path: &Toolpath, map: &ProgramMap, pieces: &[Vec<Piece>]) -> Edited {
+    let program = Program { path, map };
     let mut warnings = Vec::new();
     let mut by_line: HashMap<u32, LineMoves> = HashMap::new();
     for (i, m) in program.path.moves.iter().enumerate() {
@@ -231,7 +239,7 @@ pub(crate) fn split_lines(text: &str) -> Vec<(usize, usize, usize)> {
 fn write(
     text: &str,
     lines: &[(usize, usize, usize)],
-    program: &Interpreted,
+    program: Program,
     plans: &HashMap<u32, Plan>,
     inserted: &std::collections::HashSet<u32>,
     style: Style,

@@ -6,9 +6,9 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::{FeedValue, Plan};
+use super::{FeedValue, Plan, Program};
 use crate::core::nc::words::{Fixed, LineWords};
-use crate::core::nc::{FeedMode, Interpreted};
+use crate::core::nc::FeedMode;
 use crate::core::toolpath::Units;
 
 /// G codes that change how F is read (ten times their numbers).
@@ -27,7 +27,7 @@ struct Known {
 pub(crate) fn missing_feeds(
     text: &str,
     lines: &[(usize, usize, usize)],
-    program: &Interpreted,
+    program: Program,
     plans: &HashMap<u32, Plan>,
 ) -> HashSet<u32> {
     let order: Vec<u32> = match &program.map.order {

@@ -2,7 +2,7 @@
 //! program reads back to the same motion with only its F words changed.
 
 use super::*;
-use crate::core::nc::{interpret, parse_gcode, ParseOptions};
+use crate::core::nc::{interpret, parse_gcode, Interpreted, ParseOptions};
 use crate::core::tolerance::approx_eq;
 use crate::core::toolpath::{Move, Toolpath};
 use proptest::prelude::*;
@@ -39,7 +39,7 @@ fn a_block_whose_feed_changes_inside_is_split_and_keeps_its_n_number_and_comment
     let text = "G21 G90\nG0 X0 Y0 Z5\nG1 Z-1 F500\nN40 G1 X30 F1000 (cut)\nM30\n";
     let program = read(text);
     let pieces = pieces_by(&program, |_, line| if line == 4 { halves(1000.0, 400.0) } else { whole(500.0) });
-    let edited = edit_feeds(text, &program, &pieces);
+    let edited = edit_feeds(text, &program.path, &program.map, &pieces);
     assert_eq!(edited.text, "G21 G90\nG0 X0 Y0 Z5\nG1 Z-1 F500\nN40 G1 X15 F1000 (cut)\nG1 X30 F400\nM30\n");
     assert_eq!(edited.changes.len(), 1);
     assert_eq!(edited.changes[0].line, 4);
@@ -53,7 +53,7 @@ fn a_block_that_relied_on_a_changed_modal_feed_gets_its_own_f_word() {
     let text = "G0 X0 Y0\nG1 X10 F1000\nX20\nX30\n";
     let program = read(text);
     let pieces = pieces_by(&program, |_, line| whole(if line == 2 { 500.0 } else { 1000.0 }));
-    let edited = edit_feeds(text, &program, &pieces);
+    let edited = edit_feeds(text, &program.path, &program.map, &pieces);
     assert_eq!(edited.text, "G0 X0 Y0\nG1 X10 F500\nX20 F1000\nX30\n");
     let feeds: Vec<f64> = path(&edited.text).moves.iter().map(|m| m.feed_mm_min.unwrap()).collect();
     assert_eq!(feeds, [500.0, 1000.0, 1000.0]);
@@ -63,7 +63,7 @@ fn a_block_that_relied_on_a_changed_modal_feed_gets_its_own_f_word() {
 fn inch_per_revolution_and_inverse_time_feeds_are_written_in_the_programs_own_terms() {
     let text = "G20 G90\nG0 X0 Y0\nG1 X1 F40.\nG95 S1000\nG1 X2 F0.002\nG93 G1 X3 F10.\n";
     let program = read(text);
-    let edited = edit_feeds(text, &program, &pieces_by(&program, |_, _| whole(500.0)));
+    let edited = edit_feeds(text, &program.path, &program.map, &pieces_by(&program, |_, _| whole(500.0)));
     // 500 mm/min: 19.68 in/min (rounded down), 0.01968 in/rev at 1000 min⁻¹, and
     // 1 inch in 25.4/500 min: F19.685 → 19.6850 inverse minutes.
     assert_eq!(edited.text, "G20 G90\nG0 X0 Y0\nG1 X1 F19.68\nG95 S1000\nG1 X2 F0.01968\nG93 G1 X3 F19.685\n");
@@ -89,7 +89,7 @@ fn arcs_split_in_their_own_centre_format_and_g91_pieces_add_up_to_the_block() {
                 Piece { t0: 0.7, t1: 1.0, feed_mm_min: 600.0 },
             ]
         });
-        let edited = edit_feeds(text, &program, &pieces);
+        let edited = edit_feeds(text, &program.path, &program.map, &pieces);
         let before = path(text);
         let after = path(&edited.text);
         let arcs: Vec<&Move> = after.moves.iter().filter(|m| matches!(m.motion, Motion::Arc { .. })).collect();
@@ -111,7 +111,7 @@ fn a_block_run_several_times_gets_the_lowest_feed_any_of_its_runs_needs() {
         1 => halves(800.0, 300.0),
         _ => whole(600.0),
     });
-    let edited = edit_feeds(text, &program, &pieces);
+    let edited = edit_feeds(text, &program.path, &program.map, &pieces);
     assert_eq!(edited.text, "G0 X0 Y0\no1 repeat [3]\n  G91 G1 X10 F300\no1 endrepeat\nG90\n");
 }
 
@@ -177,7 +177,7 @@ proptest! {
             out.push(Piece { t0, t1: 1.0, feed_mm_min: 700.0 + i as f64 });
             out
         });
-        let edited = edit_feeds(&text, &program, &pieces);
+        let edited = edit_feeds(&text, &program.path, &program.map, &pieces);
         let after = parse_gcode(&edited.text, &ParseOptions::default())
             .map_err(|e| TestCaseError::fail(format!("{e}\n{}", edited.text)))?;
         // Every original block's end is reached, in order.
