@@ -17,19 +17,17 @@ pub fn seed_001_ten_mm() -> ForceModel {
     }
 }
 
-/// The 10 mm tool's life of seed 003 with the assumed tables of MODEL.md §9.
+/// The 10 mm tool's life of seed 003 with γ and k as fitted to MODEL.md §9's table
+/// (`crate::core::costing::calibration`, stored by migration 0006).
 pub fn ten_mm_life() -> crate::core::tool_life::ToolLifeModel {
+    use crate::core::costing::calibration::{gamma_table, FITTED_FORCE_EXPONENT, FITTED_GAMMA_AT_40};
+    use crate::core::engagement::{engagement, Contour};
+    let standard = engagement(Contour::Straight, 5.0, 0.5).unwrap();
     crate::core::tool_life::ToolLifeModel {
         life_m: 320.0,
-        gamma_table: vec![(0.0, 1.0), (40.0, 1.0), (50.0, 2.0), (60.0, 4.0), (90.0, 8.0), (180.0, 12.0)],
-        force_exponent: 2.4,
-        standard_arc_length_mm: crate::core::engagement::engagement(
-            crate::core::engagement::Contour::Straight,
-            5.0,
-            0.5,
-        )
-        .unwrap()
-        .arc_length_mm,
+        gamma_table: gamma_table(standard.angle_rad.to_degrees(), FITTED_GAMMA_AT_40),
+        force_exponent: FITTED_FORCE_EXPONENT,
+        standard_arc_length_mm: standard.arc_length_mm,
         standard_fz_mm: 0.1,
         standard_force_n: Some(269.1),
     }
@@ -48,6 +46,29 @@ pub fn rounded_box(w: f64, h: f64, r: f64) -> crate::core::geometry::Pocket {
         Vertex::new(r, h, b),
         Vertex::new(0.0, h - r, 0.0),
         Vertex::new(0.0, r, b),
+    ]);
+    Pocket::new(outer, vec![]).unwrap()
+}
+
+/// Seed 004 case study I (MODEL.md §11) as the README draws it: a 90 × 70 mm box with
+/// corners of radius 8 mm and a 12 mm wide slot with a round end, 24 mm long, out of its
+/// right wall (cut 35 mm deep in the case study).
+pub fn case_study_pocket() -> crate::core::geometry::Pocket {
+    use crate::core::geometry::{Loop, Pocket, Vertex};
+    let b = (std::f64::consts::PI / 8.0).tan();
+    let outer = Loop::new(vec![
+        Vertex::new(8.0, 0.0, 0.0),
+        Vertex::new(82.0, 0.0, b),
+        Vertex::new(90.0, 8.0, 0.0),
+        Vertex::new(90.0, 29.0, 0.0),
+        Vertex::new(114.0, 29.0, 1.0),
+        Vertex::new(114.0, 41.0, 0.0),
+        Vertex::new(90.0, 41.0, 0.0),
+        Vertex::new(90.0, 62.0, b),
+        Vertex::new(82.0, 70.0, 0.0),
+        Vertex::new(8.0, 70.0, b),
+        Vertex::new(0.0, 62.0, 0.0),
+        Vertex::new(0.0, 8.0, b),
     ]);
     Pocket::new(outer, vec![]).unwrap()
 }

@@ -57,17 +57,7 @@ impl ToolLifeModel {
 
     /// γ(α): the wear factor of engagement angle `alpha_deg` (seed 002 Eq. 3).
     pub fn gamma(&self, alpha_deg: f64) -> f64 {
-        let t = &self.gamma_table;
-        if alpha_deg <= t[0].0 {
-            return t[0].1;
-        }
-        for w in t.windows(2) {
-            if alpha_deg <= w[1].0 {
-                let f = (alpha_deg - w[0].0) / (w[1].0 - w[0].0);
-                return w[0].1 + f * (w[1].1 - w[0].1);
-            }
-        }
-        t[t.len() - 1].1
+        table_value(&self.gamma_table, alpha_deg)
     }
 
     /// φ(F/F*): 1 up to the standard force, `(F/F*)^k` above it (MODEL.md §9).
@@ -78,14 +68,31 @@ impl ToolLifeModel {
         }
     }
 
-    /// Edge arc worn over `ds_mm` of path: `ds · L / fz_p · γ(α) · φ(F/F*)` (MODEL.md §9,
-    /// seed 002 Eq. 2), mm.
+    /// Edge arc worn over `ds_mm` of the tool-centre path: `ds · L / fz_p · γ(α) · φ(F/F*)`
+    /// (MODEL.md §9, seed 002 Eq. 2), mm. γ and k are fitted with wear counted so
+    /// (`crate::core::costing::calibration`).
     pub fn wear_mm(&self, ds_mm: f64, cut: &WearCut) -> f64 {
         if cut.alpha_deg <= 0.0 || cut.fz_p_mm <= 0.0 {
             return 0.0;
         }
         ds_mm * cut.arc_length_mm / cut.fz_p_mm * self.gamma(cut.alpha_deg) * self.force_factor(cut.force_n)
     }
+}
+
+/// The value of a table of (α deg, factor) points at `alpha_deg`: linear between points,
+/// constant beyond the ends (1 for an empty table).
+pub fn table_value(table: &[(f64, f64)], alpha_deg: f64) -> f64 {
+    let (Some(first), Some(last)) = (table.first(), table.last()) else { return 1.0 };
+    if alpha_deg <= first.0 {
+        return first.1;
+    }
+    for w in table.windows(2) {
+        if alpha_deg <= w[1].0 {
+            let f = (alpha_deg - w[0].0) / (w[1].0 - w[0].0);
+            return w[0].1 + f * (w[1].1 - w[0].1);
+        }
+    }
+    last.1
 }
 
 /// The cut at one point, as tool wear needs it.
@@ -118,6 +125,31 @@ impl WearCut {
     }
 }
 
+/// A length of cut measured two ways: along the tool-centre path, which the NC program
+/// and the simulation step along, and along the machined surface, which seed 003 §3.3
+/// measures tool life by ("the total length of the machined workpiece surface"). The
+/// surface is traced by the cutting point: on a concave arc it is `R/(R − r)` times the
+/// centre path (twice at R/r = 2), on a straight cut equal, on a convex arc shorter
+/// (MODEL.md §2 and §9).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct CutLength {
+    pub centre_path_m: f64,
+    pub machined_surface_m: f64,
+}
+
+impl CutLength {
+    /// `centre_path_mm` and `machined_surface_mm` in m.
+    pub fn from_mm(centre_path_mm: f64, machined_surface_mm: f64) -> CutLength {
+        CutLength { centre_path_m: centre_path_mm / MM_PER_M, machined_surface_m: machined_surface_mm / MM_PER_M }
+    }
+}
+
+/// The machined-surface length of a simulation step `ds_mm` along the tool-centre path
+/// whose cutting point moves `cutting_point_ratio = |PO|/Rc` times as far (MODEL.md §2): mm.
+pub fn machined_surface_mm(ds_mm: f64, cutting_point_ratio: f64) -> f64 {
+    ds_mm * cutting_point_ratio
+}
+
 /// Tool-life consumption of a path.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct Consumption {
@@ -127,79 +159,55 @@ pub struct Consumption {
     pub life_edge_arc_mm: f64,
     /// L_t / L_f: 1 is one whole tool.
     pub ratio: f64,
-    /// Cutting length of the path, mm.
+    /// Cutting length of the path along the tool-centre path, mm.
     pub cutting_length_mm: f64,
-    /// The machined length one tool would last at this path's mix of cuts, m (0 when
-    /// the path does not cut).
-    pub equivalent_life_m: f64,
+    /// The same cuts measured along the machined surface, mm.
+    pub machined_surface_mm: f64,
+    /// The length one tool would last at this path's mix of cuts, both ways (0 when the
+    /// path does not cut).
+    pub equivalent_life: CutLength,
 }
 
 impl Consumption {
-    pub fn new(worn_edge_arc_mm: f64, life_edge_arc_mm: f64, cutting_length_mm: f64) -> Self {
+    /// The consumption of `worn_edge_arc_mm` against a life of `life_edge_arc_mm`, over a
+    /// cut of `cutting_length_mm` along the tool-centre path and `machined_surface_mm`
+    /// along the machined surface.
+    pub fn new(worn_edge_arc_mm: f64, life_edge_arc_mm: f64, cutting_length_mm: f64, machined_surface_mm: f64) -> Self {
         let ratio = worn_edge_arc_mm / life_edge_arc_mm;
-        let equivalent_life_m = if ratio > 0.0 { cutting_length_mm / ratio / MM_PER_M } else { 0.0 };
-        Consumption { worn_edge_arc_mm, life_edge_arc_mm, ratio, cutting_length_mm, equivalent_life_m }
+        let equivalent_life = if ratio > 0.0 {
+            CutLength::from_mm(cutting_length_mm / ratio, machined_surface_mm / ratio)
+        } else {
+            CutLength::default()
+        };
+        Consumption {
+            worn_edge_arc_mm,
+            life_edge_arc_mm,
+            ratio,
+            cutting_length_mm,
+            machined_surface_mm,
+            equivalent_life,
+        }
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::core::engagement::{engagement, max_chip_thickness_mm, Contour};
-    use crate::core::fixtures::seed_001_ten_mm;
+    use crate::core::fixtures::ten_mm_life;
 
-    /// The 10 mm tool of seed 003 with the assumed tables of MODEL.md §9.
-    fn ten_mm() -> ToolLifeModel {
-        let standard = engagement(Contour::Straight, 5.0, 0.5).unwrap();
-        ToolLifeModel {
-            life_m: 320.0,
-            gamma_table: vec![(0.0, 1.0), (40.0, 1.0), (50.0, 2.0), (60.0, 4.0), (90.0, 8.0), (180.0, 12.0)],
-            force_exponent: 2.4,
-            standard_arc_length_mm: standard.arc_length_mm,
-            standard_fz_mm: 0.1,
-            standard_force_n: Some(269.1),
-        }
-    }
-
-    /// The life in m of a path that is all `contour` at centre feed `feed_mm_min` (10 mm
-    /// tool, 6 flutes, S 9600, Rd 0.5, Ad 10).
-    fn life_m(contour: Contour, feed_mm_min: f64) -> f64 {
-        let m = ten_mm();
-        let e = engagement(contour, 5.0, 0.5).unwrap();
-        let fz_p = feed_mm_min / (6.0 * 9600.0) * e.cutting_point_feed_ratio;
-        let t_um = max_chip_thickness_mm(fz_p, e.angle_rad) * 1000.0;
-        let force = seed_001_ten_mm().force_n(t_um, e.arc_length_mm, 10.0);
-        let cut = WearCut {
-            alpha_deg: e.angle_rad.to_degrees(),
-            arc_length_mm: e.arc_length_mm,
-            fz_p_mm: fz_p,
-            force_n: Some(force),
-        };
-        let per_mm = m.wear_mm(1.0, &cut);
-        m.life_edge_arc_mm() / per_mm / 1000.0
+    #[test]
+    fn the_standard_straight_cut_wears_the_tool_at_the_rate_of_its_320_m_life() {
+        let m = ten_mm_life();
+        let cut =
+            WearCut { alpha_deg: 25.84, arc_length_mm: m.standard_arc_length_mm, fz_p_mm: 0.1, force_n: Some(269.1) };
+        let life_m = m.life_edge_arc_mm() / m.wear_mm(1.0, &cut) / MM_PER_M;
+        assert!((life_m - 320.0).abs() < 1e-9, "{life_m}");
     }
 
     #[test]
-    fn the_standard_straight_cut_lasts_the_measured_320_m() {
-        assert!((life_m(Contour::Straight, 5760.0) - 320.0).abs() < 1e-6);
-    }
-
-    #[test]
-    fn a_concave_arc_of_r_over_r_2_at_a_fixed_f4320_lasts_about_30_m_as_seed_003_measured() {
-        let life = life_m(Contour::Concave { surface_radius_mm: 10.0 }, 4320.0);
-        assert!((life - 30.0).abs() / 30.0 < 0.2, "{life} m");
-    }
-
-    #[test]
-    fn the_same_arc_at_constant_force_lasts_about_110_m_as_seed_003_measured() {
-        // MODEL.md §3: R/r 2 at constant force is F ≈ 1160 mm/min.
-        let life = life_m(Contour::Concave { surface_radius_mm: 10.0 }, 1160.0);
-        assert!((life - 110.0).abs() / 110.0 < 0.2, "{life} m");
-    }
-
-    #[test]
-    fn gamma_is_one_up_to_40_degrees_and_interpolates_the_table_above() {
-        let m = ten_mm();
+    fn gamma_interpolates_its_table_and_is_constant_beyond_its_ends() {
+        let mut m = ten_mm_life();
+        m.gamma_table = vec![(0.0, 1.0), (40.0, 1.0), (50.0, 2.0), (60.0, 4.0), (90.0, 8.0), (180.0, 12.0)];
         assert!((m.gamma(25.8) - 1.0).abs() < 1e-12);
         assert!((m.gamma(45.0) - 1.5).abs() < 1e-12);
         assert!((m.gamma(180.0) - 12.0).abs() < 1e-12);
@@ -208,15 +216,27 @@ mod tests {
 
     #[test]
     fn forces_at_or_below_the_standard_do_not_shorten_the_life() {
-        let m = ten_mm();
+        let mut m = ten_mm_life();
+        m.force_exponent = 2.4;
         assert!((m.force_factor(Some(200.0)) - 1.0).abs() < 1e-12);
         assert!((m.force_factor(Some(2.0 * 269.1)) - 2f64.powf(2.4)).abs() < 1e-9);
         assert!((m.force_factor(None) - 1.0).abs() < 1e-12);
     }
 
     #[test]
+    fn life_is_reported_along_the_centre_path_and_along_the_machined_surface() {
+        // Half a tool over 10 m of centre path that machined 20 m of surface (a concave arc
+        // of R/r = 2): one tool lasts 20 m of centre path, 40 m of surface.
+        let c = Consumption::new(50.0, 100.0, 10_000.0, machined_surface_mm(10_000.0, 2.0));
+        assert!((c.ratio - 0.5).abs() < 1e-12);
+        assert!((c.equivalent_life.centre_path_m - 20.0).abs() < 1e-9, "{c:?}");
+        assert!((c.equivalent_life.machined_surface_m - 40.0).abs() < 1e-9, "{c:?}");
+        assert_eq!(Consumption::new(0.0, 100.0, 0.0, 0.0).equivalent_life, CutLength::default());
+    }
+
+    #[test]
     fn a_bad_table_is_refused() {
-        let mut m = ten_mm();
+        let mut m = ten_mm_life();
         m.gamma_table = vec![(40.0, 1.0), (30.0, 2.0)];
         assert!(m.validate().is_err());
     }

@@ -5,6 +5,7 @@
 //! takes D/2.
 
 use crate::common::{assert_problem, close, TestApp};
+use dieplan::core::costing::calibration::{gamma_table, moved_gamma_table, FITTED_FORCE_EXPONENT, FITTED_GAMMA_AT_40};
 use dieplan::core::force_model::{Coefficients, ForceModel};
 use dieplan::core::nc::{parse_gcode, ParseOptions};
 use dieplan::service::store::MIGRATOR;
@@ -114,14 +115,21 @@ async fn every_seeded_ball_and_radius_end_mill_has_its_conditions_a_force_model_
             let life = one_row(&app, "/v1/tool-life?", id).await;
             assert!(close(&life["life_m"], 320.0, 1e-9), "{life}");
             assert_eq!(life["source"], "assumed");
-            // γ is 1 up to the engagement of the tool's standard cut: 78.5° for a ball
-            // (Rd 0.4 D), 40° as the square end mill's for a radius end mill (25.8°).
-            let knee = if tool_type == "ball" {
-                json!([[0.0, 1.0], [78.5, 1.0], [88.5, 2.0], [98.5, 4.0], [128.5, 8.0], [180.0, 10.3]])
-            } else {
-                json!([[0.0, 1.0], [40.0, 1.0], [50.0, 2.0], [60.0, 4.0], [90.0, 8.0], [180.0, 12.0]])
-            };
-            assert_eq!(life["gamma_table"], knee, "{tool_type} D{d}");
+            // γ is 1 up to the engagement of the tool's standard cut, 25.84° for a radius end
+            // mill as for the square (Rd 0.05 D) and 78.46° for a ball (Rd 0.4 D), then the
+            // table fitted to MODEL.md §9 (migrations/0006): the ball's is the same moved along α.
+            let flat = gamma_table(25.842, FITTED_GAMMA_AT_40);
+            let expected = if tool_type == "ball" { moved_gamma_table(&flat, 25.842, 78.464) } else { flat };
+            let stored: Vec<(f64, f64)> = serde_json::from_value(life["gamma_table"].clone()).unwrap();
+            assert_eq!(stored.len(), expected.len(), "{tool_type} D{d}: {stored:?}");
+            for (s, e) in stored.iter().zip(&expected) {
+                // The migration writes the angles to 3 decimals.
+                assert!(
+                    (s.0 - e.0).abs() < 2e-3 && (s.1 - e.1).abs() < 2e-3,
+                    "{tool_type} D{d}: {stored:?} vs {expected:?}"
+                );
+            }
+            assert!(close(&life["force_exponent"], FITTED_FORCE_EXPONENT, 1e-12), "{life}");
         }
     }
     app.stop().await;
@@ -202,7 +210,9 @@ async fn costing_and_feeds_of_ball_and_radius_programs_need_no_extra_fields_for_
             let body = json!({"program": {"gcode": gcode}, "tool_type": tool_type, "diameter_mm": d, "stock": stock});
 
             // Along the block (the engagement band of most of the cut; entry and exit wear
-            // less) the tool's standard cut wears it at the rate of its 320 m life.
+            // less) the tool's standard cut wears it at the rate of its 320 m life: within 2 %,
+            // since the fitted γ rises from the standard engagement and the simulation's α
+            // scatters a little about it.
             let costing = app.post_wait("/v1/costing", body.clone()).await;
             assert_eq!(costing.body["status"], "succeeded", "{what}: {}", costing.text);
             let life = &costing.body["result"]["tool_life"];
@@ -214,7 +224,7 @@ async fn costing_and_feeds_of_ball_and_radius_programs_need_no_extra_fields_for_
                 .unwrap();
             let worn_mm = f(&steady["share"]) * f(&life["worn_edge_arc_mm"]);
             let life_m = f(&steady["cutting_length_mm"]) / worn_mm * f(&life["life_edge_arc_mm"]) / 1000.0;
-            assert!((life_m - 320.0).abs() < 320.0 * 0.01, "{what}: {life_m} m at {steady}");
+            assert!((life_m - 320.0).abs() < 320.0 * 0.02, "{what}: {life_m} m at {steady}");
             assert!(f(&costing.body["result"]["cost"]["total"]) > 0.0, "{what}");
 
             // Constant force: the target is the model's force at the standard cut, which

@@ -25,7 +25,10 @@ async fn the_standard_straight_cut_uses_the_tool_at_the_rate_of_its_320_m_life()
     assert_eq!(a.status, 201, "{}", a.text);
     assert_eq!(a.body["status"], "succeeded", "{}", a.text);
     let r = &a.body["result"];
-    assert!(close(&r["tool_life"]["equivalent_life_m"], 320.0, 320.0 * 0.05), "{}", r["tool_life"]);
+    // On a straight cut the machined surface is as long as the tool-centre path.
+    let life = &r["tool_life"]["equivalent_life"];
+    assert!(close(&life["centre_path_m"], 320.0, 320.0 * 0.05), "{}", r["tool_life"]);
+    assert!(close(&life["machined_surface_m"], life["centre_path_m"].as_f64().unwrap(), 1e-9), "{life}");
     assert_eq!(r["tool_life"]["by_line"][0]["line"], 6);
     assert_eq!(r["time"]["tool_changes"], 1);
     assert!(close(&r["time"]["tool_change_min"], 8.0 / 60.0, 1e-9), "{}", r["time"]);
@@ -40,6 +43,31 @@ async fn the_standard_straight_cut_uses_the_tool_at_the_rate_of_its_320_m_life()
     // Inside the experiments but for the entry into the block: hardly any extrapolation.
     assert!(!r["analysis"]["outside_model"].is_null(), "{}", r["analysis"]);
     assert!(r["tool_life"]["extrapolated_share"].as_f64().unwrap() < 0.05, "{}", r["tool_life"]);
+    app.stop().await;
+}
+
+/// Half a turn round a concave wall of R/r = 2 (Rd 0.5 in a pre-drilled 19 mm hole) at `feed`.
+fn concave_half_turn(feed: f64) -> String {
+    format!("G21 G90 G17\nS9600 M3\nG0 X5 Y0 Z5\nG1 Z-10 F1000\nG3 X-5 Y0 I-5 J0 F{feed}\nG0 Z5\nM30\n")
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_concave_arc_of_r_over_r_2_lasts_about_15_m_of_centre_path_and_30_m_of_surface_at_f4320_and_55_and_110_m_at_constant_force(
+) {
+    // MODEL.md §9 (seed 003 read in tool-centre path terms), with the database's fitted γ and
+    // k; the constant-force feed of R/r = 2 is about F1160 (MODEL.md §3).
+    let app = TestApp::start().await;
+    for (feed, centre_m, surface_m) in [(4320.0, 15.0, 30.0), (1160.0, 55.0, 110.0)] {
+        let body = json!({"program": {"gcode": concave_half_turn(feed)}, "tool_type": "square", "diameter_mm": 10, "stock": concave_stock()});
+        let a = app.post_wait("/v1/costing", body).await;
+        assert_eq!(a.body["status"], "succeeded", "{}", a.text);
+        let life = &a.body["result"]["tool_life"]["equivalent_life"];
+        assert!(close(&life["centre_path_m"], centre_m, 0.2 * centre_m), "F{feed}: {life}");
+        assert!(close(&life["machined_surface_m"], surface_m, 0.2 * surface_m), "F{feed}: {life}");
+        let cut = &a.body["result"]["tool_life"]["cutting_length"];
+        let ratio = cut["machined_surface_m"].as_f64().unwrap() / cut["centre_path_m"].as_f64().unwrap();
+        assert!((ratio - 2.0).abs() < 0.05, "F{feed}: {cut}");
+    }
     app.stop().await;
 }
 

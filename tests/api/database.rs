@@ -18,7 +18,8 @@ async fn the_database_is_seeded_from_the_model_with_a_source_on_every_row() {
         let a = app.get(&format!("{path}?limit=500")).await;
         assert_eq!(a.body["total"], count, "{path}");
         for row in a.body["items"].as_array().unwrap() {
-            assert!(["paper", "extrapolated", "assumed"].contains(&row["source"].as_str().unwrap()), "{path}: {row}");
+            let sources = ["paper", "extrapolated", "assumed", "inferred", "fitted"];
+            assert!(sources.contains(&row["source"].as_str().unwrap()), "{path}: {row}");
             assert!(!row["reference"].as_str().unwrap().is_empty(), "{path}: every seed says where it comes from");
             assert_eq!(row["edited"], false);
         }
@@ -59,10 +60,13 @@ async fn force_models_are_seed_001_for_6_to_10_mm_and_extrapolated_by_diameter_s
     }
     let life = &app.get(&format!("/v1/tool-life?tool_id={ten}")).await.body["items"][0];
     assert!(close(&life["life_m"], 320.0, 1e-9));
-    assert!(close(&life["force_exponent"], 2.4, 1e-12));
+    // γ and k as fitted to MODEL.md §9's table (migrations/0006, src/core/costing/calibration.rs).
+    assert_eq!(life["source"], "fitted", "{life}");
+    assert!(life["reference"].as_str().unwrap().contains("MODEL.md §9"), "{life}");
+    assert!(close(&life["force_exponent"], 2.61, 1e-12));
     assert_eq!(
         life["gamma_table"],
-        json!([[0.0, 1.0], [40.0, 1.0], [50.0, 2.0], [60.0, 4.0], [90.0, 8.0], [180.0, 12.0]])
+        json!([[0.0, 1.0], [25.842, 1.0], [40.0, 2.03], [50.0, 4.06], [60.0, 8.12], [90.0, 16.24], [180.0, 24.36]])
     );
     app.stop().await;
 }

@@ -19,5 +19,6 @@ mod nc_programs;
 mod openapi;
 mod plans;
 mod programs;
+mod recalibration;
 mod trochoids;
 mod web;

@@ -13,6 +13,11 @@ fn case_study_contour() -> Value {
                      [90, 62, 0.414214], [82, 70], [8, 70, 0.414214], [0, 62], [0, 8, 0.414214]]})
 }
 
+/// Seed 004 Table 4 (MODEL.md §11): the proposed plan's measured time, min, and the volume
+/// it removed, mm³.
+const SEED_004_PROPOSED_MIN: f64 = 33.0 + 51.0 / 60.0;
+const SEED_004_REMOVED_MM3: f64 = 220_000.0;
+
 /// Most a plan may take here, s (it plans three tools over four layers, on two cores shared
 /// with the rest of the suite).
 const PLAN_DEADLINE_S: u64 = 900;
@@ -40,11 +45,16 @@ async fn the_case_study_cavity_gets_a_complete_plan_with_the_cheapest_tool_and_t
     let cheapest = candidates.iter().filter_map(|c| c["cost"].as_f64()).fold(f64::INFINITY, f64::min);
     assert!((chosen[0]["cost"].as_f64().unwrap() - cheapest).abs() < 1e-9);
     assert_eq!(r["chosen_tool_id"], chosen[0]["tool_id"]);
+    // MODEL.md §11: the papers' 10 mm straight end mill.
+    assert_eq!(chosen[0]["name"], "square D10", "{candidates:?}");
 
     // Every layer is checked by the simulation: no gouge, nothing reachable left; the last
     // layer is intermediate-rough.
     let layers = r["layers"].as_array().unwrap();
-    assert!(layers.len() >= 4, "{}", layers.len());
+    // MODEL.md §11: 3 layers of Ad 10, then 1 of Ad 5.
+    let depths: Vec<f64> =
+        layers.iter().map(|l| l["z_top"].as_f64().unwrap() - l["z_bottom"].as_f64().unwrap()).collect();
+    assert_eq!(depths, [10.0, 10.0, 10.0, 5.0]);
     assert_eq!(layers.last().unwrap()["role"], "intermediate_rough");
     for l in layers {
         assert_eq!(l["gouges"], 0, "{l}");
@@ -55,6 +65,8 @@ async fn the_case_study_cavity_gets_a_complete_plan_with_the_cheapest_tool_and_t
     let (removed, volume) =
         (r["totals"]["removed_volume_mm3"].as_f64().unwrap(), r["cavity_volume_mm3"].as_f64().unwrap());
     assert!((removed - volume).abs() < 0.02 * volume, "{removed} of {volume}");
+    // MODEL.md §11: about 220 cm³ removed (this reading of the cavity holds 230.6 cm³).
+    assert!((removed / SEED_004_REMOVED_MM3 - 1.0).abs() < 0.1, "{removed}");
     // Time and cost as seed 002 Eq. 4 puts them together.
     let t = &r["totals"];
     assert!(t["kinematic_time_min"].as_f64().unwrap() >= t["nominal_time_min"].as_f64().unwrap());
@@ -65,11 +77,27 @@ async fn the_case_study_cavity_gets_a_complete_plan_with_the_cheapest_tool_and_t
     assert!(["reached", "limited_by_max_force", "closest"].contains(&tuning["outcome"].as_str().unwrap()), "{tuning}");
     assert!(tuning["time_min"].as_f64().unwrap() <= tuning["time_at_standard_min"].as_f64().unwrap(), "{tuning}");
     assert!(tuning["consumption"].as_f64().unwrap() <= 0.92, "{tuning}");
+    // The recalibrated life (MODEL.md §9) leaves room in one tool: the force reaches its limit.
+    assert_eq!(tuning["outcome"], "limited_by_max_force", "{tuning}");
+    // MODEL.md §11: the tuned plan takes the measured 33'51" within 20 % on the machine.
+    let time = t["kinematic_time_min"].as_f64().unwrap();
+    assert!((time / SEED_004_PROPOSED_MIN - 1.0).abs() <= 0.2, "{time} min");
+    // Tool life both ways: a plan of trochoids and concave corners machines more surface
+    // than its centre path.
+    let life = &t["equivalent_life"];
+    assert!(life["machined_surface_m"].as_f64().unwrap() > life["centre_path_m"].as_f64().unwrap(), "{life}");
 
     // The conventional baseline: 59 levels of at most 0.6 mm with the R5 ball, and the
     // proposed plan is faster and cuts a shorter length (seed 004 Table 4).
     let b = &r["baseline"];
     assert_eq!(b["levels"], 59);
+    // At the feed inferred from seed 004 Table 4 (MODEL.md §5); its program is served too.
+    assert_eq!(b["conditions"]["source"], "inferred", "{b}");
+    assert!((b["feed_mm_min"].as_f64().unwrap() - 3600.0).abs() < 1e-9, "{b}");
+    let baseline = app.get(&format!("/v1/jobs/{id}/program?part=baseline")).await;
+    assert_eq!(baseline.status, 200, "{}", baseline.text);
+    assert!(baseline.text.contains("(LAYER 59 Z-35 CONVENTIONAL BALL-END ROUGHING)"));
+    parse_gcode(&baseline.text, &ParseOptions::default()).unwrap_or_else(|e| panic!("{e:?}"));
     assert!(r["comparison"]["kinematic_time_ratio"].as_f64().unwrap() < 1.0, "{}", r["comparison"]);
     assert!(r["comparison"]["cutting_length_ratio"].as_f64().unwrap() < 1.0, "{}", r["comparison"]);
 

@@ -7,7 +7,7 @@ use crate::core::analysis::report::HISTOGRAM_BIN_DEG;
 use crate::core::analysis::{analyze_with, Analysis, AnalysisSpec};
 use crate::core::drawing::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE_BINS};
 use crate::core::progress::Progress;
-use crate::core::tool_life::{Consumption, ToolLifeModel, WearCut};
+use crate::core::tool_life::{machined_surface_mm, Consumption, ToolLifeModel, WearCut};
 use crate::core::CoreError;
 use serde::Serialize;
 use std::collections::HashMap;
@@ -65,6 +65,8 @@ pub struct WearCounter<'a> {
     /// Wear on samples whose force rests on the model outside its experiments.
     extrapolated_mm: f64,
     cutting_mm: f64,
+    /// The cutting length along the machined surface.
+    surface_mm: f64,
     lines: HashMap<u32, (f64, f64, f64)>,
     bins: Vec<(f64, f64)>,
     moves: Vec<f64>,
@@ -80,6 +82,7 @@ impl<'a> WearCounter<'a> {
             worn_mm: 0.0,
             extrapolated_mm: 0.0,
             cutting_mm: 0.0,
+            surface_mm: 0.0,
             lines: HashMap::new(),
             bins: vec![(0.0, 0.0); bins],
             moves: Vec::new(),
@@ -109,6 +112,7 @@ impl<'a> WearCounter<'a> {
             self.extrapolated_mm += wear;
         }
         self.cutting_mm += ds;
+        self.surface_mm += machined_surface_mm(ds, r.cutting_point_ratio);
         let line = self.lines.entry(r.sample.line).or_insert((0.0, 0.0, 0.0));
         line.0 += wear;
         line.1 += ds;
@@ -152,7 +156,7 @@ impl<'a> WearCounter<'a> {
             .collect();
         let life = self.model.life_edge_arc_mm();
         WearReport {
-            consumption: Consumption::new(total, life, self.cutting_mm),
+            consumption: Consumption::new(total, life, self.cutting_mm, self.surface_mm),
             extrapolated_share: share(self.extrapolated_mm),
             by_line,
             by_alpha,
@@ -223,24 +227,29 @@ mod tests {
         let stock = Rect { x_min: 0.0, y_min: -40.0, x_max: 200.0, y_max: 0.0 };
         let p = path(Motion::Linear, P3::new(-10.0, 4.5, -10.0), P3::new(210.0, 4.5, -10.0), 5760.0);
         let (_, report) = path_wear(&p, &spec(stock, vec![]), &model(), &NoProgress).unwrap();
-        let life = report.consumption.equivalent_life_m;
-        assert!((life - 320.0).abs() / 320.0 < 0.05, "{life} m");
+        let life = report.consumption.equivalent_life;
+        assert!((life.centre_path_m - 320.0).abs() / 320.0 < 0.05, "{life:?}");
+        assert!((life.machined_surface_m - life.centre_path_m).abs() < 1e-9, "a straight cut: {life:?}");
         assert_eq!(report.by_line[0].line, 3);
         assert!((report.by_alpha.iter().map(|b| b.share).sum::<f64>() - 1.0).abs() < 1e-9);
     }
 
     #[test]
-    fn a_simulated_concave_arc_of_r_over_r_2_lasts_about_30_m_at_f4320_and_about_110_m_at_constant_force() {
+    fn a_simulated_concave_arc_of_r_over_r_2_lasts_about_15_m_of_centre_path_at_f4320_and_about_55_m_at_constant_force()
+    {
         let stock = Rect { x_min: -30.0, y_min: -30.0, x_max: 30.0, y_max: 30.0 };
         let open = vec![StockRegion::Circle { cx: 0.0, cy: 0.0, r: 9.5 }];
         // Half a turn, so the tool never comes back to where it started.
         let (s, e) = (P3::new(5.0, 0.0, -10.0), P3::new(-5.0, 0.0, -10.0));
         let arc = Motion::Arc { center: P3::new(0.0, 0.0, -10.0), clockwise: false, plane: Plane::Xy, turns: 0 };
-        for (feed, expected) in [(4320.0, 30.0), (1160.0, 110.0)] {
+        // MODEL.md §9: 15 and 55 m of centre path, 30 and 110 m of machined surface (seed
+        // 003); MODEL.md §3: the constant-force feed of R/r 2 is about F1160.
+        for (feed, centre_m, surface_m) in [(4320.0, 15.0, 30.0), (1160.0, 55.0, 110.0)] {
             let (_, report) =
                 path_wear(&path(arc, s, e, feed), &spec(stock, open.clone()), &model(), &NoProgress).unwrap();
-            let life = report.consumption.equivalent_life_m;
-            assert!((life - expected).abs() / expected < 0.2, "F{feed}: {life} m");
+            let life = report.consumption.equivalent_life;
+            assert!((life.centre_path_m - centre_m).abs() / centre_m < 0.2, "F{feed}: {life:?}");
+            assert!((life.machined_surface_m - surface_m).abs() / surface_m < 0.2, "F{feed}: {life:?}");
         }
     }
 }

@@ -14,7 +14,7 @@ use crate::core::feed::rule::{FeedRule, FeedStrategy};
 use crate::core::insertion::{append_over, labelled_program};
 use crate::core::kinematics::{machining_time, MachiningTime, TimeOptions};
 use crate::core::progress::{Progress, Stage};
-use crate::core::tool_life::{Consumption, WearCut};
+use crate::core::tool_life::{machined_surface_mm, Consumption, WearCut};
 use crate::core::toolpath::{labels_of, Motion, Move, Section, Toolpath};
 use crate::core::CoreError;
 use serde::Serialize;
@@ -96,6 +96,8 @@ struct Optimised {
     /// Per move: worn edge arc (mm) and cutting length (mm).
     wear_mm: Vec<f64>,
     cutting_mm: Vec<f64>,
+    /// The cutting length along the machined surface, mm.
+    surface_mm: f64,
     removed_mm3: f64,
     warnings: Vec<String>,
 }
@@ -142,7 +144,7 @@ fn optimise_layer(
         }
     }
     let n = plan.path.moves.len();
-    let (mut wear_mm, mut cutting_mm) = (vec![0.0; n], vec![0.0; n]);
+    let (mut wear_mm, mut cutting_mm, mut surface_mm) = (vec![0.0; n], vec![0.0; n], 0.0);
     let model = &candidate.life;
     let flutes = f64::from(candidate.tool.flutes);
     let default_rpm = layer.analysis.default_spindle_rpm;
@@ -167,6 +169,7 @@ fn optimise_layer(
         };
         wear_mm[i] += model.wear_mm(r.sample.step_mm, &cut);
         cutting_mm[i] += r.sample.step_mm;
+        surface_mm += machined_surface_mm(r.sample.step_mm, r.cutting_point_ratio);
     })?;
     let mut warnings = Vec::new();
     if !plan.shortfalls.is_empty() {
@@ -183,6 +186,7 @@ fn optimise_layer(
         steps,
         wear_mm,
         cutting_mm,
+        surface_mm,
         removed_mm3: analysis.summary.removed_volume_mm3,
         warnings,
     })
@@ -211,6 +215,7 @@ pub fn evaluate(
     let mut labels: Vec<Option<Section>> = Vec::new();
     let mut removed = vec![0.0; layers.len()];
     let mut warnings = Vec::new();
+    let mut surface = 0.0;
     for l in layers {
         let source = l.copy_of.unwrap_or(l.index);
         let Some(o) = optimised[source].as_ref() else { continue };
@@ -233,6 +238,7 @@ pub fn evaluate(
         wear_of.extend(std::iter::repeat_n(0.0, links).chain(o.wear_mm.iter().copied()));
         cut_of.extend(std::iter::repeat_n(0.0, links).chain(o.cutting_mm.iter().copied()));
         removed[l.index] = o.removed_mm3;
+        surface += o.surface_mm;
         if l.copy_of.is_none() {
             warnings.extend(o.warnings.iter().cloned());
         }
@@ -287,7 +293,7 @@ pub fn evaluate(
     total.kinematic_time_min = time.kinematic_min;
     let worn: f64 = wear_of.iter().sum();
     let cutting: f64 = cut_of.iter().sum();
-    let consumption = Consumption::new(worn, life_arc, cutting);
+    let consumption = Consumption::new(worn, life_arc, cutting, surface);
     total.consumption = consumption.ratio;
     let rates = Rates {
         machine_rate_per_hour: options.machine_rate_per_hour,

@@ -22,6 +22,9 @@ pub enum Step {
     RoughSideCutting,
     /// Contour-parallel intermediate-rough side cutting of the last layer (step 9).
     IntermediateRoughSideCutting,
+    /// The conventional strategy the papers compare with: a ball end mill in thin
+    /// contour-parallel levels (seed 004 §3.3).
+    ConventionalBallRoughing,
 }
 
 impl Step {
@@ -34,6 +37,7 @@ impl Step {
             Step::ZCutDivision => "z-cut division",
             Step::RoughSideCutting => "rough side cutting",
             Step::IntermediateRoughSideCutting => "intermediate-rough side cutting",
+            Step::ConventionalBallRoughing => "conventional ball-end roughing",
         }
     }
 }

@@ -8,6 +8,7 @@ use crate::core::costing::cost::{cost, Cost};
 use crate::core::costing::estimate::Estimate;
 use crate::core::costing::wear::{AlphaWear, LineWear};
 use crate::core::kinematics::MachiningTime;
+use crate::core::tool_life::CutLength;
 use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 use serde::Serialize;
@@ -87,6 +88,23 @@ pub struct AlphaWearDto {
     pub cutting_length_mm: f64,
 }
 
+/// A length of cut measured two ways, m: along the tool-centre path (what the program and
+/// the simulation step along) and along the machined surface, which seed 003 measures tool
+/// life by ("the total length of the machined workpiece surface"). On a concave arc the
+/// surface is `R/(R − r)` times the centre path (twice at R/r = 2), on a straight cut
+/// equal, on a convex arc shorter (MODEL.md §9).
+#[derive(Debug, Clone, Copy, Serialize, ToSchema)]
+pub struct CutLengthDto {
+    pub centre_path_m: f64,
+    pub machined_surface_m: f64,
+}
+
+impl From<CutLength> for CutLengthDto {
+    fn from(c: CutLength) -> Self {
+        CutLengthDto { centre_path_m: c.centre_path_m, machined_surface_m: c.machined_surface_m }
+    }
+}
+
 /// How much of a tool the program uses (MODEL.md §9) and where.
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct ToolLifeDto {
@@ -97,10 +115,13 @@ pub struct ToolLifeDto {
     pub worn_edge_arc_mm: f64,
     /// The tool's life as edge arc, mm (L_f).
     pub life_edge_arc_mm: f64,
-    /// The tool's life at standard straight cutting, m.
+    /// The tool's life at standard straight cutting, m (both ways alike on a straight cut).
     pub standard_life_m: f64,
-    /// The machined length one tool lasts at this program's mix of cuts, m.
-    pub equivalent_life_m: f64,
+    /// The program's cutting length, both ways.
+    pub cutting_length: CutLengthDto,
+    /// The length one tool lasts at this program's mix of cuts, both ways: the cutting
+    /// length over the consumption.
+    pub equivalent_life: CutLengthDto,
     /// Share of the wear on samples whose force rests on the force model outside its
     /// experiments (see the analysis' `outside_model`), 0–1.
     pub extrapolated_share: f64,
@@ -197,7 +218,8 @@ impl CostingResult {
                 worn_edge_arc_mm: c.worn_edge_arc_mm,
                 life_edge_arc_mm: c.life_edge_arc_mm,
                 standard_life_m: setup.life_m,
-                equivalent_life_m: c.equivalent_life_m,
+                cutting_length: CutLength::from_mm(c.cutting_length_mm, c.machined_surface_mm).into(),
+                equivalent_life: c.equivalent_life.into(),
                 extrapolated_share: wear.extrapolated_share,
                 extrapolated: wear.extrapolated_share > 0.0,
                 by_line: wear

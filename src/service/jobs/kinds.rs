@@ -33,6 +33,8 @@ pub enum JobInput {
 pub struct JobOutput {
     pub result: serde_json::Value,
     pub program: Option<String>,
+    /// A plan's baseline program (`GET /v1/jobs/{id}/program?part=baseline`).
+    pub baseline_program: Option<String>,
     /// The drawing scene as JSON.
     pub scene: Option<String>,
 }
@@ -106,7 +108,7 @@ fn to_json<T: Serialize>(value: &T) -> Result<serde_json::Value, ApiError> {
 pub fn run(kind: JobKind, input: &str, prepared: &str, progress: &dyn Progress) -> Result<JobOutput, CoreError> {
     let unreadable = |e: serde_json::Error| CoreError::invalid("prepared", format!("stored job input unreadable: {e}"));
     progress.checkpoint()?;
-    let mut program = None;
+    let (mut program, mut baseline_program) = (None, None);
     let mut scene: Option<Scene> = None;
     let result = match kind {
         JobKind::Conditions => {
@@ -146,10 +148,11 @@ pub fn run(kind: JobKind, input: &str, prepared: &str, progress: &dyn Progress) 
         JobKind::Plan => {
             let request = serde_json::from_str(input).map_err(unreadable)?;
             let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
-            let (result, text, drawn) = plans::run(request, prepared, progress)?;
-            program = Some(text);
-            scene = Some(drawn);
-            serde_json::to_value(result).map_err(unreadable)?
+            let out = plans::run(request, prepared, progress)?;
+            program = Some(out.program);
+            baseline_program = out.baseline_program;
+            scene = Some(out.scene);
+            serde_json::to_value(out.result).map_err(unreadable)?
         }
     };
     let scene = scene
@@ -157,5 +160,5 @@ pub fn run(kind: JobKind, input: &str, prepared: &str, progress: &dyn Progress) 
         .transpose()
         .map_err(|e| CoreError::invalid("scene", format!("drawing scene unserialisable: {e}")))?;
     progress.report(1.0);
-    Ok(JobOutput { result, program, scene })
+    Ok(JobOutput { result, program, baseline_program, scene })
 }

@@ -149,3 +149,23 @@ impl From<Job> for JobSummary {
         }
     }
 }
+
+/// Which of a job's NC programs `GET /v1/jobs/{id}/program` serves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum ProgramPart {
+    /// The program the job makes (feeds, trochoids, the plan's chosen tool).
+    #[default]
+    Main,
+    /// A plan's conventional baseline: the R5 ball's thin contour-parallel levels.
+    Baseline,
+}
+
+impl ProgramPart {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ProgramPart::Main => "main",
+            ProgramPart::Baseline => "baseline",
+        }
+    }
+}

@@ -28,6 +28,7 @@ use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
 use crate::service::jobs::feeds::MAX_FEED_PER_STANDARD;
 use crate::service::lookup;
+use crate::service::resources::Source;
 use serde::{Deserialize, Serialize};
 use sqlx::SqlitePool;
 use utoipa::ToSchema;
@@ -118,10 +119,22 @@ pub struct BaselinePrepared {
     pub name: String,
     pub tool: EndMill,
     pub conditions: CuttingConditions,
+    /// The `conventional_ball_roughing` row the conditions come from (absent in jobs stored
+    /// before it was kept).
+    #[serde(default)]
+    pub conditions_row: Option<RowRef>,
     pub life_m: f64,
     pub gamma_table: Vec<(f64, f64)>,
     pub force_exponent: f64,
     pub tool_price: f64,
+}
+
+/// A database row a job's values come from: its id, and where its values come from.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+pub struct RowRef {
+    pub id: i64,
+    pub source: Source,
+    pub reference: String,
 }
 
 /// What the request resolved to.
@@ -424,6 +437,7 @@ async fn resolve_baseline(
         name: ball.data.name.clone(),
         tool,
         conditions: row.data.conditions(),
+        conditions_row: Some(RowRef { id: row.id, source: row.data.source, reference: row.data.reference.clone() }),
         life_m: life.data.life_m,
         gamma_table: life.data.gamma_table.iter().map(|g| (g.0, g.1)).collect(),
         force_exponent: life.data.force_exponent,
@@ -487,11 +501,7 @@ fn build(r: &PlanRequest, p: &PlanPrepared) -> Result<Built, ApiError> {
 }
 
 /// Plans the cavity and writes the chosen tool's program.
-pub fn run(
-    request: PlanRequest,
-    prepared: PlanPrepared,
-    progress: &dyn Progress,
-) -> Result<(PlanResult, String, Scene), CoreError> {
+pub fn run(request: PlanRequest, prepared: PlanPrepared, progress: &dyn Progress) -> Result<PlanOutput, CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
     let (cavity, candidates, options) = build(&request, &prepared).map_err(reread)?;
     // The ball's life (assumed as the straight tool's, MODEL.md §5) counts against its own
@@ -518,6 +528,25 @@ pub fn run(
     writer_base.tool.name = chosen.name.clone();
     writer_base.tool.geometry = chosen.tool.into();
     let program = write_program(&plan.evaluation.program, &request.output.to_writer(&writer_base));
+    // The baseline's program: the same output options, with the ball, its name and its speed.
+    let baseline_program = plan.baseline.as_ref().zip(prepared.baseline.as_ref()).map(|(b, p)| {
+        let mut writer_base = prepared.writer_base.clone();
+        writer_base.tool.id = p.tool_id;
+        writer_base.tool.name = p.name.clone();
+        writer_base.tool.geometry = p.tool.into();
+        writer_base.default_spindle_rpm = Some(p.conditions.spindle_rpm);
+        write_program(&b.program, &request.output.to_writer(&writer_base))
+    });
     let scene = process_scene(&cavity.whole(), &plan);
-    Ok((PlanResult::new(&prepared, &plan, &program), program, scene))
+    let result = PlanResult::new(&prepared, &plan, &program, baseline_program.as_deref().unwrap_or_default());
+    Ok(PlanOutput { result, program, baseline_program, scene })
+}
+
+/// What a plan job hands back: its result, the chosen tool's program, the baseline's program
+/// (when it has a baseline) and the drawing scene.
+pub struct PlanOutput {
+    pub result: PlanResult,
+    pub program: String,
+    pub baseline_program: Option<String>,
+    pub scene: Scene,
 }

@@ -3,8 +3,9 @@
 //! G-code is at the job's `program` link).
 
 use super::conditions::NamedRef;
+use super::costing_result::CutLengthDto;
 use super::feeds_result::ProgramInfoDto;
-use super::plans::PlanPrepared;
+use super::plans::{BaselinePrepared, PlanPrepared, RowRef};
 use crate::core::process::{
     Baseline, CandidateReport, CandidateStatus, Comparison, Figures, LayerReport, LayerRole, ProcessPlan, Step, Tuning,
     TuningOutcome,
@@ -152,11 +153,13 @@ pub struct TotalsDto {
     pub removed_volume_mm3: f64,
     /// Over the kinematic time, cm³/min.
     pub removal_rate_cm3_min: f64,
-    /// The tool would last this machined length at this job's mix of cuts, m.
-    pub equivalent_life_m: f64,
+    /// The length one tool lasts at this job's mix of cuts, along the tool-centre path and
+    /// along the machined surface.
+    pub equivalent_life: CutLengthDto,
 }
 
-/// The conventional baseline (seed 004 §3.3).
+/// The conventional baseline (seed 004 §3.3): its NC program is at
+/// `GET /v1/jobs/{id}/program?part=baseline`.
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct BaselineDto {
     pub tool: String,
@@ -164,25 +167,40 @@ pub struct BaselineDto {
     pub levels: usize,
     pub axial_depth_mm: f64,
     pub radial_depth_mm: f64,
+    pub spindle_rpm: f64,
+    pub fz_mm: f64,
     pub feed_mm_min: f64,
+    /// The `conventional_ball_roughing` row of `/v1/conditions/standard` the baseline is cut
+    /// at (null in jobs stored before it was kept): the seeded R5 row's fz is `inferred` from
+    /// seed 004 Table 4 (MODEL.md §5), since Table 3's fz 0.05 contradicts it.
+    pub conditions: Option<RowRef>,
     #[serde(flatten)]
     pub figures: FiguresDto,
+    /// The length one ball lasts at this baseline's mix of cuts, both ways.
+    pub equivalent_life: CutLengthDto,
     pub cost: f64,
     pub removed_volume_mm3: f64,
+    /// Its NC program, at `GET /v1/jobs/{id}/program?part=baseline`.
+    pub program: ProgramInfoDto,
 }
 
-impl From<&Baseline> for BaselineDto {
-    fn from(b: &Baseline) -> Self {
+impl BaselineDto {
+    fn new(b: &Baseline, prepared: &BaselinePrepared, program: &str) -> Self {
         BaselineDto {
             tool: b.tool.clone(),
             diameter_mm: b.diameter_mm,
             levels: b.levels,
             axial_depth_mm: b.axial_depth_mm,
             radial_depth_mm: b.radial_depth_mm,
+            spindle_rpm: prepared.conditions.spindle_rpm,
+            fz_mm: prepared.conditions.fz_mm,
             feed_mm_min: b.feed_mm_min,
+            conditions: prepared.conditions_row.clone(),
             figures: b.figures.into(),
+            equivalent_life: b.consumption.equivalent_life.into(),
             cost: b.cost.total,
             removed_volume_mm3: b.removed_volume_mm3,
+            program: program_info(b.program.moves.len(), program),
         }
     }
 }
@@ -249,6 +267,11 @@ fn candidate(r: &CandidateReport, tool_id: i64) -> CandidateDto {
     }
 }
 
+/// A written program of `moves` moves (a plan's paths are written as planned) in numbers.
+fn program_info(moves: usize, text: &str) -> ProgramInfoDto {
+    ProgramInfoDto { moves_in: moves, moves_out: moves, lines: text.lines().count(), bytes: text.len() }
+}
+
 fn layer(l: &LayerReport) -> LayerDto {
     LayerDto {
         index: l.index,
@@ -271,7 +294,9 @@ fn layer(l: &LayerReport) -> LayerDto {
 }
 
 impl PlanResult {
-    pub fn new(prepared: &PlanPrepared, plan: &ProcessPlan, program: &str) -> Self {
+    /// The result of `plan`, whose program is `program` and its baseline's `baseline_program`
+    /// (empty without a baseline).
+    pub fn new(prepared: &PlanPrepared, plan: &ProcessPlan, program: &str, baseline_program: &str) -> Self {
         let e = &plan.evaluation;
         PlanResult {
             material: prepared.material.clone(),
@@ -297,16 +322,15 @@ impl PlanResult {
                 currency: e.cost.currency.clone(),
                 removed_volume_mm3: e.removed_volume_mm3,
                 removal_rate_cm3_min: e.removal_rate_cm3_min,
-                equivalent_life_m: e.consumption.equivalent_life_m,
+                equivalent_life: e.consumption.equivalent_life.into(),
             },
-            baseline: plan.baseline.as_ref().map(Into::into),
+            baseline: plan
+                .baseline
+                .as_ref()
+                .zip(prepared.baseline.as_ref())
+                .map(|(b, p)| BaselineDto::new(b, p, baseline_program)),
             comparison: plan.comparison.map(Into::into),
-            program: ProgramInfoDto {
-                moves_in: e.program.moves.len(),
-                moves_out: e.program.moves.len(),
-                lines: program.lines().count(),
-                bytes: program.len(),
-            },
+            program: program_info(e.program.moves.len(), program),
             warnings: plan.warnings.clone(),
         }
     }

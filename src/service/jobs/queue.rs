@@ -2,7 +2,7 @@
 //! reports progress, honours cancellation and leaves interrupted jobs resumable.
 
 use super::kinds;
-use super::model::JobKind;
+use super::model::{JobKind, ProgramPart};
 use super::store;
 use crate::core::progress::Progress;
 use crate::core::CoreError;
@@ -273,15 +273,18 @@ async fn execute(inner: &Arc<Inner>, row: &store::JobRow) -> Result<(), sqlx::Er
         Ok(Ok(output)) => {
             let text = serde_json::to_string(&output.result).unwrap_or_default();
             let (program, scene) = (output.program.as_deref(), output.scene.as_deref());
+            let parts: Vec<(ProgramPart, &str)> =
+                output.baseline_program.as_deref().map(|p| (ProgramPart::Baseline, p)).into_iter().collect();
             let sizes = [
                 ("result", text.len()),
                 ("program", program.map_or(0, str::len)),
+                ("baseline program", output.baseline_program.as_deref().map_or(0, str::len)),
                 ("scene", scene.map_or(0, str::len)),
             ];
             if let Some(problem) = oversized(&sizes) {
                 return store::fail(pool, id, &problem).await;
             }
-            match store::succeed(pool, id, &text, program, scene).await {
+            match store::succeed(pool, id, &text, program, &parts, scene).await {
                 Ok(()) => Ok(()),
                 Err(e) => {
                     // The job must not stay `running` with its outcome lost.

@@ -5,7 +5,7 @@ use super::conditions::ConditionsRequest;
 use super::costing::CostingRequest;
 use super::feeds::FeedsRequest;
 use super::kinds::{self, JobInput};
-use super::model::{Job, JobKind, JobStatus, JobSummary};
+use super::model::{Job, JobKind, JobStatus, JobSummary, ProgramPart};
 use super::plans::PlanRequest;
 use super::store;
 use super::trochoids::TrochoidsRequest;
@@ -274,21 +274,56 @@ pub async fn cancel_job(State(state): State<AppState>, ApiPath(id): ApiPath<Stri
     Ok((status, axum::Json(job)).into_response())
 }
 
-/// The NC program a finished job produced, as plain text.
+/// Query of `GET /v1/jobs/{id}/program`.
+#[derive(Debug, Deserialize, IntoParams)]
+#[serde(deny_unknown_fields)]
+#[into_params(parameter_in = Query)]
+pub struct ProgramQuery {
+    /// Which program: `main` (default), the job's own (a feeds job's edited program, the
+    /// trochoids', the plan's chosen tool's); `baseline`, a plan's conventional ball-end
+    /// baseline.
+    pub part: Option<ProgramPart>,
+}
+
+/// An NC program a finished job produced, as plain text.
+///
+/// `part=baseline` gives a plan's conventional baseline (the R5 ball in thin levels, at its
+/// `conventional_ball_roughing` conditions), written with the plan's output options.
 #[utoipa::path(get, path = "/v1/jobs/{id}/program", tag = "jobs", operation_id = "getJobProgram",
-    params(("id" = String, Path, description = "Job id")),
+    params(("id" = String, Path, description = "Job id"), ProgramQuery),
     responses(
         (status = 200, description = "The NC program", body = String, content_type = "text/plain"),
-        (status = 404, description = "No such job, or this job makes no program", body = Problem, content_type = "application/problem+json"),
+        (status = 400, description = "An unknown part or query parameter", body = Problem, content_type = "application/problem+json"),
+        (status = 404, description = "No such job, or this job makes no such program (a baseline only comes with a plan that has one)", body = Problem, content_type = "application/problem+json"),
         (status = 409, description = "Not finished yet", body = Problem, content_type = "application/problem+json")))]
-pub async fn get_program(State(state): State<AppState>, ApiPath(id): ApiPath<String>) -> Result<Response, ApiError> {
+pub async fn get_program(
+    State(state): State<AppState>,
+    ApiPath(id): ApiPath<String>,
+    ApiQuery(query): ApiQuery<ProgramQuery>,
+) -> Result<Response, ApiError> {
     let row = store::get(&state.pool, &id).await?;
-    match (row.status()?, row.program) {
+    let part = query.part.unwrap_or_default();
+    let program = match part {
+        ProgramPart::Main => row.program.clone(),
+        ProgramPart::Baseline => store::program_part(&state.pool, &id, part).await?,
+    };
+    match (row.status()?, program) {
         (_, Some(program)) => Ok(([(header::CONTENT_TYPE, "text/plain; charset=utf-8")], program).into_response()),
-        (JobStatus::Queued | JobStatus::Running, None) => {
+        (JobStatus::Queued | JobStatus::Running, None) if makes(row.kind()?, part) => {
             Err(ApiError::Conflict(format!("job {id} is {}; its program is not ready", row.status)))
         }
-        (_, None) => Err(ApiError::not_found(format!("job {id} ({}) has no NC program", row.kind))),
+        (_, None) if part == ProgramPart::Main => {
+            Err(ApiError::not_found(format!("job {id} ({}) has no NC program", row.kind)))
+        }
+        (_, None) => Err(ApiError::not_found(format!("job {id} ({}) has no {} program", row.kind, part.as_str()))),
+    }
+}
+
+/// `true` when a job of `kind` may make the program `part` once it has finished.
+fn makes(kind: JobKind, part: ProgramPart) -> bool {
+    match part {
+        ProgramPart::Main => true,
+        ProgramPart::Baseline => kind == JobKind::Plan,
     }
 }
 

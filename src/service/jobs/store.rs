@@ -1,6 +1,6 @@
 //! The `jobs` table.
 
-use super::model::{Job, JobKind, JobLinks, JobStatus};
+use super::model::{Job, JobKind, JobLinks, JobStatus, ProgramPart};
 use crate::service::error::{excerpt, ApiError, Problem};
 use sqlx::SqlitePool;
 
@@ -156,13 +156,14 @@ pub async fn set_progress(pool: &SqlitePool, id: &str, progress: f64) -> Result<
     Ok(())
 }
 
-/// Marks a running job succeeded with its result (and NC program and drawing scene, if
-/// any), in one transaction.
+/// Marks a running job succeeded with its result (and NC program, its other programs and
+/// drawing scene, if any), in one transaction.
 pub async fn succeed(
     pool: &SqlitePool,
     id: &str,
     result: &str,
     program: Option<&str>,
+    parts: &[(ProgramPart, &str)],
     scene: Option<&str>,
 ) -> Result<(), sqlx::Error> {
     let mut tx = pool.begin_with("BEGIN IMMEDIATE").await?;
@@ -173,6 +174,14 @@ pub async fn succeed(
     .bind(id)
     .execute(&mut *tx)
     .await?;
+    for (part, text) in parts {
+        sqlx::query("INSERT OR REPLACE INTO job_programs (job_id, part, program) VALUES (?, ?, ?)")
+            .bind(id)
+            .bind(part.as_str())
+            .bind(text)
+            .execute(&mut *tx)
+            .await?;
+    }
     if let Some(scene) = scene {
         sqlx::query("INSERT OR REPLACE INTO job_scenes (job_id, scene) VALUES (?, ?)")
             .bind(id)
@@ -181,6 +190,15 @@ pub async fn succeed(
             .await?;
     }
     tx.commit().await
+}
+
+/// A program of a job other than its main one (`job_programs`), if it left one.
+pub async fn program_part(pool: &SqlitePool, id: &str, part: ProgramPart) -> Result<Option<String>, ApiError> {
+    Ok(sqlx::query_scalar("SELECT program FROM job_programs WHERE job_id = ? AND part = ?")
+        .bind(id)
+        .bind(part.as_str())
+        .fetch_optional(pool)
+        .await?)
 }
 
 /// The drawing scene of a job (JSON), if it left one.

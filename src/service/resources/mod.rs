@@ -63,6 +63,9 @@ pub enum Source {
     Extrapolated,
     /// Our default where the papers are silent: replace it with the shop's value.
     Assumed,
+    /// Inferred from other figures of the papers where a printed value contradicts them;
+    /// `reference` says from what (e.g. the baseline's feed, MODEL.md §5).
+    Inferred,
     /// Fitted to measurements (e.g. `POST /v1/tools/{id}/force-model/fit`).
     Fitted,
     /// Entered or edited by the shop.
@@ -75,6 +78,7 @@ impl Source {
             Source::Paper => "paper",
             Source::Extrapolated => "extrapolated",
             Source::Assumed => "assumed",
+            Source::Inferred => "inferred",
             Source::Fitted => "fitted",
             Source::User => "user",
         }

@@ -73,7 +73,7 @@ const SUMMARIES = {
         ['Tool', r.tool?.name], ['Machine', r.machine?.name],
         ['Time (nominal)', minutes(t.nominal_min)], ['Time (with acceleration, jerk)', minutes(t.kinematic_min)],
         ['Tool-life consumption', `${num((l.consumption ?? 0) * 100, 2)} % of one tool`],
-        ['Equivalent life', num(l.equivalent_life_m, 1, 'm')],
+        ['Equivalent life', `${num(l.equivalent_life?.centre_path_m, 1, 'm')} of tool-centre path, ${num(l.equivalent_life?.machined_surface_m, 1, 'm')} of machined surface`],
         ['Cost', `${num(c.total, 2)} ${c.currency || ''}`], ['Machine / tool cost', `${num(c.machine, 2)} / ${num(c.tool, 2)} ${c.currency || ''}`],
         ['Removed', `${num((r.removed_volume_mm3 ?? 0) / 1000, 2)} cm³ at ${num(r.removal_rate_cm3_min, 2)} cm³/min`],
       ]),
@@ -154,7 +154,10 @@ export async function jobView(id) {
     const r = job.result || {};
     const parts = [];
     if (job.links?.program) {
-      parts.push(h('p', { class: 'actions' }, h('a', { class: 'button primary', id: 'download-program', href: job.links.program, download: `dieplan-${job.kind}-${job.id.slice(0, 8)}.nc` }, 'Download NC program')));
+      const baseline = job.kind === 'plan' && job.result?.baseline
+        ? h('a', { class: 'button', id: 'download-baseline', href: `${job.links.program}?part=baseline`, download: `dieplan-baseline-${job.id.slice(0, 8)}.nc` }, 'Download the baseline’s NC program')
+        : null;
+      parts.push(h('p', { class: 'actions' }, h('a', { class: 'button primary', id: 'download-program', href: job.links.program, download: `dieplan-${job.kind}-${job.id.slice(0, 8)}.nc` }, 'Download NC program'), baseline));
     }
     parts.push(h('section', { class: 'card' }, h('h2', {}, 'Result'), ...(SUMMARIES[job.kind]?.(r) || [h('p', { class: 'muted' }, 'See the raw result below.')]), warnings(r.warnings)));
     parts.push(drawingPanel(job));
