@@ -1,6 +1,6 @@
 // One job: progress (polled), cancel, and once succeeded the key figures, the drawing with
 // its controls, the charts, the NC program download and the raw result.
-import { h, api, problemBox, pretty, num, minutes, when, duration, figures, table, badge, KIND_NAMES } from './ui.js';
+import { h, api, downloadLink, problemBox, pretty, num, minutes, when, duration, figures, table, badge, KIND_NAMES } from './ui.js';
 import { drawingPanel } from './drawing.js';
 
 const POLL_MS = 1000;
@@ -154,7 +154,7 @@ export async function jobView(id) {
     const r = job.result || {};
     const parts = [];
     if (job.links?.program) {
-      parts.push(h('p', { class: 'actions' }, h('a', { class: 'button primary', id: 'download-program', href: job.links.program, download: `dieplan-${job.kind}-${job.id.slice(0, 8)}.nc` }, 'Download NC program')));
+      parts.push(h('p', { class: 'actions' }, downloadLink(job.links.program, `dieplan-${job.kind}-${job.id.slice(0, 8)}.nc`, { class: 'button primary', id: 'download-program' }, 'Download NC program')));
     }
     parts.push(h('section', { class: 'card' }, h('h2', {}, 'Result'), ...(SUMMARIES[job.kind]?.(r) || [h('p', { class: 'muted' }, 'See the raw result below.')]), warnings(r.warnings)));
     parts.push(drawingPanel(job));
