@@ -119,8 +119,10 @@ fn header_value(text: &str) -> HeaderValue {
 #[utoipa::path(post, path = "/v1/jobs", tag = "jobs", operation_id = "createJob", request_body = JobRequest,
     params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
     responses(
-        (status = 201, description = "Finished within the preferred wait", body = Job),
-        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 201, description = "Finished within the preferred wait", body = Job,
+            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
+        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
+            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "A refused field", body = Problem, content_type = "application/problem+json")))]
 pub async fn create_job(
@@ -141,8 +143,10 @@ pub async fn create_job(
 #[utoipa::path(post, path = "/v1/conditions", tag = "jobs", operation_id = "recommendConditions", request_body = ConditionsRequest,
     params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
     responses(
-        (status = 201, description = "Finished within the preferred wait; result is a ConditionsResult", body = Job),
-        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 201, description = "Finished within the preferred wait; result is a ConditionsResult", body = Job,
+            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
+        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
+            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
         (status = 422, description = "A refused field", body = Problem, content_type = "application/problem+json")))]
 pub async fn create_conditions(
     State(state): State<AppState>,
@@ -165,8 +169,10 @@ pub async fn create_conditions(
 #[utoipa::path(post, path = "/v1/analysis", tag = "jobs", operation_id = "analyzePath", request_body = AnalysisRequest,
     params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
     responses(
-        (status = 201, description = "Finished within the preferred wait; result is an AnalysisResult", body = Job),
-        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 201, description = "Finished within the preferred wait; result is an AnalysisResult", body = Job,
+            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
+        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
+            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "A refused field, NC line or contour vertex", body = Problem, content_type = "application/problem+json")))]
 pub async fn create_analysis(
@@ -191,8 +197,10 @@ pub async fn create_analysis(
 #[utoipa::path(post, path = "/v1/feeds", tag = "jobs", operation_id = "optimizeFeeds", request_body = FeedsRequest,
     params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
     responses(
-        (status = 201, description = "Finished within the preferred wait; result is a FeedsResult", body = Job),
-        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 201, description = "Finished within the preferred wait; result is a FeedsResult", body = Job,
+            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
+        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
+            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "A refused field, NC line or contour vertex", body = Problem, content_type = "application/problem+json")))]
 pub async fn create_feeds(
@@ -214,8 +222,10 @@ pub async fn create_feeds(
 #[utoipa::path(post, path = "/v1/costing", tag = "jobs", operation_id = "costProgram", request_body = CostingRequest,
     params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
     responses(
-        (status = 201, description = "Finished within the preferred wait; result is a CostingResult", body = Job),
-        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 201, description = "Finished within the preferred wait; result is a CostingResult", body = Job,
+            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
+        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
+            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "A refused field, NC line or contour vertex", body = Problem, content_type = "application/problem+json")))]
 pub async fn create_costing(
@@ -365,8 +375,10 @@ pub async fn get_program(
 #[utoipa::path(post, path = "/v1/trochoids", tag = "jobs", operation_id = "insertTrochoids", request_body = TrochoidsRequest,
     params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
     responses(
-        (status = 201, description = "Finished within the preferred wait; result is a TrochoidsResult", body = Job),
-        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 201, description = "Finished within the preferred wait; result is a TrochoidsResult", body = Job,
+            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
+        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
+            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "A refused field, NC line or contour vertex", body = Problem, content_type = "application/problem+json")))]
 pub async fn create_trochoids(
@@ -393,8 +405,10 @@ pub async fn create_trochoids(
 #[utoipa::path(post, path = "/v1/plans", tag = "jobs", operation_id = "planCavity", request_body = PlanRequest,
     params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
     responses(
-        (status = 201, description = "Finished within the preferred wait; result is a PlanResult", body = Job),
-        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 201, description = "Finished within the preferred wait; result is a PlanResult", body = Job,
+            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
+        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
+            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "A refused field or contour vertex", body = Problem, content_type = "application/problem+json")))]
 pub async fn create_plan(
