@@ -1,8 +1,10 @@
-//! The `dieplan` command: `serve` runs the service; `openapi` prints its OpenAPI document.
+//! The `dieplan` command: `serve` runs the service; `openapi` prints its OpenAPI document;
+//! `keys` makes, lists and revokes API keys.
 
 use clap::{Parser, Subcommand};
 use dieplan::service::app;
 use dieplan::service::config::Config;
+use dieplan::service::keys::cli::KeysCommand;
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -22,6 +24,9 @@ enum Command {
     Serve(Config),
     /// Print the OpenAPI document (as committed in openapi/openapi.json).
     Openapi,
+    /// Make, list and revoke API keys on the service's database.
+    #[command(subcommand)]
+    Keys(KeysCommand),
 }
 
 fn main() -> ExitCode {
@@ -32,6 +37,27 @@ fn main() -> ExitCode {
             ExitCode::SUCCESS
         }
         Command::Serve(config) => serve(config),
+        Command::Keys(command) => keys(command),
+    }
+}
+
+fn keys(command: KeysCommand) -> ExitCode {
+    let runtime = match tokio::runtime::Builder::new_current_thread().enable_all().build() {
+        Ok(rt) => rt,
+        Err(e) => {
+            eprintln!("dieplan: cannot start the async runtime: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    match runtime.block_on(dieplan::service::keys::cli::run(command)) {
+        Ok(out) => {
+            println!("{out}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("dieplan: {e}");
+            ExitCode::FAILURE
+        }
     }
 }
 

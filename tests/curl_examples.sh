@@ -37,10 +37,18 @@ if ! bash -euo pipefail "$TMP/examples.sh" >"$TMP/examples.out" 2>&1; then
   exit 1
 fi
 
+# The last examples made keys, so the service now needs one: make an admin key with the
+# command line, as an operator would.
+KEY=$("$BIN" keys create --role admin --name curl-checks --database "$TMP/dieplan.sqlite" 2>/dev/null)
+[ -n "$KEY" ] || { echo "dieplan keys create printed no key"; exit 1; }
+code=$(curl -sS -o /dev/null -w '%{http_code}' "$DIEPLAN/v1/tools?limit=1")
+[ "$code" = 401 ] || { echo "expected 401 without a key once keys exist, got $code"; exit 1; }
+echo "ok: without a key the service answers 401 once keys exist"
+
 # Answers the README promises.
 check() { # description, jq filter, URL path, method, body
   local got
-  got=$(curl -sS -X "$4" "$DIEPLAN$3" -H 'content-type: application/json' -H 'Prefer: wait=60' ${5:+-d "$5"})
+  got=$(curl -sS -X "$4" "$DIEPLAN$3" -H "authorization: Bearer $KEY" -H 'content-type: application/json' -H 'Prefer: wait=60' ${5:+-d "$5"})
   echo "$got" | jq -e "$2" >/dev/null || { echo "check failed: $1: $got"; exit 1; }
   echo "ok: $1"
 }

@@ -1,9 +1,13 @@
 //! Builds the HTTP application, starts it and stops it gracefully.
 
+use crate::service::auth::{authenticate, AuthState, RouteRoles};
 use crate::service::config::{Config, LogFormat};
 use crate::service::error::{problem_response, ApiError, PROBLEM_JSON};
+use crate::service::hosts::{check_host, AllowedHosts};
 use crate::service::jobs::queue::JobQueue;
-use crate::service::openapi::api_router;
+use crate::service::keys::store::{self as keys, EnvironmentKeyError};
+use crate::service::openapi::api_parts;
+use crate::service::rate_limit::RateLimits;
 use crate::service::state::AppState;
 use axum::body::Body;
 use axum::extract::DefaultBodyLimit;
@@ -35,6 +39,10 @@ pub enum StartError {
     Database { path: String, source: sqlx::Error },
     #[error("cannot listen on {addr}: {source}")]
     Bind { addr: SocketAddr, source: std::io::Error },
+    #[error("{0}")]
+    AdminKey(#[from] EnvironmentKeyError),
+    #[error("refusing to listen on {addr} without API keys: anyone who reaches it could change the database and every job. Set DIEPLAN_ADMIN_KEY, or make a key with `dieplan keys create --role admin --name NAME`, or pass --insecure-no-auth to run open anyway")]
+    Unprotected { addr: SocketAddr },
 }
 
 /// Sets up `tracing` output as configured. Safe to call more than once.
@@ -51,7 +59,13 @@ pub fn init_tracing(config: &Config) {
 /// The application router with every layer.
 pub fn router(state: AppState) -> Router {
     let config = state.config.clone();
-    let (api, openapi) = api_router().split_for_parts();
+    let (api, openapi) = api_parts();
+    let auth = AuthState {
+        app: state.clone(),
+        roles: RouteRoles::from_openapi(&openapi),
+        limits: Arc::new(RateLimits::default()),
+    };
+    let api = api.route_layer(axum::middleware::from_fn_with_state(auth, authenticate));
     let request_id = HeaderName::from_static(REQUEST_ID);
     api.merge(SwaggerUi::new("/docs").url("/openapi.json", openapi))
         .merge(crate::service::web::router())
@@ -68,6 +82,7 @@ pub fn router(state: AppState) -> Router {
         .layer(axum::middleware::map_response(problem_for_bare_errors))
         .layer(CompressionLayer::new().gzip(true))
         .layer(cors(&config.cors_origins))
+        .layer(axum::middleware::from_fn_with_state(AllowedHosts::new(&config.allowed_hosts), check_host))
         .layer(PropagateRequestIdLayer::new(request_id.clone()))
         .layer(TraceLayer::new_for_http().make_span_with(|req: &Request<Body>| {
             let id = req.headers().get(REQUEST_ID).and_then(|v| v.to_str().ok()).unwrap_or("-");
@@ -89,8 +104,19 @@ fn cors(origins: &[String]) -> CorsLayer {
     CorsLayer::new()
         .allow_origin(allow)
         .allow_methods([Method::GET, Method::POST, Method::PUT, Method::PATCH, Method::DELETE])
-        .allow_headers([header::CONTENT_TYPE, HeaderName::from_static("prefer")])
-        .expose_headers([header::LOCATION, HeaderName::from_static(REQUEST_ID)])
+        .allow_headers([
+            header::CONTENT_TYPE,
+            header::AUTHORIZATION,
+            header::IF_MATCH,
+            HeaderName::from_static("prefer"),
+        ])
+        .expose_headers([
+            header::LOCATION,
+            header::ETAG,
+            header::RETRY_AFTER,
+            header::WWW_AUTHENTICATE,
+            HeaderName::from_static(REQUEST_ID),
+        ])
 }
 
 async fn not_found() -> ApiError {
@@ -141,19 +167,34 @@ pub struct RunningServer {
     pub state: AppState,
     stop: oneshot::Sender<()>,
     server: JoinHandle<Result<(), std::io::Error>>,
+    retention: Option<JoinHandle<()>>,
 }
 
 impl RunningServer {
-    /// Stops accepting requests, lets in-flight ones finish, then stops the workers;
-    /// running jobs are left queued for the next start.
-    pub async fn stop(self) {
+    /// Stops within the grace period: stops accepting requests, answers the clients
+    /// waiting for a job at once (202 with `Location`: the job goes on), lets the other
+    /// requests in flight finish, and interrupts running jobs, which are queued again
+    /// without counting an attempt and resume at the next start.
+    pub async fn stop(mut self) {
+        let grace = Duration::from_secs(self.state.config.shutdown_grace_s);
+        let deadline = tokio::time::Instant::now() + grace;
+        self.state.jobs.begin_stop();
         let _ = self.stop.send(());
-        match self.server.await {
-            Ok(Err(e)) => tracing::error!(error = %e, "server stopped with an error"),
-            Err(e) => tracing::error!(error = %e, "server task failed"),
-            Ok(Ok(())) => {}
+        if let Some(retention) = self.retention.take() {
+            retention.abort();
         }
-        self.state.jobs.shutdown(Duration::from_secs(self.state.config.shutdown_grace_s)).await;
+        let server = async {
+            match tokio::time::timeout_at(deadline, &mut self.server).await {
+                Ok(Ok(Err(e))) => tracing::error!(error = %e, "server stopped with an error"),
+                Ok(Err(e)) => tracing::error!(error = %e, "server task failed"),
+                Ok(Ok(Ok(()))) => {}
+                Err(_) => {
+                    tracing::warn!("requests still in flight at the end of the grace period were dropped");
+                    self.server.abort();
+                }
+            }
+        };
+        tokio::join!(server, self.state.jobs.shutdown(grace));
         self.state.pool.close().await;
         tracing::info!("stopped");
     }
@@ -165,6 +206,20 @@ pub async fn start(config: Config) -> Result<RunningServer, StartError> {
     let pool = crate::service::store::open(&config.database)
         .await
         .map_err(|source| StartError::Database { path: config.database.display().to_string(), source })?;
+    keys::install_environment_key(&pool, config.admin_key.as_ref().map(|s| s.0.as_str())).await?;
+    let protected = keys::any_active(&pool)
+        .await
+        .map_err(|source| StartError::Database { path: config.database.display().to_string(), source })?;
+    if !protected {
+        if config.addr.ip().is_loopback() {
+            tracing::warn!("no API key exists: the service is open to every user of this machine until one is made (`dieplan keys create --role admin --name NAME`, or POST /v1/keys)");
+        } else if config.insecure_no_auth {
+            tracing::warn!(addr = %config.addr, "no API key exists and --insecure-no-auth is set: the service is open to anyone who reaches it");
+        } else {
+            return Err(StartError::Unprotected { addr: config.addr });
+        }
+    }
+    let retention = crate::service::retention::start(pool.clone(), config.job_retention_days);
     let workers = config.worker_count();
     let jobs = JobQueue::start(pool.clone(), workers, config.job_time_limit())
         .await
@@ -183,7 +238,7 @@ pub async fn start(config: Config) -> Result<RunningServer, StartError> {
             .await
     });
     tracing::info!(%addr, workers, "dieplan listening");
-    Ok(RunningServer { addr, state, stop, server })
+    Ok(RunningServer { addr, state, stop, server, retention })
 }
 
 /// Resolves on SIGTERM or ctrl-c.

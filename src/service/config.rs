@@ -50,6 +50,45 @@ pub struct Config {
     /// 0: no limit.
     #[arg(long, env = "DIEPLAN_JOB_TIME_LIMIT", default_value_t = DEFAULT_JOB_TIME_LIMIT_S)]
     pub job_time_limit_s: u64,
+    /// An admin key set up at start (for Docker): a secret of at least 32 characters.
+    /// Changing it revokes the key of its earlier value. Prefer the variable to the flag,
+    /// which other users of the machine can read in the process list.
+    #[arg(long, env = "DIEPLAN_ADMIN_KEY", hide_env_values = true, value_parser = parse_secret)]
+    pub admin_key: Option<Secret>,
+    /// Run without keys on an address other than loopback: anyone who reaches the port
+    /// may do everything. Without it the service refuses to start so.
+    #[arg(long, env = "DIEPLAN_INSECURE_NO_AUTH")]
+    pub insecure_no_auth: bool,
+    /// Host names (or `name:port`) the `Host` header must name, comma-separated; any when
+    /// empty. The health probes are exempt.
+    #[arg(long, env = "DIEPLAN_ALLOWED_HOSTS", value_delimiter = ',')]
+    pub allowed_hosts: Vec<String>,
+    /// Requests a minute each key may make, unless the key says otherwise; 0: unlimited.
+    #[arg(long, env = "DIEPLAN_RATE_LIMIT", default_value_t = DEFAULT_RATE_LIMIT_PER_MINUTE)]
+    pub rate_limit_per_minute: i64,
+    /// Finished jobs older than this many days are removed with their results; 0: kept.
+    #[arg(long, env = "DIEPLAN_JOB_RETENTION_DAYS", default_value_t = DEFAULT_JOB_RETENTION_DAYS)]
+    pub job_retention_days: u64,
+}
+
+/// Default for [`Config::rate_limit_per_minute`]: 20 requests a second per key, far more
+/// than the page's polling or a CAM plugin needs, and a brake on a runaway script.
+pub const DEFAULT_RATE_LIMIT_PER_MINUTE: i64 = 1200;
+/// Default for [`Config::job_retention_days`].
+pub const DEFAULT_JOB_RETENTION_DAYS: u64 = 30;
+
+/// A secret that logs and `Debug` never show.
+#[derive(Clone)]
+pub struct Secret(pub String);
+
+impl std::fmt::Debug for Secret {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Secret(…)")
+    }
+}
+
+fn parse_secret(text: &str) -> Result<Secret, String> {
+    Ok(Secret(text.trim().to_string()))
 }
 
 /// Default for [`Config::job_time_limit_s`]: an hour, far more than any job of the
@@ -72,6 +111,11 @@ impl Config {
             cors_origins: Vec::new(),
             shutdown_grace_s: 10,
             job_time_limit_s: DEFAULT_JOB_TIME_LIMIT_S,
+            admin_key: None,
+            insecure_no_auth: false,
+            allowed_hosts: Vec::new(),
+            rate_limit_per_minute: DEFAULT_RATE_LIMIT_PER_MINUTE,
+            job_retention_days: DEFAULT_JOB_RETENTION_DAYS,
         }
     }
 

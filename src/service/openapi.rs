@@ -21,6 +21,7 @@ use utoipa_axum::router::OpenApiRouter;
     tags(
         (name = "jobs", description = "Planning work as jobs: create, poll, list, cancel"),
         (name = "database", description = "The cutting-condition database"),
+        (name = "keys", description = "API keys and their roles (admin)"),
         (name = "health", description = "Liveness and readiness")
     ),
     components(schemas(Problem, FieldError, ConditionsResult, AnalysisResult, FeedsResult, CostingResult, TrochoidsResult, PlanResult))
@@ -43,11 +44,19 @@ pub fn api_router() -> OpenApiRouter<AppState> {
         .merge(machines::api::router())
         .merge(cost_rates::api::router())
         .routes(utoipa_axum::routes!(crate::service::force_fit::fit))
+        .merge(crate::service::keys::routes::router())
+}
+
+/// The routes and the finished OpenAPI document (with keys, roles and rate limits).
+pub fn api_parts() -> (axum::Router<AppState>, utoipa::openapi::OpenApi) {
+    let (router, mut doc) = api_router().split_for_parts();
+    crate::service::security_docs::describe(&mut doc);
+    (router, doc)
 }
 
 /// The OpenAPI document the service serves at `/openapi.json`.
 pub fn document() -> utoipa::openapi::OpenApi {
-    api_router().split_for_parts().1
+    api_parts().1
 }
 
 /// The document as committed in `openapi/openapi.json`: pretty JSON with a final newline.

@@ -25,6 +25,7 @@ static ASSETS: &[Asset] = &[
     Asset { path: "/favicon.svg", content_type: "image/svg+xml", body: include_str!("web/favicon.svg") },
     Asset { path: "/app.js", content_type: JS, body: include_str!("web/app.js") },
     Asset { path: "/ui.js", content_type: JS, body: include_str!("web/ui.js") },
+    Asset { path: "/key.js", content_type: JS, body: include_str!("web/key.js") },
     Asset { path: "/new-job.js", content_type: JS, body: include_str!("web/new-job.js") },
     Asset { path: "/job-view.js", content_type: JS, body: include_str!("web/job-view.js") },
     Asset { path: "/drawing.js", content_type: JS, body: include_str!("web/drawing.js") },

@@ -172,3 +172,50 @@ pub fn many_sided(n: usize) -> Vec<[f64; 2]> {
         })
         .collect()
 }
+
+/// An analysis job that runs for minutes (tiger.nc sampled every 5 µm: some 30 million
+/// samples) and stops at once when cancelled: a job to interrupt, or to queue behind.
+pub fn long_analysis() -> Value {
+    let gcode = std::fs::read_to_string(format!("{}/../shared/data/tiger.nc", env!("CARGO_MANIFEST_DIR")))
+        .expect("tiger.nc is in the shared data");
+    serde_json::json!({
+        "program": {"gcode": gcode}, "tool_type": "square", "diameter_mm": 6,
+        "stock": {"box": {"x_min": -2, "y_min": -1, "z_min": -32, "x_max": 92, "y_max": 89, "z_max": 0}},
+        "sample_spacing_mm": 0.005
+    })
+}
+
+/// `Authorization: Bearer <key>`, as a header pair for [`TestApp::send`].
+pub fn bearer(key: &str) -> (&'static str, String) {
+    ("authorization", format!("Bearer {key}"))
+}
+
+impl TestApp {
+    /// A request with an API key.
+    pub async fn send_as(&self, key: &str, method: Method, path: &str, body: Option<Value>) -> Answer {
+        let (name, value) = bearer(key);
+        self.send(method, path, body, &[(name, value.as_str())]).await
+    }
+
+    /// Makes a key with `admin_key` (none: while the service is open) and returns its secret.
+    pub async fn make_key(&self, admin_key: Option<&str>, role: &str, name: &str) -> String {
+        let body = serde_json::json!({"role": role, "name": name});
+        let a = match admin_key {
+            Some(key) => self.send_as(key, Method::POST, "/v1/keys", Some(body)).await,
+            None => self.post("/v1/keys", body).await,
+        };
+        assert_eq!(a.status, 201, "{}", a.text);
+        a.body["key"].as_str().expect("the secret").to_string()
+    }
+
+    /// Polls a job until it is running.
+    pub async fn wait_until_running(&self, id: &str) {
+        for _ in 0..600 {
+            if self.get(&format!("/v1/jobs/{id}")).await.body["status"] == "running" {
+                return;
+            }
+            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+        }
+        panic!("job {id} did not start");
+    }
+}

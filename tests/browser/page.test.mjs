@@ -1,6 +1,7 @@
 // Drives the dieplan web page in headless chromium (Debian's, via playwright-core):
 // new job from the built-in trochoids example, its progress, result, NC program, the jobs
-// list, the database, and the drawing with its charts; desktop and phone screenshots.
+// list, the database, the drawing with its charts, and the key prompt once the service has
+// keys; desktop and phone screenshots.
 //
 //   node tests/browser/page.test.mjs http://127.0.0.1:8080
 //
@@ -177,6 +178,28 @@ try {
     check(views.charts.length > 0, 'a trochoids job has an α chart');
     await page.waitForFunction((n) => document.querySelectorAll('.chart svg').length === n, views.charts.length, { timeout: 30_000 });
     await shot(page, 'desktop-job');
+  });
+
+  await step('once the service has keys, the page asks for one and keeps it', async () => {
+    const made = await page.evaluate(async () => {
+      const r = await fetch('/v1/keys', { method: 'POST', headers: { 'content-type': 'application/json' }, body: JSON.stringify({ role: 'admin', name: 'browser test' }) });
+      return r.json();
+    });
+    check(String(made.key || '').startsWith('dpk_'), `no key made: ${JSON.stringify(made)}`);
+    const errorsBefore = consoleErrors.length;
+    await page.goto(`${BASE}/#/jobs`);
+    await page.waitForSelector('dialog.key-dialog[open]');
+    await shot(page, 'desktop-key');
+    await page.fill('#api-key-input', made.key);
+    await page.click('dialog.key-dialog button[type="submit"]');
+    await page.waitForSelector(`#jobs a[href="#/jobs/${jobId}"]`);
+    check(await page.evaluate(() => localStorage.getItem('dieplan.apiKey')) === made.key, 'the key is not kept');
+    // The browser logs the 401 that made the page ask: expected, not an error of the page.
+    consoleErrors.splice(errorsBefore, consoleErrors.length - errorsBefore,
+      ...consoleErrors.slice(errorsBefore).filter((e) => !e.includes('401')));
+    await page.reload();
+    await page.waitForSelector(`#jobs a[href="#/jobs/${jobId}"]`);
+    check(await page.locator('dialog.key-dialog').count() === 0, 'the page asked again for a kept key');
   });
 
   check(consoleErrors.length === 0, `console errors:\n  ${consoleErrors.join('\n  ')}`);

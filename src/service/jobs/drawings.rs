@@ -6,6 +6,7 @@ use super::store;
 use crate::core::drawing::chart::render_chart;
 use crate::core::drawing::plan_view::{render_drawing, DrawOptions};
 use crate::core::drawing::scene::{Quantity, Scene};
+use crate::service::auth::Caller;
 use crate::service::error::{excerpt, ApiError, Problem, Validator};
 use crate::service::extract::{ApiPath, ApiQuery};
 use crate::service::state::AppState;
@@ -103,8 +104,8 @@ pub struct ChartQuery {
 }
 
 /// The scene of a finished job, or why there is none.
-async fn scene_of(state: &AppState, id: &str) -> Result<Scene, ApiError> {
-    let row = store::get(&state.pool, id).await?;
+async fn scene_of(state: &AppState, caller: &Caller, id: &str) -> Result<Scene, ApiError> {
+    let row = store::get_visible(&state.pool, caller, id).await?;
     let kind = row.kind()?;
     if !draws(kind) {
         return Err(ApiError::Conflict(format!("a {} job has nothing to draw", kind.as_str())));
@@ -139,8 +140,12 @@ fn svg(body: String) -> Response {
         (status = 200, description = "What can be drawn", body = JobViews),
         (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json"),
         (status = 409, description = "Not finished, or a kind of job without drawings", body = Problem, content_type = "application/problem+json")))]
-pub async fn get_views(State(state): State<AppState>, ApiPath(id): ApiPath<String>) -> Result<Response, ApiError> {
-    let scene = scene_of(&state, &id).await?;
+pub async fn get_views(
+    State(state): State<AppState>,
+    caller: Caller,
+    ApiPath(id): ApiPath<String>,
+) -> Result<Response, ApiError> {
+    let scene = scene_of(&state, &caller, &id).await?;
     let views = JobViews {
         title: scene.title.clone(),
         paths: scene
@@ -186,6 +191,7 @@ pub async fn get_views(State(state): State<AppState>, ApiPath(id): ApiPath<Strin
         (status = 422, description = "An unknown path, layer or quantity, or a width out of bounds", body = Problem, content_type = "application/problem+json")))]
 pub async fn get_drawing(
     State(state): State<AppState>,
+    caller: Caller,
     ApiPath(id): ApiPath<String>,
     ApiQuery(query): ApiQuery<DrawingQuery>,
 ) -> Result<Response, ApiError> {
@@ -206,7 +212,7 @@ pub async fn get_drawing(
         trochoids: query.trochoids.unwrap_or(defaults.trochoids),
         width_px: query.width.unwrap_or(defaults.width_px),
     };
-    let scene = scene_of(&state, &id).await?;
+    let scene = scene_of(&state, &caller, &id).await?;
     let body = tokio::task::spawn_blocking(move || render_drawing(&scene, &options))
         .await
         .map_err(|e| ApiError::Internal(format!("drawing: {e}")))??;
@@ -223,6 +229,7 @@ pub async fn get_drawing(
         (status = 422, description = "A size out of bounds", body = Problem, content_type = "application/problem+json")))]
 pub async fn get_chart(
     State(state): State<AppState>,
+    caller: Caller,
     ApiPath((id, chart)): ApiPath<(String, String)>,
     ApiQuery(query): ApiQuery<ChartQuery>,
 ) -> Result<Response, ApiError> {
@@ -237,7 +244,7 @@ pub async fn get_chart(
         );
     }
     v.finish()?;
-    let scene = scene_of(&state, &id).await?;
+    let scene = scene_of(&state, &caller, &id).await?;
     let Some(data) = scene.chart(&chart).cloned() else {
         let known: Vec<&str> = scene.charts.iter().map(|c| c.id.as_str()).collect();
         return Err(ApiError::not_found(format!(

@@ -11,6 +11,7 @@ pub mod feeds;
 pub mod feeds_result;
 pub mod inputs;
 pub mod kinds;
+pub mod lane;
 pub mod model;
 pub mod output;
 pub mod plans;

@@ -113,6 +113,9 @@ pub struct Job {
     pub started_at: Option<String>,
     pub finished_at: Option<String>,
     pub updated_at: String,
+    /// The id of the API key that created it; null when it was made while the service
+    /// ran without keys.
+    pub key_id: Option<i64>,
     /// The input as submitted.
     pub input: serde_json::Value,
     /// The result, when succeeded; its shape depends on `kind`.
@@ -132,6 +135,8 @@ pub struct JobSummary {
     pub created_at: String,
     pub started_at: Option<String>,
     pub finished_at: Option<String>,
+    /// The id of the API key that created it; null when made without keys.
+    pub key_id: Option<i64>,
     pub links: JobLinks,
 }
 
@@ -145,6 +150,7 @@ impl From<Job> for JobSummary {
             created_at: job.created_at,
             started_at: job.started_at,
             finished_at: job.finished_at,
+            key_id: job.key_id,
             links: job.links,
         }
     }

@@ -12,7 +12,7 @@ use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
-use tokio::sync::{broadcast, Notify};
+use tokio::sync::{broadcast, watch, Notify};
 use tokio::task::JoinHandle;
 
 /// How often an idle worker looks at the table even without a wake-up.
@@ -92,7 +92,12 @@ enum StopReason {
 
 struct Inner {
     pool: SqlitePool,
+    /// Wakes a worker of either kind.
     wake: Notify,
+    /// Wakes the interactive worker.
+    wake_interactive: Notify,
+    /// Set when the service begins to stop: clients waiting for a job answer at once.
+    stopping: watch::Sender<bool>,
     finished: broadcast::Sender<String>,
     running: Mutex<HashMap<String, Arc<JobControl>>>,
     shutdown: Arc<AtomicBool>,
@@ -108,8 +113,9 @@ pub struct JobQueue {
 }
 
 impl JobQueue {
-    /// Recovers jobs a previous run left behind and starts `workers` workers; a job that
-    /// runs longer than `time_limit` is stopped and fails.
+    /// Recovers jobs a previous run left behind and starts `workers` workers, and with
+    /// them one more that runs only the interactive lane (see [`super::lane`]); a job
+    /// that runs longer than `time_limit` is stopped and fails.
     pub async fn start(
         pool: SqlitePool,
         workers: usize,
@@ -124,6 +130,8 @@ impl JobQueue {
             inner: Arc::new(Inner {
                 pool,
                 wake: Notify::new(),
+                wake_interactive: Notify::new(),
+                stopping: watch::channel(false).0,
                 finished,
                 running: Mutex::new(HashMap::new()),
                 shutdown: Arc::new(AtomicBool::new(false)),
@@ -131,10 +139,11 @@ impl JobQueue {
                 time_limit,
             }),
         };
-        let handles: Vec<_> = (0..workers)
+        let interactive = usize::from(workers > 0);
+        let handles: Vec<_> = (0..workers + interactive)
             .map(|n| {
                 let inner = queue.inner.clone();
-                tokio::spawn(async move { worker_loop(inner, n).await })
+                tokio::spawn(async move { worker_loop(inner, n, n == workers).await })
             })
             .collect();
         *queue.inner.workers.lock().unwrap_or_else(|p| p.into_inner()) = handles;
@@ -144,6 +153,17 @@ impl JobQueue {
     /// Tells the workers a job was queued.
     pub fn wake(&self) {
         self.inner.wake.notify_one();
+        self.inner.wake_interactive.notify_one();
+    }
+
+    /// Watches whether the service is stopping (`true` from then on).
+    pub fn stopping(&self) -> watch::Receiver<bool> {
+        self.inner.stopping.subscribe()
+    }
+
+    /// Tells the clients waiting for jobs that the service is stopping.
+    pub fn begin_stop(&self) {
+        self.inner.stopping.send_replace(true);
     }
 
     /// Subscribes to the ids of jobs as they finish.
@@ -158,15 +178,23 @@ impl JobQueue {
         }
     }
 
-    /// Stops the workers: running jobs are interrupted and queued again, so the next
-    /// start resumes them. Waits at most `grace` for the workers.
+    /// Stops the workers: running jobs are interrupted and queued again, without counting
+    /// the attempt, so the next start resumes them. Waits at most `grace` for the workers;
+    /// a job still running then is queued again all the same.
     pub async fn shutdown(&self, grace: Duration) {
+        self.begin_stop();
         self.inner.shutdown.store(true, Ordering::SeqCst);
         self.inner.wake.notify_waiters();
+        self.inner.wake_interactive.notify_waiters();
         let handles = std::mem::take(&mut *self.inner.workers.lock().unwrap_or_else(|p| p.into_inner()));
         let all = futures_join(handles);
         if tokio::time::timeout(grace, all).await.is_err() {
-            tracing::warn!("workers did not stop in time; their jobs resume at the next start");
+            let ids: Vec<String> =
+                self.inner.running.lock().unwrap_or_else(|p| p.into_inner()).keys().cloned().collect();
+            tracing::warn!(jobs = ids.len(), "workers did not stop in time; their jobs resume at the next start");
+            if let Err(e) = store::requeue(&self.inner.pool, &ids).await {
+                tracing::error!(error = %e, "could not queue the interrupted jobs again; the next start will");
+            }
         }
     }
 }
@@ -177,13 +205,14 @@ async fn futures_join(handles: Vec<JoinHandle<()>>) {
     }
 }
 
-async fn worker_loop(inner: Arc<Inner>, n: usize) {
-    tracing::debug!(worker = n, "worker started");
+async fn worker_loop(inner: Arc<Inner>, n: usize, interactive_only: bool) {
+    tracing::debug!(worker = n, interactive_only, "worker started");
     while !inner.shutdown.load(Ordering::SeqCst) {
-        match store::claim_next(&inner.pool).await {
+        match store::claim_next(&inner.pool, interactive_only).await {
             Ok(Some(row)) => run_one(&inner, row).await,
             Ok(None) => {
-                let _ = tokio::time::timeout(IDLE_POLL, inner.wake.notified()).await;
+                let wake = if interactive_only { &inner.wake_interactive } else { &inner.wake };
+                let _ = tokio::time::timeout(IDLE_POLL, wake.notified()).await;
             }
             Err(e) => {
                 tracing::error!(error = %e, "worker could not read the job table");
@@ -297,7 +326,7 @@ async fn execute(inner: &Arc<Inner>, row: &store::JobRow) -> Result<(), sqlx::Er
             StopReason::Cancelled => store::cancelled(pool, id).await,
             StopReason::Shutdown => {
                 tracing::info!(job = %id, "job interrupted by shutdown; it resumes at the next start");
-                store::requeue(pool, id).await
+                store::requeue(pool, &[id.to_string()]).await
             }
             StopReason::TimedOut => {
                 let limit = inner.time_limit.unwrap_or_default();

@@ -5,10 +5,12 @@ use super::conditions::ConditionsRequest;
 use super::costing::CostingRequest;
 use super::feeds::FeedsRequest;
 use super::kinds::{self, JobInput};
+use super::lane::Lane;
 use super::model::{Job, JobKind, JobStatus, JobSummary, ProgramPart};
 use super::plans::PlanRequest;
 use super::store;
 use super::trochoids::TrochoidsRequest;
+use crate::service::auth::Caller;
 use crate::service::error::{ApiError, Problem};
 use crate::service::extract::{ApiJson, ApiPath, ApiQuery};
 use crate::service::resources::{Page, DEFAULT_PAGE_LIMIT, MAX_PAGE_LIMIT};
@@ -49,9 +51,11 @@ fn preferred_wait(headers: &HeaderMap) -> Option<u64> {
         .next()
 }
 
-/// Creates a job; with `Prefer: wait=N` waits up to N seconds for it to finish.
+/// Creates a job for `caller`; with `Prefer: wait=N` waits up to N seconds for it to
+/// finish, or until the service begins to stop (the job goes on: 202 with `Location`).
 async fn submit(
     state: &AppState,
+    caller: &Caller,
     kind: JobKind,
     input: serde_json::Value,
     prefix: &str,
@@ -60,7 +64,12 @@ async fn submit(
     let prepared = kinds::prepare(&state.pool, kind, input.clone(), prefix).await?;
     let id = uuid::Uuid::new_v4().to_string();
     let mut finished = state.jobs.subscribe();
-    store::insert(&state.pool, &id, kind, &input.to_string(), &prepared.to_string()).await?;
+    let mut stopping = state.jobs.stopping();
+    let input = input.to_string();
+    let lane = Lane::of(kind, input.len());
+    let new =
+        store::NewJob { id: &id, kind, input: &input, prepared: &prepared.to_string(), key_id: caller.key_id(), lane };
+    store::insert(&state.pool, new).await?;
     state.jobs.wake();
     tracing::info!(job = %id, kind = kind.as_str(), "job queued");
 
@@ -77,10 +86,16 @@ async fn submit(
                 h.insert("preference-applied", header_value(&format!("wait={seconds}")));
                 return Ok(response);
             }
-            match tokio::time::timeout_at(deadline, finished.recv()).await {
-                Err(_) => break,
-                Ok(Ok(_)) | Ok(Err(tokio::sync::broadcast::error::RecvError::Lagged(_))) => continue,
-                Ok(Err(tokio::sync::broadcast::error::RecvError::Closed)) => break,
+            if *stopping.borrow_and_update() {
+                break;
+            }
+            tokio::select! {
+                received = tokio::time::timeout_at(deadline, finished.recv()) => match received {
+                    Err(_) => break,
+                    Ok(Ok(_)) | Ok(Err(tokio::sync::broadcast::error::RecvError::Lagged(_))) => continue,
+                    Ok(Err(tokio::sync::broadcast::error::RecvError::Closed)) => break,
+                },
+                _ = stopping.changed() => break,
             }
         }
     }
@@ -104,16 +119,19 @@ fn header_value(text: &str) -> HeaderValue {
 #[utoipa::path(post, path = "/v1/jobs", tag = "jobs", operation_id = "createJob", request_body = JobRequest,
     params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
     responses(
-        (status = 201, description = "Finished within the preferred wait", body = Job),
-        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 201, description = "Finished within the preferred wait", body = Job,
+            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
+        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
+            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "A refused field", body = Problem, content_type = "application/problem+json")))]
 pub async fn create_job(
     State(state): State<AppState>,
+    caller: Caller,
     headers: HeaderMap,
     ApiJson(request): ApiJson<JobRequest>,
 ) -> Result<Response, ApiError> {
-    submit(&state, request.kind, request.input, "input.", &headers).await
+    submit(&state, &caller, request.kind, request.input, "input.", &headers).await
 }
 
 /// Recommends cutting conditions (job kind `conditions`).
@@ -125,15 +143,18 @@ pub async fn create_job(
 #[utoipa::path(post, path = "/v1/conditions", tag = "jobs", operation_id = "recommendConditions", request_body = ConditionsRequest,
     params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
     responses(
-        (status = 201, description = "Finished within the preferred wait; result is a ConditionsResult", body = Job),
-        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 201, description = "Finished within the preferred wait; result is a ConditionsResult", body = Job,
+            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
+        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
+            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
         (status = 422, description = "A refused field", body = Problem, content_type = "application/problem+json")))]
 pub async fn create_conditions(
     State(state): State<AppState>,
+    caller: Caller,
     headers: HeaderMap,
     ApiJson(input): ApiJson<serde_json::Value>,
 ) -> Result<Response, ApiError> {
-    submit(&state, JobKind::Conditions, input, "", &headers).await
+    submit(&state, &caller, JobKind::Conditions, input, "", &headers).await
 }
 
 /// Analyses a tool path (job kind `analysis`).
@@ -148,16 +169,19 @@ pub async fn create_conditions(
 #[utoipa::path(post, path = "/v1/analysis", tag = "jobs", operation_id = "analyzePath", request_body = AnalysisRequest,
     params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
     responses(
-        (status = 201, description = "Finished within the preferred wait; result is an AnalysisResult", body = Job),
-        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 201, description = "Finished within the preferred wait; result is an AnalysisResult", body = Job,
+            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
+        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
+            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "A refused field, NC line or contour vertex", body = Problem, content_type = "application/problem+json")))]
 pub async fn create_analysis(
     State(state): State<AppState>,
+    caller: Caller,
     headers: HeaderMap,
     ApiJson(input): ApiJson<serde_json::Value>,
 ) -> Result<Response, ApiError> {
-    submit(&state, JobKind::Analysis, input, "", &headers).await
+    submit(&state, &caller, JobKind::Analysis, input, "", &headers).await
 }
 
 /// Optimises the feeds of a tool path (job kind `feeds`).
@@ -173,16 +197,19 @@ pub async fn create_analysis(
 #[utoipa::path(post, path = "/v1/feeds", tag = "jobs", operation_id = "optimizeFeeds", request_body = FeedsRequest,
     params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
     responses(
-        (status = 201, description = "Finished within the preferred wait; result is a FeedsResult", body = Job),
-        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 201, description = "Finished within the preferred wait; result is a FeedsResult", body = Job,
+            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
+        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
+            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "A refused field, NC line or contour vertex", body = Problem, content_type = "application/problem+json")))]
 pub async fn create_feeds(
     State(state): State<AppState>,
+    caller: Caller,
     headers: HeaderMap,
     ApiJson(input): ApiJson<serde_json::Value>,
 ) -> Result<Response, ApiError> {
-    submit(&state, JobKind::Feeds, input, "", &headers).await
+    submit(&state, &caller, JobKind::Feeds, input, "", &headers).await
 }
 
 /// Costs an NC program (job kind `costing`).
@@ -195,16 +222,19 @@ pub async fn create_feeds(
 #[utoipa::path(post, path = "/v1/costing", tag = "jobs", operation_id = "costProgram", request_body = CostingRequest,
     params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
     responses(
-        (status = 201, description = "Finished within the preferred wait; result is a CostingResult", body = Job),
-        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 201, description = "Finished within the preferred wait; result is a CostingResult", body = Job,
+            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
+        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
+            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "A refused field, NC line or contour vertex", body = Problem, content_type = "application/problem+json")))]
 pub async fn create_costing(
     State(state): State<AppState>,
+    caller: Caller,
     headers: HeaderMap,
     ApiJson(input): ApiJson<serde_json::Value>,
 ) -> Result<Response, ApiError> {
-    submit(&state, JobKind::Costing, input, "", &headers).await
+    submit(&state, &caller, JobKind::Costing, input, "", &headers).await
 }
 
 /// Reads a job: status, progress, timestamps, result or error.
@@ -213,8 +243,12 @@ pub async fn create_costing(
     responses(
         (status = 200, description = "The job", body = Job),
         (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json")))]
-pub async fn get_job(State(state): State<AppState>, ApiPath(id): ApiPath<String>) -> Result<axum::Json<Job>, ApiError> {
-    Ok(axum::Json(store::get(&state.pool, &id).await?.to_job()?))
+pub async fn get_job(
+    State(state): State<AppState>,
+    caller: Caller,
+    ApiPath(id): ApiPath<String>,
+) -> Result<axum::Json<Job>, ApiError> {
+    Ok(axum::Json(store::get_visible(&state.pool, &caller, &id).await?.to_job()?))
 }
 
 /// Filters of `GET /v1/jobs`.
@@ -229,13 +263,14 @@ pub struct JobFilter {
     pub offset: Option<i64>,
 }
 
-/// Lists jobs, newest first.
+/// Lists jobs, newest first (a planner's key: its own jobs only).
 #[utoipa::path(get, path = "/v1/jobs", tag = "jobs", operation_id = "listJobs", params(JobFilter),
     responses(
         (status = 200, description = "One page of jobs", body = Page<JobSummary>),
         (status = 400, description = "A bad query parameter", body = Problem, content_type = "application/problem+json")))]
 pub async fn list_jobs(
     State(state): State<AppState>,
+    caller: Caller,
     ApiQuery(filter): ApiQuery<JobFilter>,
 ) -> Result<axum::Json<Page<JobSummary>>, ApiError> {
     let limit = filter.limit.unwrap_or(DEFAULT_PAGE_LIMIT);
@@ -246,22 +281,52 @@ pub async fn list_jobs(
             detail: format!("query parameter limit must be 1..={MAX_PAGE_LIMIT} and offset >= 0"),
         });
     }
-    let (rows, total) = store::list(&state.pool, filter.status, filter.kind, limit, offset).await?;
+    let (rows, total) =
+        store::list(&state.pool, filter.status, filter.kind, caller.own_jobs_only(), limit, offset).await?;
     let items = rows.iter().map(|r| r.to_job().map(JobSummary::from)).collect::<Result<Vec<_>, _>>()?;
     Ok(axum::Json(Page { items, total, limit, offset }))
 }
 
-/// Cancels a job. A queued job is cancelled at once (200); a running one is asked to
-/// stop (202) and ends `cancelled`; a finished job cannot be cancelled (409).
+/// What `DELETE /v1/jobs/{id}` does.
+#[derive(Debug, Deserialize, IntoParams)]
+#[serde(deny_unknown_fields)]
+#[into_params(parameter_in = Query)]
+pub struct DeleteJobQuery {
+    /// `true`: remove a finished job with its result, program and drawing (204), instead
+    /// of cancelling it.
+    pub purge: Option<bool>,
+}
+
+/// Cancels a job, or with `purge=true` removes a finished one.
+///
+/// A queued job is cancelled at once (200); a running one is asked to stop (202) and ends
+/// `cancelled`; a finished job cannot be cancelled (409). `purge=true` removes a finished
+/// job and everything it stored (204); a job still queued or running is refused (409:
+/// cancel it first). A planner's key may cancel and remove only its own jobs.
 #[utoipa::path(delete, path = "/v1/jobs/{id}", tag = "jobs", operation_id = "cancelJob",
-    params(("id" = String, Path, description = "Job id")),
+    params(("id" = String, Path, description = "Job id"), DeleteJobQuery),
     responses(
         (status = 200, description = "Cancelled", body = Job),
         (status = 202, description = "Cancellation requested; the job stops shortly", body = Job),
+        (status = 204, description = "Purged: the job and its data are gone"),
+        (status = 400, description = "A bad query parameter", body = Problem, content_type = "application/problem+json"),
         (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json"),
-        (status = 409, description = "Already finished", body = Problem, content_type = "application/problem+json")))]
-pub async fn cancel_job(State(state): State<AppState>, ApiPath(id): ApiPath<String>) -> Result<Response, ApiError> {
-    let row = store::get(&state.pool, &id).await?;
+        (status = 409, description = "Already finished (cancel), or not finished yet (purge)", body = Problem, content_type = "application/problem+json")))]
+pub async fn cancel_job(
+    State(state): State<AppState>,
+    caller: Caller,
+    ApiPath(id): ApiPath<String>,
+    ApiQuery(query): ApiQuery<DeleteJobQuery>,
+) -> Result<Response, ApiError> {
+    let row = store::get_visible(&state.pool, &caller, &id).await?;
+    if query.purge == Some(true) {
+        if !store::purge(&state.pool, &id).await? {
+            return Err(ApiError::Conflict(format!("job {id} is {}: cancel it before purging it", row.status)));
+        }
+        tracing::info!(job = %id, "job purged");
+        crate::service::retention::vacuum_later(&state.pool);
+        return Ok(StatusCode::NO_CONTENT.into_response());
+    }
     let status = if store::cancel_queued(&state.pool, &id).await? {
         StatusCode::OK
     } else if store::request_cancel(&state.pool, &id).await? {
@@ -298,10 +363,11 @@ pub struct ProgramQuery {
         (status = 409, description = "Not finished yet", body = Problem, content_type = "application/problem+json")))]
 pub async fn get_program(
     State(state): State<AppState>,
+    caller: Caller,
     ApiPath(id): ApiPath<String>,
     ApiQuery(query): ApiQuery<ProgramQuery>,
 ) -> Result<Response, ApiError> {
-    let row = store::get(&state.pool, &id).await?;
+    let row = store::get_visible(&state.pool, &caller, &id).await?;
     let part = query.part.unwrap_or_default();
     let program = match part {
         ProgramPart::Main => row.program.clone(),
@@ -341,16 +407,19 @@ fn makes(kind: JobKind, part: ProgramPart) -> bool {
 #[utoipa::path(post, path = "/v1/trochoids", tag = "jobs", operation_id = "insertTrochoids", request_body = TrochoidsRequest,
     params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
     responses(
-        (status = 201, description = "Finished within the preferred wait; result is a TrochoidsResult", body = Job),
-        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 201, description = "Finished within the preferred wait; result is a TrochoidsResult", body = Job,
+            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
+        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
+            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "A refused field, NC line or contour vertex", body = Problem, content_type = "application/problem+json")))]
 pub async fn create_trochoids(
     State(state): State<AppState>,
+    caller: Caller,
     headers: HeaderMap,
     ApiJson(input): ApiJson<serde_json::Value>,
 ) -> Result<Response, ApiError> {
-    submit(&state, JobKind::Trochoids, input, "", &headers).await
+    submit(&state, &caller, JobKind::Trochoids, input, "", &headers).await
 }
 
 /// Plans a cavity from end to end (job kind `plan`; seed 002 Fig. 1 and §2.6, seed 004
@@ -368,16 +437,19 @@ pub async fn create_trochoids(
 #[utoipa::path(post, path = "/v1/plans", tag = "jobs", operation_id = "planCavity", request_body = PlanRequest,
     params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
     responses(
-        (status = 201, description = "Finished within the preferred wait; result is a PlanResult", body = Job),
-        (status = 202, description = "Queued; poll Location", body = Job),
+        (status = 201, description = "Finished within the preferred wait; result is a PlanResult", body = Job,
+            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
+        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
+            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "A refused field or contour vertex", body = Problem, content_type = "application/problem+json")))]
 pub async fn create_plan(
     State(state): State<AppState>,
+    caller: Caller,
     headers: HeaderMap,
     ApiJson(input): ApiJson<serde_json::Value>,
 ) -> Result<Response, ApiError> {
-    submit(&state, JobKind::Plan, input, "", &headers).await
+    submit(&state, &caller, JobKind::Plan, input, "", &headers).await
 }
 
 /// The job routes.

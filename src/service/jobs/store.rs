@@ -1,6 +1,8 @@
 //! The `jobs` table.
 
+use super::lane::Lane;
 use super::model::{Job, JobKind, JobLinks, JobStatus, ProgramPart};
+use crate::service::auth::Caller;
 use crate::service::error::{excerpt, ApiError, Problem};
 use sqlx::SqlitePool;
 
@@ -22,6 +24,10 @@ pub struct JobRow {
     pub started_at: Option<String>,
     pub finished_at: Option<String>,
     pub updated_at: String,
+    /// The key that created it (none: made while the service ran open).
+    pub key_id: Option<i64>,
+    /// The queue lane it waits in (`interactive` or `batch`).
+    pub lane: String,
 }
 
 impl JobRow {
@@ -61,6 +67,7 @@ impl JobRow {
             started_at: self.started_at.clone(),
             finished_at: self.finished_at.clone(),
             updated_at: self.updated_at.clone(),
+            key_id: self.key_id,
             input: parse(&self.input)?,
             result: self.result.as_deref().map(parse).transpose()?,
             error,
@@ -74,15 +81,29 @@ impl JobRow {
     }
 }
 
+/// A job to insert: what it computes, for whom, in which lane.
+pub struct NewJob<'a> {
+    pub id: &'a str,
+    pub kind: JobKind,
+    pub input: &'a str,
+    pub prepared: &'a str,
+    pub key_id: Option<i64>,
+    pub lane: Lane,
+}
+
 /// Inserts a queued job.
-pub async fn insert(pool: &SqlitePool, id: &str, kind: JobKind, input: &str, prepared: &str) -> Result<(), ApiError> {
-    sqlx::query("INSERT INTO jobs (id, kind, status, input, prepared) VALUES (?, ?, 'queued', ?, ?)")
-        .bind(id)
-        .bind(kind.as_str())
-        .bind(input)
-        .bind(prepared)
-        .execute(pool)
-        .await?;
+pub async fn insert(pool: &SqlitePool, job: NewJob<'_>) -> Result<(), ApiError> {
+    sqlx::query(
+        "INSERT INTO jobs (id, kind, status, input, prepared, key_id, lane) VALUES (?, ?, 'queued', ?, ?, ?, ?)",
+    )
+    .bind(job.id)
+    .bind(job.kind.as_str())
+    .bind(job.input)
+    .bind(job.prepared)
+    .bind(job.key_id)
+    .bind(job.lane.as_str())
+    .execute(pool)
+    .await?;
     Ok(())
 }
 
@@ -95,40 +116,58 @@ pub async fn get(pool: &SqlitePool, id: &str) -> Result<JobRow, ApiError> {
         .ok_or_else(|| ApiError::not_found(format!("no job with id {}", excerpt(id))))
 }
 
+/// Reads one job the caller may see, or 404 (a planner is not told that another key's
+/// job exists).
+pub async fn get_visible(pool: &SqlitePool, caller: &Caller, id: &str) -> Result<JobRow, ApiError> {
+    let row = get(pool, id).await?;
+    if caller.may_see_job(row.key_id) {
+        Ok(row)
+    } else {
+        Err(ApiError::not_found(format!("no job with id {}", excerpt(id))))
+    }
+}
+
 /// Lists jobs, newest first.
 pub async fn list(
     pool: &SqlitePool,
     status: Option<JobStatus>,
     kind: Option<JobKind>,
+    owner: Option<i64>,
     limit: i64,
     offset: i64,
 ) -> Result<(Vec<JobRow>, i64), ApiError> {
     let status = status.map(JobStatus::as_str);
     let kind = kind.map(JobKind::as_str);
-    let total: i64 =
-        sqlx::query_scalar("SELECT COUNT(*) FROM jobs WHERE (?1 IS NULL OR status = ?1) AND (?2 IS NULL OR kind = ?2)")
-            .bind(status)
-            .bind(kind)
-            .fetch_one(pool)
-            .await?;
+    let total: i64 = sqlx::query_scalar(
+        "SELECT COUNT(*) FROM jobs WHERE (?1 IS NULL OR status = ?1) AND (?2 IS NULL OR kind = ?2) AND (?3 IS NULL OR key_id = ?3)",
+    )
+    .bind(status)
+    .bind(kind)
+    .bind(owner)
+    .fetch_one(pool)
+    .await?;
     let rows = sqlx::query_as::<_, JobRow>(
-        "SELECT * FROM jobs WHERE (?1 IS NULL OR status = ?1) AND (?2 IS NULL OR kind = ?2)
+        "SELECT * FROM jobs WHERE (?1 IS NULL OR status = ?1) AND (?2 IS NULL OR kind = ?2) AND (?5 IS NULL OR key_id = ?5)
          ORDER BY created_at DESC, rowid DESC LIMIT ?3 OFFSET ?4",
     )
     .bind(status)
     .bind(kind)
     .bind(limit)
     .bind(offset)
+    .bind(owner)
     .fetch_all(pool)
     .await?;
     Ok((rows, total))
 }
 
-/// Takes the oldest queued job and marks it running.
-pub async fn claim_next(pool: &SqlitePool) -> Result<Option<JobRow>, sqlx::Error> {
+/// Takes the oldest queued job of the interactive lane, else (unless `interactive_only`)
+/// the oldest of the batch lane, and marks it running.
+pub async fn claim_next(pool: &SqlitePool, interactive_only: bool) -> Result<Option<JobRow>, sqlx::Error> {
     sqlx::query_as::<_, JobRow>("UPDATE jobs SET status = 'running', started_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), attempts = attempts + 1, progress = 0
-         WHERE id = (SELECT id FROM jobs WHERE status = 'queued' ORDER BY created_at, rowid LIMIT 1) AND status = 'queued'
+         WHERE id = (SELECT id FROM jobs WHERE status = 'queued' AND (lane = 'interactive' OR NOT ?1)
+                     ORDER BY lane = 'batch', created_at, rowid LIMIT 1) AND status = 'queued'
          RETURNING *")
+    .bind(interactive_only)
     .fetch_optional(pool)
     .await
 }
@@ -226,12 +265,15 @@ pub async fn cancelled(pool: &SqlitePool, id: &str) -> Result<(), sqlx::Error> {
     Ok(())
 }
 
-/// Puts a running job back in the queue (shutdown).
-pub async fn requeue(pool: &SqlitePool, id: &str) -> Result<(), sqlx::Error> {
-    sqlx::query("UPDATE jobs SET status = 'queued', progress = 0, updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ? AND status = 'running'")
-    .bind(id)
-    .execute(pool)
-    .await?;
+/// Puts running jobs back in the queue at a graceful shutdown, without counting the
+/// attempt it interrupted: only a crash (a job found running at start) counts.
+pub async fn requeue(pool: &SqlitePool, ids: &[String]) -> Result<(), sqlx::Error> {
+    for id in ids {
+        sqlx::query("UPDATE jobs SET status = 'queued', progress = 0, attempts = MAX(attempts - 1, 0), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ? AND status = 'running'")
+        .bind(id)
+        .execute(pool)
+        .await?;
+    }
     Ok(())
 }
 
@@ -251,4 +293,26 @@ pub async fn request_cancel(pool: &SqlitePool, id: &str) -> Result<bool, sqlx::E
     .execute(pool)
     .await?;
     Ok(done.rows_affected() == 1)
+}
+
+/// Removes a finished job with its result, program and scene; `false` when the job is
+/// still queued or running (cancel it first).
+pub async fn purge(pool: &SqlitePool, id: &str) -> Result<bool, sqlx::Error> {
+    let done = sqlx::query("DELETE FROM jobs WHERE id = ? AND status IN ('succeeded', 'failed', 'cancelled')")
+        .bind(id)
+        .execute(pool)
+        .await?;
+    Ok(done.rows_affected() == 1)
+}
+
+/// Removes the jobs that finished more than `days` days ago; returns how many.
+pub async fn purge_finished_before(pool: &SqlitePool, days: u64) -> Result<u64, sqlx::Error> {
+    let done = sqlx::query(
+        "DELETE FROM jobs WHERE status IN ('succeeded', 'failed', 'cancelled')
+         AND finished_at < strftime('%Y-%m-%dT%H:%M:%fZ', 'now', '-' || ? || ' days')",
+    )
+    .bind(i64::try_from(days).unwrap_or(i64::MAX))
+    .execute(pool)
+    .await?;
+    Ok(done.rows_affected())
 }

@@ -2,6 +2,7 @@
 
 use super::{ListFilter, Page, Record, Resource, SqlValue, DEFAULT_PAGE_LIMIT, MAX_PAGE_LIMIT};
 use crate::service::error::{ApiError, Validator};
+use crate::service::etag;
 use crate::service::extract::from_value;
 use serde_json::Value;
 use sqlx::sqlite::SqliteRow;
@@ -123,11 +124,25 @@ pub async fn create<R: Record>(pool: &SqlitePool, data: R::Data) -> Result<R, Ap
     Ok(record)
 }
 
-/// Replaces a row's data; marks it edited so later migrations leave it alone.
-pub async fn replace<R: Record>(pool: &SqlitePool, id: i64, data: R::Data) -> Result<R, ApiError> {
+/// Replaces a row's data; marks it edited so later migrations leave it alone. With
+/// `if_match`, refuses (412) unless the row still has that entity tag.
+pub async fn replace<R: Record>(
+    pool: &SqlitePool,
+    id: i64,
+    data: R::Data,
+    if_match: Option<&str>,
+) -> Result<R, ApiError> {
     let mut tx = pool.begin_with(WRITE_TRANSACTION).await?;
-    fetch::<R>(&mut tx, id).await?;
-    check(&mut tx, &data).await?;
+    let current = fetch::<R>(&mut tx, id).await?;
+    etag::check(if_match, &current)?;
+    let record = write::<R>(&mut tx, id, data).await?;
+    tx.commit().await?;
+    Ok(record)
+}
+
+/// Writes a row's data inside the caller's write transaction and reads it back.
+async fn write<R: Record>(conn: &mut SqliteConnection, id: i64, data: R::Data) -> Result<R, ApiError> {
+    check(conn, &data).await?;
     let sets: Vec<String> = R::Data::COLUMNS.iter().map(|c| format!("{c} = ?")).collect();
     let sql = format!(
         "UPDATE {} SET {}, edited = 1, updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ?",
@@ -136,19 +151,21 @@ pub async fn replace<R: Record>(pool: &SqlitePool, id: i64, data: R::Data) -> Re
     );
     let mut values = data.values();
     values.push(SqlValue::Int(id));
-    bind_values!(sqlx::query(AssertSqlSafe(sql)), &values).execute(&mut *tx).await?;
-    let record = fetch::<R>(&mut tx, id).await?;
-    tx.commit().await?;
-    Ok(record)
+    bind_values!(sqlx::query(AssertSqlSafe(sql)), &values).execute(&mut *conn).await?;
+    fetch::<R>(conn, id).await
 }
 
 /// Applies a JSON merge patch (RFC 7396) to a row's data. A patch that does not name
-/// `source` marks the row as the shop's (`source = user`).
-pub async fn patch<R: Record>(pool: &SqlitePool, id: i64, patch: Value) -> Result<R, ApiError> {
+/// `source` marks the row as the shop's (`source = user`). The row is read, merged and
+/// written in one write transaction, so two patches of different fields both land.
+/// With `if_match`, refuses (412) unless the row still has that entity tag.
+pub async fn patch<R: Record>(pool: &SqlitePool, id: i64, patch: Value, if_match: Option<&str>) -> Result<R, ApiError> {
     if !patch.is_object() {
         return Err(ApiError::field("body", "a merge patch must be a JSON object"));
     }
-    let current = get::<R>(pool, id).await?;
+    let mut tx = pool.begin_with(WRITE_TRANSACTION).await?;
+    let current = fetch::<R>(&mut tx, id).await?;
+    etag::check(if_match, &current)?;
     let mut merged = serde_json::to_value(current.data()).map_err(|e| ApiError::Internal(e.to_string()))?;
     if patch.get("source").is_none() {
         merged["source"] = Value::from("user");
@@ -157,7 +174,9 @@ pub async fn patch<R: Record>(pool: &SqlitePool, id: i64, patch: Value) -> Resul
         patch.as_object().into_iter().flatten().filter(|(_, v)| v.is_null()).map(|(k, _)| k.clone()).collect();
     merge(&mut merged, patch);
     let data: R::Data = from_value(merged).map_err(|e| required_not_removable(e, &removed))?;
-    replace::<R>(pool, id, data).await
+    let record = write::<R>(&mut tx, id, data).await?;
+    tx.commit().await?;
+    Ok(record)
 }
 
 /// A patch that sets a required field to `null` (which removes it) is told so.
@@ -199,10 +218,12 @@ fn merge(target: &mut Value, patch: Value) {
     }
 }
 
-/// Deletes a row, refusing with 409 while other rows still reference it.
-pub async fn delete<R: Record>(pool: &SqlitePool, id: i64) -> Result<(), ApiError> {
+/// Deletes a row, refusing with 409 while other rows still reference it. With
+/// `if_match`, refuses (412) unless the row still has that entity tag.
+pub async fn delete<R: Record>(pool: &SqlitePool, id: i64, if_match: Option<&str>) -> Result<(), ApiError> {
     let mut tx = pool.begin_with(WRITE_TRANSACTION).await?;
-    fetch::<R>(&mut tx, id).await?;
+    let current = fetch::<R>(&mut tx, id).await?;
+    etag::check(if_match, &current)?;
     let mut users = Vec::new();
     for (table, column, what) in R::Data::REFERENCED_BY {
         let n: i64 = sqlx::query_scalar(AssertSqlSafe(format!("SELECT COUNT(*) FROM {table} WHERE {column} = ?")))

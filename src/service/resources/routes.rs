@@ -24,9 +24,10 @@ macro_rules! crud_api {
         pub mod $m {
             use super::*;
             use axum::extract::State;
-            use axum::http::{header, StatusCode};
+            use axum::http::{header, HeaderMap, StatusCode};
             use axum::response::IntoResponse;
             use $crate::service::error::{ApiError, Problem};
+            use $crate::service::etag;
             use $crate::service::extract::{ApiJson, ApiPath, ApiQuery};
             use $crate::service::resources::{crud, Page};
             use $crate::service::state::AppState;
@@ -43,23 +44,27 @@ macro_rules! crud_api {
                 Ok(axum::Json(crud::list::<$rec, _>(&state.pool, &filter).await?))
             }
 
-            /// Reads one row.
+            /// Reads one row, with its entity tag in `ETag` (send it back in `If-Match`
+            /// to write only if nobody changed the row meanwhile).
             #[utoipa::path(get, path = $item, tag = $tag, operation_id = $get,
                 params(("id" = i64, Path, description = "Row id")),
                 responses(
-                    (status = 200, description = "The row", body = $rec),
+                    (status = 200, description = "The row", body = $rec,
+                        headers(("ETag" = String, description = "The row's entity tag"))),
                     (status = 404, description = "No such row", body = Problem, content_type = "application/problem+json")))]
             pub async fn get(
                 State(state): State<AppState>,
                 ApiPath(id): ApiPath<i64>,
-            ) -> Result<axum::Json<$rec>, ApiError> {
-                Ok(axum::Json(crud::get::<$rec>(&state.pool, id).await?))
+            ) -> Result<impl IntoResponse, ApiError> {
+                let record = crud::get::<$rec>(&state.pool, id).await?;
+                Ok(([etag::header(&record)], axum::Json(record)))
             }
 
             /// Creates a row (`source` defaults to `user`).
             #[utoipa::path(post, path = $coll, tag = $tag, operation_id = $create, request_body = $data,
                 responses(
-                    (status = 201, description = "Created; Location names the new row", body = $rec),
+                    (status = 201, description = "Created; Location names the new row", body = $rec,
+                        headers(("Location" = String, description = "The new row"), ("ETag" = String, description = "The row's entity tag"))),
                     (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
                     (status = 409, description = "A row with the same unique key exists", body = Problem, content_type = "application/problem+json"),
                     (status = 422, description = "A refused field", body = Problem, content_type = "application/problem+json")))]
@@ -69,54 +74,71 @@ macro_rules! crud_api {
             ) -> Result<impl IntoResponse, ApiError> {
                 let record = crud::create::<$rec>(&state.pool, data).await?;
                 let location = format!("{}/{}", $coll, record.id);
-                Ok((StatusCode::CREATED, [(header::LOCATION, location)], axum::Json(record)))
+                Ok((StatusCode::CREATED, [(header::LOCATION, location)], [etag::header(&record)], axum::Json(record)))
             }
 
             /// Replaces a row's data (`source` defaults to `user`); the row is marked edited.
+            /// With `If-Match`, only if the row still has that entity tag (else 412).
             #[utoipa::path(put, path = $item, tag = $tag, operation_id = $replace, request_body = $data,
-                params(("id" = i64, Path, description = "Row id")),
+                params(("id" = i64, Path, description = "Row id"),
+                    ("If-Match" = Option<String>, Header, description = "The row's entity tag as read (`ETag`), or `*`: write only if it is still so")),
                 responses(
-                    (status = 200, description = "The updated row", body = $rec),
+                    (status = 200, description = "The updated row", body = $rec,
+                        headers(("ETag" = String, description = "The row's new entity tag"))),
                     (status = 404, description = "No such row", body = Problem, content_type = "application/problem+json"),
                     (status = 409, description = "A row with the same unique key exists", body = Problem, content_type = "application/problem+json"),
+                    (status = 412, description = "The row changed since it was read (If-Match)", body = Problem, content_type = "application/problem+json"),
                     (status = 422, description = "A refused field", body = Problem, content_type = "application/problem+json")))]
             pub async fn replace(
                 State(state): State<AppState>,
                 ApiPath(id): ApiPath<i64>,
+                headers: HeaderMap,
                 ApiJson(data): ApiJson<$data>,
-            ) -> Result<axum::Json<$rec>, ApiError> {
-                Ok(axum::Json(crud::replace::<$rec>(&state.pool, id, data).await?))
+            ) -> Result<impl IntoResponse, ApiError> {
+                let record = crud::replace::<$rec>(&state.pool, id, data, etag::if_match(&headers).as_deref()).await?;
+                Ok(([etag::header(&record)], axum::Json(record)))
             }
 
             /// Changes some fields (JSON merge patch, RFC 7396); unless the patch names
-            /// `source`, the row becomes the shop's (`source = user`).
+            /// `source`, the row becomes the shop's (`source = user`). Two patches of
+            /// different fields both land. With `If-Match`, only if the row still has that
+            /// entity tag (else 412).
             #[utoipa::path(patch, path = $item, tag = $tag, operation_id = $patch,
                 request_body(content = Object, content_type = "application/merge-patch+json", description = "The fields to change"),
-                params(("id" = i64, Path, description = "Row id")),
+                params(("id" = i64, Path, description = "Row id"),
+                    ("If-Match" = Option<String>, Header, description = "The row's entity tag as read (`ETag`), or `*`: write only if it is still so")),
                 responses(
-                    (status = 200, description = "The updated row", body = $rec),
+                    (status = 200, description = "The updated row", body = $rec,
+                        headers(("ETag" = String, description = "The row's new entity tag"))),
                     (status = 404, description = "No such row", body = Problem, content_type = "application/problem+json"),
+                    (status = 412, description = "The row changed since it was read (If-Match)", body = Problem, content_type = "application/problem+json"),
                     (status = 422, description = "A refused field", body = Problem, content_type = "application/problem+json")))]
             pub async fn patch(
                 State(state): State<AppState>,
                 ApiPath(id): ApiPath<i64>,
+                headers: HeaderMap,
                 ApiJson(patch): ApiJson<serde_json::Value>,
-            ) -> Result<axum::Json<$rec>, ApiError> {
-                Ok(axum::Json(crud::patch::<$rec>(&state.pool, id, patch).await?))
+            ) -> Result<impl IntoResponse, ApiError> {
+                let record = crud::patch::<$rec>(&state.pool, id, patch, etag::if_match(&headers).as_deref()).await?;
+                Ok(([etag::header(&record)], axum::Json(record)))
             }
 
-            /// Deletes a row that nothing references.
+            /// Deletes a row that nothing references. With `If-Match`, only if the row
+            /// still has that entity tag (else 412).
             #[utoipa::path(delete, path = $item, tag = $tag, operation_id = $delete,
-                params(("id" = i64, Path, description = "Row id")),
+                params(("id" = i64, Path, description = "Row id"),
+                    ("If-Match" = Option<String>, Header, description = "The row's entity tag as read (`ETag`), or `*`: delete only if it is still so")),
                 responses(
                     (status = 204, description = "Deleted"),
                     (status = 404, description = "No such row", body = Problem, content_type = "application/problem+json"),
-                    (status = 409, description = "Other rows still reference it", body = Problem, content_type = "application/problem+json")))]
+                    (status = 409, description = "Other rows still reference it", body = Problem, content_type = "application/problem+json"),
+                    (status = 412, description = "The row changed since it was read (If-Match)", body = Problem, content_type = "application/problem+json")))]
             pub async fn delete(
                 State(state): State<AppState>,
                 ApiPath(id): ApiPath<i64>,
+                headers: HeaderMap,
             ) -> Result<StatusCode, ApiError> {
-                crud::delete::<$rec>(&state.pool, id).await?;
+                crud::delete::<$rec>(&state.pool, id, etag::if_match(&headers).as_deref()).await?;
                 Ok(StatusCode::NO_CONTENT)
             }
 

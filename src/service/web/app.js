@@ -3,7 +3,7 @@
 //   #/jobs[?kind=&status=&offset=]       past jobs
 //   #/jobs/<id>                          one job: progress, result, drawing, charts
 //   #/db/<table>                         the cutting-condition database
-import { h, problemBox } from './ui.js';
+import { h, problemBox, askForKey } from './ui.js';
 import { newJobView } from './new-job.js';
 import { jobView } from './job-view.js';
 import { jobsView } from './jobs.js';
@@ -79,3 +79,9 @@ window.addEventListener('hashchange', () => route(false));
 window.addEventListener('dieplan:refresh', () => route(true));
 if (!location.hash) history.replaceState(null, '', '#/new');
 route(false);
+
+// "API key" in the header: enter, change or forget the key this browser sends.
+document.getElementById('api-key-button')?.addEventListener('click', async () => {
+  const key = await askForKey('Enter the API key this browser sends with every request, or forget the stored one.');
+  if (key !== null) route(true);
+});

@@ -1,6 +1,6 @@
 // One job: progress (polled), cancel, and once succeeded the key figures, the drawing with
 // its controls, the charts, the NC program download and the raw result.
-import { h, api, problemBox, pretty, num, minutes, when, duration, figures, table, badge, KIND_NAMES } from './ui.js';
+import { h, api, downloadLink, problemBox, pretty, num, minutes, when, duration, figures, table, badge, KIND_NAMES } from './ui.js';
 import { drawingPanel } from './drawing.js';
 
 const POLL_MS = 1000;
@@ -155,9 +155,9 @@ export async function jobView(id) {
     const parts = [];
     if (job.links?.program) {
       const baseline = job.kind === 'plan' && job.result?.baseline
-        ? h('a', { class: 'button', id: 'download-baseline', href: `${job.links.program}?part=baseline`, download: `dieplan-baseline-${job.id.slice(0, 8)}.nc` }, 'Download the baseline’s NC program')
+        ? downloadLink(`${job.links.program}?part=baseline`, `dieplan-baseline-${job.id.slice(0, 8)}.nc`, { class: 'button', id: 'download-baseline' }, 'Download the baseline’s NC program')
         : null;
-      parts.push(h('p', { class: 'actions' }, h('a', { class: 'button primary', id: 'download-program', href: job.links.program, download: `dieplan-${job.kind}-${job.id.slice(0, 8)}.nc` }, 'Download NC program'), baseline));
+      parts.push(h('p', { class: 'actions' }, downloadLink(job.links.program, `dieplan-${job.kind}-${job.id.slice(0, 8)}.nc`, { class: 'button primary', id: 'download-program' }, 'Download NC program'), baseline));
     }
     parts.push(h('section', { class: 'card' }, h('h2', {}, 'Result'), ...(SUMMARIES[job.kind]?.(r) || [h('p', { class: 'muted' }, 'See the raw result below.')]), warnings(r.warnings)));
     parts.push(drawingPanel(job));

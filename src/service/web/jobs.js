@@ -1,6 +1,6 @@
 // Past jobs, newest first: filter by kind and status, page through, open one. Refreshes
 // itself while a listed job is still queued or running.
-import { h, api, num, when, duration, table, badge, KIND_NAMES } from './ui.js';
+import { h, api, downloadLink, num, when, duration, table, badge, KIND_NAMES } from './ui.js';
 
 const PAGE = 20;
 const STATUSES = ['queued', 'running', 'succeeded', 'failed', 'cancelled'];
@@ -30,7 +30,7 @@ export async function jobsView(params) {
     ['Progress', (j) => `${num((j.progress || 0) * 100, 0)} %`],
     ['Ran', (j) => duration(j.started_at, j.finished_at)],
     ['Job', (j) => h('span', { class: 'mono' }, j.id.slice(0, 8))],
-    ['Program', (j) => (j.links?.program ? h('a', { href: j.links.program, download: `dieplan-${j.kind}-${j.id.slice(0, 8)}.nc` }, 'NC') : '')],
+    ['Program', (j) => (j.links?.program ? downloadLink(j.links.program, `dieplan-${j.kind}-${j.id.slice(0, 8)}.nc`, {}, 'NC') : '')],
   ], page.items, { rowLink: (j) => `#/jobs/${j.id}`, empty: kind || status ? 'No job matches these filters.' : 'No jobs yet: start one under “New job”.' });
 
   const last = Math.min(offset + page.items.length, page.total);

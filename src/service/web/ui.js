@@ -1,5 +1,13 @@
 // Small helpers shared by the views: element builder, API calls, problem display, number
 // formatting. No framework: views build DOM with h() and replace the main element's content.
+import { storedKey, askForKey, authorizeDownload } from './key.js';
+
+export { askForKey };
+
+/** A link that downloads the text at `href` as `filename`, with the stored key if any. */
+export function downloadLink(href, filename, attrs, label) {
+  return authorizeDownload(h('a', { ...attrs, href, download: filename }, label), (path) => api('GET', path, undefined, { text: true }));
+}
 
 /** Builds an element: h('a', {href: '#/jobs', class: 'x', onclick: fn}, 'text', child, [more]). */
 export function h(tag, attrs = {}, ...children) {
@@ -33,9 +41,13 @@ export class ApiProblem extends Error {
   }
 }
 
+/** Most times a request asks for a key before it gives up with the 401. */
+const KEY_ATTEMPTS = 3;
+
 /**
- * Calls the API. Resolves to the parsed JSON (or text, or null for 204); rejects with an
- * ApiProblem for a 4xx/5xx answer and for network failures.
+ * Calls the API with the stored key (key.js), asking for one when the service answers
+ * 401. Resolves to the parsed JSON (or text, or null for 204); rejects with an ApiProblem
+ * for a 4xx/5xx answer and for network failures.
  */
 export async function api(method, path, body, { contentType = 'application/json', text = false } = {}) {
   const init = { method, headers: { accept: text ? '*/*' : 'application/json' } };
@@ -44,10 +56,19 @@ export async function api(method, path, body, { contentType = 'application/json'
     init.body = typeof body === 'string' ? body : JSON.stringify(body);
   }
   let response;
-  try {
-    response = await fetch(path, init);
-  } catch (err) {
-    throw new ApiProblem(0, { status: 0, title: 'Network error', detail: `The service did not answer (${err.message}). Is it running?` });
+  for (let attempt = 0; ; attempt++) {
+    const key = storedKey();
+    if (key) init.headers.authorization = `Bearer ${key}`;
+    else delete init.headers.authorization;
+    try {
+      response = await fetch(path, init);
+    } catch (err) {
+      throw new ApiProblem(0, { status: 0, title: 'Network error', detail: `The service did not answer (${err.message}). Is it running?` });
+    }
+    if (response.status !== 401 || attempt >= KEY_ATTEMPTS) break;
+    const problem = await response.clone().json().catch(() => null);
+    const entered = await askForKey(problem?.detail);
+    if (!entered) break;
   }
   const type = response.headers.get('content-type') || '';
   if (!response.ok) {
