@@ -6,6 +6,7 @@ pub mod chunk;
 pub mod engages;
 pub mod engine;
 pub mod feed_cap;
+pub mod geometry;
 pub mod lines;
 pub mod outside;
 pub mod probe;

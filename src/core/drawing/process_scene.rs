@@ -18,6 +18,7 @@ fn status_name(status: CandidateStatus) -> &'static str {
         CandidateStatus::CannotReach => "cannot reach",
         CandidateStatus::Incomplete => "incomplete",
         CandidateStatus::Unplannable => "unplannable",
+        CandidateStatus::ScreenedOut => "screened out",
     }
 }
 

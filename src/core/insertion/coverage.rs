@@ -6,13 +6,17 @@
 use crate::core::analysis::sampling::{move_length, point_on};
 use crate::core::geometry::{Pocket, Point};
 use crate::core::medial::Boundary;
-use crate::core::toolpath::Move;
+use crate::core::stock::Capsule;
+use crate::core::toolpath::{Motion, Move};
 
 /// Cells per tool radius of the coverage raster.
 pub const CELLS_PER_RADIUS: f64 = 25.0;
 
 /// Most cells of the coverage raster; beyond it the cell grows.
 pub const MAX_CELLS: usize = 4_000_000;
+
+/// The chords that sweep an arc depart from it by at most this share of a cell.
+pub const CHORD_SAGITTA_CELLS: f64 = 0.25;
 
 /// Owner of a cell nothing removed.
 pub const NOBODY: u16 = u16::MAX;
@@ -65,7 +69,9 @@ impl Coverage {
         Point::new(self.x0 + (i as f64 + 0.5) * self.cell_mm, self.y0 + (j as f64 + 0.5) * self.cell_mm)
     }
 
-    /// Marks the cells within `r_mm` of `c` as removed by `owner` unless already removed.
+    /// Marks the cells within `r_mm` of `c` as removed by `owner` unless already removed (the
+    /// reference the swept capsules are tested against).
+    #[cfg(test)]
     pub fn stamp(&mut self, c: Point, r_mm: f64, owner: u16) {
         let j0 = (((c.y - r_mm - self.y0) / self.cell_mm).floor().max(0.0)) as usize;
         let j1 = (((c.y + r_mm - self.y0) / self.cell_mm).ceil().max(0.0) as usize).min(self.h);
@@ -87,19 +93,58 @@ impl Coverage {
         }
     }
 
-    /// Stamps the tool along the moves of `moves` that reach down to `z_max_mm`.
+    /// Marks the cells whose centres lie within `r_mm` of the segment `a`–`b` (the tool swept
+    /// along it) as removed by `owner` unless already removed.
+    pub fn stamp_capsule(&mut self, a: Point, b: Point, r_mm: f64, owner: u16) {
+        let capsule = Capsule::new((a.x, a.y), (b.x, b.y), r_mm);
+        let (y_lo, y_hi) = (a.y.min(b.y) - r_mm, a.y.max(b.y) + r_mm);
+        let j0 = (((y_lo - self.y0) / self.cell_mm - 0.5).ceil().max(0.0)) as usize;
+        let j1 = ((((y_hi - self.y0) / self.cell_mm - 0.5).floor() + 1.0).max(0.0) as usize).min(self.h);
+        for j in j0..j1 {
+            let y = self.y0 + (j as f64 + 0.5) * self.cell_mm;
+            let Some((x_lo, x_hi)) = capsule.row_interval(y) else { continue };
+            let i0 = ((x_lo - self.x0) / self.cell_mm - 0.5).ceil().max(0.0) as usize;
+            let i1 = (((x_hi - self.x0) / self.cell_mm - 0.5).floor() + 1.0).max(0.0) as usize;
+            for o in &mut self.owner[j * self.w + i0.min(self.w)..j * self.w + i1.min(self.w)] {
+                if *o == NOBODY {
+                    *o = owner;
+                }
+            }
+        }
+    }
+
+    /// Stamps the tool along the moves of `moves` that reach down to `z_max_mm`. One owner
+    /// takes them all, so their order does not matter: each move is swept as capsules
+    /// between points along it (a straight move at the level in one; arcs in chords whose
+    /// sagitta is at most [`CHORD_SAGITTA_CELLS`] of a cell; a move crossing the level
+    /// every half cell, where it is below).
     pub fn stamp_moves(&mut self, moves: &[Move], r_mm: f64, z_max_mm: f64, owner: u16) {
-        let step = 0.5 * self.cell_mm;
+        let fine = 0.5 * self.cell_mm;
         for m in moves {
-            if m.start.z > z_max_mm && m.end.z > z_max_mm {
+            let (start_below, end_below) = (m.start.z <= z_max_mm, m.end.z <= z_max_mm);
+            if !start_below && !end_below {
                 continue;
             }
-            let n = (move_length(m) / step).ceil().max(1.0) as usize;
+            let length = move_length(m);
+            let step = match m.motion {
+                _ if !(start_below && end_below) => fine,
+                Motion::Arc { center, .. } => {
+                    let radius = (m.start.x - center.x).hypot(m.start.y - center.y);
+                    (8.0 * radius * CHORD_SAGITTA_CELLS * self.cell_mm).sqrt().max(fine)
+                }
+                _ => f64::INFINITY,
+            };
+            let n = (length / step).ceil().max(1.0) as usize;
+            let mut previous: Option<Point> = None;
             for k in 0..=n {
                 let (p, _) = point_on(m, k as f64 / n as f64);
-                if p.z <= z_max_mm {
-                    self.stamp(Point::new(p.x, p.y), r_mm, owner);
+                let here = Point::new(p.x, p.y);
+                if p.z > z_max_mm {
+                    previous = None;
+                    continue;
                 }
+                self.stamp_capsule(previous.unwrap_or(here), here, r_mm, owner);
+                previous = Some(here);
             }
         }
     }
@@ -230,6 +275,47 @@ mod tests {
                 assert!((d[j * w + i] - a).abs() < 1e-9, "({i},{j}) {} vs {a}", d[j * w + i]);
             }
         }
+    }
+
+    #[test]
+    fn moves_swept_as_capsules_cover_what_discs_stamped_every_half_cell_cover() {
+        use crate::core::toolpath::P3;
+        let pocket = crate::core::fixtures::rounded_box(40.0, 30.0, 6.0);
+        let boundary = Boundary::of_pocket(&pocket);
+        let r = 5.0;
+        let arc = |start: P3, end: P3, center: P3| Move {
+            motion: Motion::Arc { center, clockwise: false, plane: crate::core::toolpath::Plane::Xy, turns: 1 },
+            start,
+            end,
+            feed_mm_min: Some(1000.0),
+            spindle_rpm: None,
+            tool: None,
+            line: 0,
+        };
+        let line = |start: P3, end: P3| Move { motion: Motion::Linear, ..arc(start, end, start) };
+        let moves = vec![
+            line(P3::new(6.0, 6.0, 5.0), P3::new(6.0, 6.0, -5.0)),
+            line(P3::new(6.0, 6.0, -5.0), P3::new(30.0, 8.0, -5.0)),
+            arc(P3::new(30.0, 8.0, -5.0), P3::new(31.0, 9.0, -5.0), P3::new(30.0, 9.0, -5.0)),
+            arc(P3::new(31.0, 9.0, -5.0), P3::new(20.0, 20.0, -5.0), P3::new(20.0, 9.0, -5.0)),
+            line(P3::new(20.0, 20.0, -5.0), P3::new(12.0, 24.0, -2.0)),
+        ];
+        let mut swept = Coverage::new(&pocket, &boundary, r);
+        swept.stamp_moves(&moves, r, -5.0 + 1e-6, 0);
+        let mut stamped = Coverage::new(&pocket, &boundary, r);
+        for m in &moves {
+            let n = (move_length(m) / (0.5 * stamped.cell_mm)).ceil().max(1.0) as usize;
+            for k in 0..=n {
+                let (p, _) = point_on(m, k as f64 / n as f64);
+                if p.z <= -5.0 + 1e-6 {
+                    stamped.stamp(Point::new(p.x, p.y), r, 0);
+                }
+            }
+        }
+        let cells = |c: &Coverage| c.owner.iter().filter(|o| **o == 0).count();
+        let differ = swept.owner.iter().zip(&stamped.owner).filter(|(a, b)| a != b).count();
+        assert!(cells(&stamped) > 10_000, "{}", cells(&stamped));
+        assert!((differ as f64) < 0.01 * cells(&stamped) as f64, "{differ} of {} cells differ", cells(&stamped));
     }
 
     #[test]

@@ -30,10 +30,12 @@ pub use spec::{
 };
 pub use verify::{EngagementCheck, Spot, Verification};
 
+use crate::core::analysis::geometry::{PathGeometry, SampleGeometry};
 use crate::core::analysis::{AnalysisSpec, StockRegion};
 use crate::core::conditions::feed_mm_min;
 use crate::core::cycles::setup::DEFAULT_PLUNGE_FEED_RATIO;
 use crate::core::cycles::z_levels;
+use crate::core::force_model::ForceModel;
 use crate::core::geometry::Pocket;
 use crate::core::medial::{
     classify, critical_branches, medial_axis, Boundary, CriticalInterval, MedialOptions, NodeKind,
@@ -216,6 +218,32 @@ pub fn plan_insertion(
     existing: Option<&Toolpath>,
     progress: &dyn Progress,
 ) -> Result<InsertionPlan, CoreError> {
+    plan_rounds(pocket, spec, existing, None, progress).map(|(plan, _)| plan)
+}
+
+/// [`plan_insertion`], keeping the geometry of every sample of the finished program as its
+/// verification simulated it, with `force_model` for the forces at the programmed feeds (so
+/// that feeds, wear and time need no other simulation).
+pub fn plan_insertion_sampled(
+    pocket: &Pocket,
+    spec: &InsertionSpec,
+    existing: Option<&Toolpath>,
+    force_model: ForceModel,
+    progress: &dyn Progress,
+) -> Result<(InsertionPlan, PathGeometry), CoreError> {
+    let (plan, geometry) = plan_rounds(pocket, spec, existing, Some(force_model), progress)?;
+    Ok((plan, geometry.unwrap_or_else(|| PathGeometry::new(spec.r_mm()))))
+}
+
+/// The rounds of treatment; with `sampled`, each round's verification keeps its samples'
+/// geometry (the last round's is returned).
+fn plan_rounds(
+    pocket: &Pocket,
+    spec: &InsertionSpec,
+    existing: Option<&Toolpath>,
+    sampled: Option<ForceModel>,
+    progress: &dyn Progress,
+) -> Result<(InsertionPlan, Option<PathGeometry>), CoreError> {
     spec.validate()?;
     let axis = medial_axis(pocket, &MedialOptions::default())?;
     let classes = classify(&axis, spec.r_mm(), spec.class_a_ratio)?;
@@ -227,7 +255,10 @@ pub fn plan_insertion(
     let analysis = analysis_spec(pocket, spec);
     let r = spec.r_mm();
     let empty = Zone::new(r);
-    let before = verify::check_engagement(&base, &analysis, &empty, &[], progress)?;
+    let before = verify::check_engagement(&base, &analysis, &empty, &[], progress, |_| {})?;
+    // The verification of the rounds with the force model, when the samples are kept: it
+    // changes no engagement, only adds the forces.
+    let verifying = AnalysisSpec { force_model: sampled.or(analysis.force_model), ..analysis.clone() };
     let map = |overloaded: &[(crate::core::geometry::Point, f64)], radii: f64| {
         critical_branches(&axis, overloaded, radii * r, INTERVAL_MERGE_RADII * r, INTERVAL_MERGE_RADII * r)
     };
@@ -264,7 +295,16 @@ pub fn plan_insertion(
         let (levels, per_level) = (composed.levels, composed.per_level);
         let path = labelled_program(composed.moves, composed.labels);
         debug_assert_eq!(path.moves.len(), composed.owner.len());
-        let after = verify::check_engagement(&path, &analysis, &zcut, &composed.entry, progress)?;
+        let mut geometry = sampled.map(|_| PathGeometry::new(r));
+        let default_rpm = analysis.default_spindle_rpm;
+        let after = verify::check_engagement(&path, &verifying, &zcut, &composed.entry, progress, |s| {
+            if let Some(g) = geometry.as_mut() {
+                g.samples.push(SampleGeometry::of(s, default_rpm));
+            }
+        })?;
+        if let Some(g) = geometry.as_mut() {
+            g.removed_volume_mm3 = after.removed_volume_mm3;
+        }
         let more = map(&after.overloaded, REMAP_DISTANCE_RADII);
         let inside = |m: &CriticalInterval, set: &[CriticalInterval]| {
             set.iter().any(|c| c.branch == m.branch && c.s_start_mm <= m.s_start_mm && m.s_end_mm <= c.s_end_mm)
@@ -278,7 +318,7 @@ pub fn plan_insertion(
             Vec::new()
         };
         if after.outside.overloaded == 0 || rounds >= MAX_ROUNDS || (!grows && widen.is_empty()) {
-            return Ok(report::assemble(report::Parts {
+            let plan = report::assemble(report::Parts {
                 pocket,
                 boundary: &boundary,
                 spec,
@@ -297,7 +337,8 @@ pub fn plan_insertion(
                 rounds,
                 existing: existing.is_some(),
                 base_path: base.clone(),
-            }));
+            });
+            return Ok((plan, geometry));
         }
         for m in widen {
             if let Some(c) = intervals

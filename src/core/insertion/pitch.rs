@@ -53,6 +53,12 @@ pub fn engagement_outside_disc_rad(v: (f64, f64), t: (f64, f64), w_mm: f64, r_mm
     arc_overlap_rad(a_v - half, 2.0 * half, a_t - PI / 2.0, PI)
 }
 
+/// `(sin φ, cos φ)` of the [`LOOP_ANGLE_STEPS`] angles around a loop, computed once.
+fn loop_angles() -> &'static [(f64, f64)] {
+    static ANGLES: std::sync::OnceLock<Vec<(f64, f64)>> = std::sync::OnceLock::new();
+    ANGLES.get_or_init(|| (0..LOOP_ANGLE_STEPS).map(|i| (TAU * i as f64 / LOOP_ANGLE_STEPS as f64).sin_cos()).collect())
+}
+
 /// The largest engagement (deg) on a loop of radius `rho_mm` whose centre lies `pitch_mm`
 /// ahead of the previous loop's centre, that loop of radius `rho_prev_mm`, for a tool of
 /// radius `r_mm` (the loops run counter-clockwise; a clockwise trochoid is its mirror image
@@ -60,9 +66,7 @@ pub fn engagement_outside_disc_rad(v: (f64, f64), t: (f64, f64), w_mm: f64, r_mm
 pub fn loop_engagement_deg(rho_prev_mm: f64, rho_mm: f64, pitch_mm: f64, r_mm: f64) -> f64 {
     let w = rho_prev_mm + r_mm;
     let mut worst: f64 = 0.0;
-    for i in 0..LOOP_ANGLE_STEPS {
-        let phi = TAU * i as f64 / LOOP_ANGLE_STEPS as f64;
-        let (s, c) = phi.sin_cos();
+    for &(s, c) in loop_angles() {
         let v = (pitch_mm + rho_mm * c, rho_mm * s);
         worst = worst.max(engagement_outside_disc_rad(v, (-s, c), w, r_mm));
     }

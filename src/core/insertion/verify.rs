@@ -3,6 +3,7 @@
 //! the contour or an island"), run on the finished program by the full simulation.
 
 use super::cleared::ClearedZone;
+use crate::core::analysis::engine::SampleResult;
 use crate::core::analysis::sampling::{move_length, point_on};
 use crate::core::analysis::{analyze_with, AnalysisSpec};
 use crate::core::drawing::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE_BINS};
@@ -86,15 +87,19 @@ pub struct EngagementOutcome {
     pub overloaded: Vec<(Point, f64)>,
     /// The samples kept for drawing (see [`SampleCollector`]).
     pub samples: PathSamples,
+    /// Material the path removed, mm³.
+    pub removed_volume_mm3: f64,
 }
 
-/// Simulates `path` and sorts its samples into outside the z-cut zone, inside it and ramps.
+/// Simulates `path` and sorts its samples into outside the z-cut zone, inside it and ramps,
+/// handing every sample to `sink` too.
 pub fn check_engagement(
     path: &Toolpath,
     analysis: &AnalysisSpec,
     zcut_zone: &ClearedZone,
     entry_moves: &[bool],
     progress: &dyn Progress,
+    mut sink: impl FnMut(&SampleResult),
 ) -> Result<EngagementOutcome, CoreError> {
     let limit = analysis.alpha_limit_deg;
     let mut out = EngagementOutcome {
@@ -104,10 +109,12 @@ pub fn check_engagement(
         first_overload: None,
         overloaded: Vec::new(),
         samples: PathSamples::default(),
+        removed_volume_mm3: 0.0,
     };
     let total_length_mm: f64 = path.moves.iter().map(move_length).sum();
     let mut collector = SampleCollector::new(total_length_mm, DRAWING_SAMPLE_BINS);
-    analyze_with(path, analysis, progress, |r| {
+    let simulated = analyze_with(path, analysis, progress, |r| {
+        sink(r);
         if r.sample.rapid {
             collector.add(r);
             return;
@@ -138,6 +145,7 @@ pub fn check_engagement(
         }
     })?;
     out.samples = collector.finish();
+    out.removed_volume_mm3 = simulated.summary.removed_volume_mm3;
     Ok(out)
 }
 

@@ -3,13 +3,13 @@
 //! the layers joined into one program, its nominal and kinematic time, and the cost (seed
 //! 002 Eq. 4), broken down per layer and step.
 
+use super::feeds::force_at_feed;
 use super::layer::{moved_down, LayerPlan, Step};
 use super::spec::{ProcessOptions, ToolCandidate};
-use crate::core::analysis::analyze_with;
 use crate::core::analysis::sampling::move_length;
 use crate::core::costing::cost::{cost, Cost, Rates};
 use crate::core::feed::blocks::BlockOptions;
-use crate::core::feed::plan::{optimize_side_milling, FeedSpec};
+use crate::core::feed::plan::FeedSpec;
 use crate::core::feed::rule::{FeedRule, FeedStrategy};
 use crate::core::insertion::{append_over, labelled_program};
 use crate::core::kinematics::{machining_time, MachiningTime, TimeOptions};
@@ -126,8 +126,17 @@ fn optimise_layer(
     spec: &FeedSpec,
     progress: &dyn Progress,
 ) -> Result<Optimised, CoreError> {
-    let feed_stage = Stage { inner: progress, from: 0.0, span: 0.5 };
-    let mut plan = optimize_side_milling(&layer.toolpath, &layer.analysis, spec, &feed_stage)?;
+    // The layer's geometry, as its verification simulated it (simulated again only when it
+    // was let go).
+    let simulated;
+    let geometry = match layer.geometry.as_deref() {
+        Some(g) => g,
+        None => {
+            simulated = super::layer::simulate_geometry(&layer.toolpath, &layer.analysis, progress)?;
+            &simulated
+        }
+    };
+    let mut plan = super::feeds::optimise(&layer.toolpath, geometry, spec)?;
     // The optimiser splits moves into blocks; each block keeps its source line (move + 1).
     let source = |m: &Move| (m.line as usize).saturating_sub(1).min(layer.steps.len().saturating_sub(1));
     let steps: Vec<Step> = plan.path.moves.iter().map(|m| layer.steps[source(m)]).collect();
@@ -147,30 +156,32 @@ fn optimise_layer(
     let (mut wear_mm, mut cutting_mm, mut surface_mm) = (vec![0.0; n], vec![0.0; n], 0.0);
     let model = &candidate.life;
     let flutes = f64::from(candidate.tool.flutes);
-    let default_rpm = layer.analysis.default_spindle_rpm;
-    let wear_stage = Stage { inner: progress, from: 0.5, span: 0.5 };
-    let analysis = analyze_with(&plan.path, &layer.analysis, &wear_stage, |r| {
-        let alpha_deg = r.contact.alpha_rad.to_degrees();
-        let rpm = r.sample.spindle_rpm.or(default_rpm).unwrap_or(0.0);
-        if alpha_deg <= 0.0 || rpm <= 0.0 || r.sample.rapid {
+    let r_mm = geometry.tool_radius_mm;
+    super::feeds::for_each_sample_in_plan(&layer.toolpath, geometry, &plan, |g, i| {
+        let alpha_deg = f64::from(g.alpha_rad).to_degrees();
+        let rpm = g.spindle().unwrap_or(0.0);
+        if alpha_deg <= 0.0 || rpm <= 0.0 || g.rapid() {
             return;
         }
-        let i = r.sample.move_index;
-        let fz_c_mm = r.sample.feed_mm_min / (flutes * rpm);
+        let feed_mm_min = plan.path.moves[i].feed_mm_min.unwrap_or(0.0);
+        let fz_c_mm = feed_mm_min / (flutes * rpm);
+        let arc_length_mm = g.arc_length_mm(r_mm);
         let cut = if entry[i] {
-            WearCut { alpha_deg, arc_length_mm: r.arc_length_mm, fz_p_mm: fz_c_mm, force_n: None }
+            WearCut { alpha_deg, arc_length_mm, fz_p_mm: fz_c_mm, force_n: None }
         } else {
             WearCut {
                 alpha_deg,
-                arc_length_mm: r.arc_length_mm,
-                fz_p_mm: fz_c_mm * r.cutting_point_ratio,
-                force_n: r.force_n,
+                arc_length_mm,
+                fz_p_mm: fz_c_mm * f64::from(g.cutting_point_ratio),
+                force_n: force_at_feed(candidate.force_model, g, r_mm, candidate.tool.flutes, feed_mm_min),
             }
         };
-        wear_mm[i] += model.wear_mm(r.sample.step_mm, &cut);
-        cutting_mm[i] += r.sample.step_mm;
-        surface_mm += machined_surface_mm(r.sample.step_mm, r.cutting_point_ratio);
-    })?;
+        let step_mm = f64::from(g.step_mm);
+        wear_mm[i] += model.wear_mm(step_mm, &cut);
+        cutting_mm[i] += step_mm;
+        surface_mm += machined_surface_mm(step_mm, f64::from(g.cutting_point_ratio));
+    });
+    progress.report(1.0);
     let mut warnings = Vec::new();
     if !plan.shortfalls.is_empty() {
         let length: f64 = plan.shortfalls.iter().map(|s| s.length_mm).sum();
@@ -187,7 +198,7 @@ fn optimise_layer(
         wear_mm,
         cutting_mm,
         surface_mm,
-        removed_mm3: analysis.summary.removed_volume_mm3,
+        removed_mm3: geometry.removed_volume_mm3,
         warnings,
     })
 }

@@ -5,10 +5,12 @@
 //! is that plan moved down.
 
 use super::cavity::{Cavity, LayerRole};
+use super::parallel::{self, Shares};
 use super::spec::{ProcessOptions, ToolCandidate};
-use crate::core::analysis::AnalysisSpec;
-use crate::core::insertion::{analysis_spec, plan_insertion, InsertionPlan, InsertionSpec};
-use crate::core::progress::{Progress, Stage};
+use crate::core::analysis::geometry::{PathGeometry, SampleGeometry};
+use crate::core::analysis::{analyze_with, AnalysisSpec};
+use crate::core::insertion::{analysis_spec, plan_insertion_sampled, InsertionPlan, InsertionSpec};
+use crate::core::progress::Progress;
 pub use crate::core::toolpath::Step;
 use crate::core::toolpath::{labels_of, EventKind, Motion, Toolpath};
 use crate::core::CoreError;
@@ -38,6 +40,9 @@ pub struct LayerPlan {
     pub steps: Vec<Step>,
     /// The simulation of this layer (with the candidate's force model).
     pub analysis: AnalysisSpec,
+    /// The geometry of every sample of the program, as its verification simulated it (the
+    /// original layers only; `None` once let go).
+    pub geometry: Option<Arc<PathGeometry>>,
 }
 
 /// The insertion spec of layer `index` for `candidate`.
@@ -57,41 +62,63 @@ pub fn layer_spec(cavity: &Cavity, index: usize, candidate: &ToolCandidate, opti
     spec
 }
 
-/// Plans every layer of `cavity` with `candidate`.
+/// Plans every layer of `cavity` with `candidate`: the distinct layers side by side, each
+/// keeping the geometry of its program's samples; a layer like one above it (same contour,
+/// thickness and role) is that plan moved down.
 pub fn plan_layers(
     cavity: &Cavity,
     candidate: &ToolCandidate,
     options: &ProcessOptions,
     progress: &dyn Progress,
 ) -> Result<Vec<LayerPlan>, CoreError> {
-    let mut plans: Vec<LayerPlan> = Vec::with_capacity(cavity.layers.len());
+    let n = cavity.layers.len();
+    let alike = |a: usize, b: usize| {
+        let (la, lb) = (&cavity.layers[a], &cavity.layers[b]);
+        cavity.role(a) == cavity.role(b)
+            && la.pocket == lb.pocket
+            && (la.thickness_mm() - lb.thickness_mm()).abs() < SAME_THICKNESS_MM
+    };
+    let mut like: Vec<Option<usize>> = Vec::with_capacity(n);
+    for index in 0..n {
+        let first = (0..index).find(|&j| like[j].is_none() && alike(j, index));
+        like.push(first);
+    }
+    let originals: Vec<usize> = (0..n).filter(|&i| like[i].is_none()).collect();
+    let shares = Shares::new(progress, 0.0, 1.0, originals.len());
+    let planned = parallel::map(&originals, |k, &index| {
+        let spec = layer_spec(cavity, index, candidate, options);
+        let part = shares.part(k);
+        part.checkpoint()?;
+        plan_insertion_sampled(&cavity.layers[index].pocket, &spec, None, candidate.force_model, &part)
+    });
+    let mut plans: Vec<LayerPlan> = Vec::with_capacity(n);
+    let mut planned = originals.iter().copied().zip(planned);
     for (index, layer) in cavity.layers.iter().enumerate() {
-        progress.checkpoint()?;
         let role = cavity.role(index);
         let spec = layer_spec(cavity, index, candidate, options);
         let mut analysis = analysis_spec(&layer.pocket, &spec);
         analysis.force_model = Some(candidate.force_model);
-        let like = plans.iter().find(|p| {
-            p.copy_of.is_none()
-                && p.role == role
-                && cavity.layers[p.index].pocket == layer.pocket
-                && ((p.z_top_mm - p.z_bottom_mm) - layer.thickness_mm()).abs() < SAME_THICKNESS_MM
-        });
-        let plan = match like {
-            Some(original) => LayerPlan {
-                index,
-                role,
-                z_top_mm: layer.z_top_mm,
-                z_bottom_mm: layer.z_bottom_mm,
-                copy_of: Some(original.index),
-                insertion: Arc::clone(&original.insertion),
-                toolpath: moved_down(&original.toolpath, layer.z_top_mm - original.z_top_mm, options.safe_z_mm),
-                steps: original.steps.clone(),
-                analysis,
-            },
+        let plan = match like[index] {
+            Some(o) => {
+                let original = &plans[o];
+                LayerPlan {
+                    index,
+                    role,
+                    z_top_mm: layer.z_top_mm,
+                    z_bottom_mm: layer.z_bottom_mm,
+                    copy_of: Some(o),
+                    insertion: Arc::clone(&original.insertion),
+                    toolpath: moved_down(&original.toolpath, layer.z_top_mm - original.z_top_mm, options.safe_z_mm),
+                    steps: original.steps.clone(),
+                    analysis,
+                    geometry: None,
+                }
+            }
             None => {
-                let stage = Stage::nth(progress, 0.0, 1.0, index, cavity.layers.len());
-                let insertion = plan_insertion(&layer.pocket, &spec, None, &stage)?;
+                let (insertion, geometry) = match planned.next() {
+                    Some((i, result)) if i == index => result?,
+                    _ => return Err(CoreError::unsolvable("layers", format!("layer {index} was not planned"))),
+                };
                 let steps = steps_of(&insertion.toolpath, role);
                 LayerPlan {
                     index,
@@ -103,6 +130,7 @@ pub fn plan_layers(
                     insertion: Arc::new(insertion),
                     steps,
                     analysis,
+                    geometry: Some(Arc::new(geometry)),
                 }
             }
         };
@@ -110,6 +138,20 @@ pub fn plan_layers(
     }
     progress.report(1.0);
     Ok(plans)
+}
+
+/// Simulates `path` once and keeps the geometry of its samples.
+pub fn simulate_geometry(
+    path: &Toolpath,
+    analysis: &AnalysisSpec,
+    progress: &dyn Progress,
+) -> Result<PathGeometry, CoreError> {
+    let mut geometry = PathGeometry::new(analysis.tool.radius_mm());
+    let default_rpm = analysis.default_spindle_rpm;
+    let simulated =
+        analyze_with(path, analysis, progress, |r| geometry.samples.push(SampleGeometry::of(r, default_rpm)))?;
+    geometry.removed_volume_mm3 = simulated.summary.removed_volume_mm3;
+    Ok(geometry)
 }
 
 /// The step of every move of a layer's program, from its section labels (a move before the

@@ -20,11 +20,16 @@
 pub mod baseline;
 pub mod cavity;
 pub mod evaluate;
+pub mod feeds;
 pub mod layer;
+mod parallel;
 mod report;
+pub mod screen;
 pub mod spec;
 pub mod tune;
 
+#[cfg(test)]
+mod feeds_tests;
 #[cfg(test)]
 mod program_tests;
 #[cfg(test)]
@@ -38,6 +43,7 @@ pub use cavity::{
 pub use evaluate::{Evaluation, Figures, LayerFigures, StepFigures};
 pub use layer::{LayerPlan, Step};
 pub use report::{CandidateReport, CandidateStatus, Comparison, LayerReport, ProcessPlan};
+pub use screen::{Estimate, SCREEN_MARGIN, SCREEN_SPACING_FACTOR};
 pub use spec::{ProcessOptions, ToolCandidate, DEFAULT_MAX_FORCE_FACTOR, DEFAULT_TARGET_CONSUMPTION};
 pub use tune::{Tuning, TuningOutcome};
 
@@ -50,8 +56,11 @@ use crate::core::CoreError;
 /// above the offsets' rounding).
 pub const UNREACHABLE_TOLERANCE_MM2: f64 = 1.0;
 
-/// Share of the progress spent on the candidates; the rest goes to tuning and the baseline.
+/// Share of the progress spent on the candidates (screening included); the rest goes to
+/// tuning and the baseline.
 const CANDIDATES_SHARE: f64 = 0.75;
+/// Share of the progress spent on the screening, when there is one.
+const SCREENING_SHARE: f64 = 0.35;
 const TUNING_SHARE: f64 = 0.15;
 
 /// Checks what can be checked before planning.
@@ -124,70 +133,121 @@ pub fn plan_process(
         candidates.iter().map(|c| unreachable_mm2(cavity, c.tool.radius_mm(), options.allowance_mm)).collect();
     let least = unreachable.iter().copied().fold(f64::INFINITY, f64::min);
     let allowed = least + UNREACHABLE_TOLERANCE_MM2 * cavity.layers.len() as f64;
-    let mut reports = Vec::with_capacity(candidates.len());
-    let mut planned = Vec::new();
+    let mut reports: Vec<CandidateReport> =
+        candidates.iter().zip(&unreachable).map(|(c, u)| CandidateReport::new(c, *u)).collect();
+    let mut reachable = Vec::new();
     for (k, c) in candidates.iter().enumerate() {
-        progress.checkpoint()?;
-        let stage = Stage::nth(progress, 0.0, CANDIDATES_SHARE, k, candidates.len());
-        let mut report = CandidateReport::new(c, unreachable[k]);
         if unreachable[k] > allowed {
-            report.status = CandidateStatus::CannotReach;
-            report.reason = Some(format!(
+            reports[k].status = CandidateStatus::CannotReach;
+            reports[k].reason = Some(format!(
                 "leaves {:.0} mm² of the cavity out of its reach (a concave radius or a neck tighter than its radius {} mm); the smallest candidate leaves {least:.0} mm²",
                 unreachable[k],
                 c.tool.radius_mm()
             ));
-            reports.push(report);
-            continue;
+        } else {
+            reachable.push(k);
         }
-        let plan_stage = Stage { inner: &stage, from: 0.0, span: 0.7 };
+    }
+    // Screening: every reachable candidate planned and costed coarsely, side by side (one
+    // alone needs no screening).
+    let screening = reachable.len() > 1;
+    let (screen_share, full_from) = if screening { (SCREENING_SHARE, SCREENING_SHARE) } else { (0.0, 0.0) };
+    let shares = parallel::Shares::new(progress, 0.0, screen_share, reachable.len());
+    let estimates: Vec<Option<screen::Estimate>> = if screening {
+        let found = parallel::map(&reachable, |i, &k| {
+            let layered = input.layers_for(candidates[k].roughing.ad_mm, candidates[k].intermediate.ad_mm)?;
+            screen::estimate(&layered, &candidates[k], options, &shares.part(i))
+        });
+        let mut estimates = Vec::with_capacity(found.len());
+        for e in found {
+            estimates.push(e?.ok());
+        }
+        estimates
+    } else {
+        vec![None; reachable.len()]
+    };
+    for (i, &k) in reachable.iter().enumerate() {
+        if let Some(e) = &estimates[i] {
+            reports[k].estimated_cost = Some(e.cost);
+            reports[k].screening_spacing_mm = Some(e.spacing_mm);
+        }
+    }
+    // Full plans, the most promising first (passing the verification, then cheaper), while a
+    // candidate can still win.
+    let mut order: Vec<usize> = (0..reachable.len()).collect();
+    let key = |i: &usize| estimates[*i].as_ref().map_or((true, f64::INFINITY), |e| (!e.passes, e.cost));
+    order.sort_by(|a, b| key(a).partial_cmp(&key(b)).unwrap_or(std::cmp::Ordering::Equal));
+    let mut best: Option<(usize, Vec<LayerPlan>, Evaluation, bool)> = None;
+    for (n, &i) in order.iter().enumerate() {
+        progress.checkpoint()?;
+        let k = reachable[i];
+        let c = &candidates[k];
+        if let (Some(e), Some((b, _, evaluation, passes))) = (&estimates[i], &best) {
+            if !screen::can_still_win(e, Some((evaluation.cost.total, *passes))) {
+                reports[k].status = CandidateStatus::ScreenedOut;
+                reports[k].reason = Some(format!(
+                    "estimated at {:.2} {} at a sample spacing of {} mm, more than {:.0} % above {} ({:.2})",
+                    e.cost,
+                    options.currency,
+                    e.spacing_mm,
+                    100.0 * screen::SCREEN_MARGIN / (1.0 - screen::SCREEN_MARGIN),
+                    candidates[*b].name,
+                    evaluation.cost.total
+                ));
+                continue;
+            }
+        }
+        let stage = Stage::nth(progress, full_from, CANDIDATES_SHARE - full_from, n, order.len());
+        let plan_stage = Stage { inner: &stage, from: 0.0, span: 0.9 };
         let layered = input.layers_for(c.roughing.ad_mm, c.intermediate.ad_mm)?;
-        let layers = match unplannable_unless_cancelled(layer::plan_layers(&layered, c, options, &plan_stage))? {
+        let mut layers = match unplannable_unless_cancelled(layer::plan_layers(&layered, c, options, &plan_stage))? {
             Ok(l) => l,
             Err(reason) => {
-                report.status = CandidateStatus::Unplannable;
-                report.reason = Some(reason);
-                reports.push(report);
+                reports[k].status = CandidateStatus::Unplannable;
+                reports[k].reason = Some(reason);
                 continue;
             }
         };
-        report.check_layers(&layers);
-        if report.status == CandidateStatus::Incomplete {
-            reports.push(report);
+        reports[k].check_layers(&layers);
+        if reports[k].status == CandidateStatus::Incomplete {
             continue;
         }
-        let eval_stage = Stage { inner: &stage, from: 0.7, span: 0.3 };
+        let eval_stage = Stage { inner: &stage, from: 0.9, span: 0.1 };
         let evaluation = match unplannable_unless_cancelled(evaluate::evaluate(&layers, c, options, 1.0, &eval_stage))?
         {
             Ok(e) => e,
             Err(reason) => {
-                report.status = CandidateStatus::Unplannable;
-                report.reason = Some(reason);
-                reports.push(report);
+                reports[k].status = CandidateStatus::Unplannable;
+                reports[k].reason = Some(reason);
                 continue;
             }
         };
-        report.set_figures(&evaluation);
-        reports.push(report);
-        planned.push((k, layers, evaluation));
+        reports[k].set_figures(&evaluation);
+        let passes = layers.iter().all(|l| l.insertion.verification.passed);
+        // A plan that fails its verification never beats one that passes.
+        let better = best.as_ref().is_none_or(|(_, _, e, p)| (passes, -evaluation.cost.total) > (*p, -e.cost.total));
+        if better {
+            best = Some((k, layers, evaluation, passes));
+        } else {
+            // Only the best plan keeps its samples (for the tuning).
+            layers.iter_mut().for_each(|l| l.geometry = None);
+        }
     }
-    let best = planned
-        .iter()
-        .enumerate()
-        .min_by(|a, b| a.1 .2.cost.total.total_cmp(&b.1 .2.cost.total))
-        .map(|(i, _)| i)
-        .ok_or_else(|| {
-            let why: Vec<String> = reports
-                .iter()
-                .map(|r| format!("{}: {}", r.name, r.reason.as_deref().unwrap_or("not planned")))
-                .collect();
-            CoreError::unsolvable(
-                "diameters_mm",
-                format!("no candidate tool can rough the cavity ({})", why.join("; ")),
-            )
-        })?;
-    let (chosen, layers, standard) = planned.swap_remove(best);
+    let Some((chosen, layers, standard, passes)) = best else {
+        let why: Vec<String> =
+            reports.iter().map(|r| format!("{}: {}", r.name, r.reason.as_deref().unwrap_or("not planned"))).collect();
+        return Err(CoreError::unsolvable(
+            "diameters_mm",
+            format!("no candidate tool can rough the cavity ({})", why.join("; ")),
+        ));
+    };
     reports[chosen].status = CandidateStatus::Chosen;
+    if !passes {
+        warnings.push(format!(
+            "no candidate's plan passes its verification: {} is the cheapest of those that do not (see its layers)",
+            candidates[chosen].name
+        ));
+    }
     let tune_stage = Stage { inner: progress, from: CANDIDATES_SHARE, span: TUNING_SHARE };
     let (evaluation, tuning) = tune::tune(&layers, &candidates[chosen], options, standard, &tune_stage)?;
     if tuning.outcome == TuningOutcome::AboveTargetAtStandardForce {

@@ -27,6 +27,9 @@ pub enum CandidateStatus {
     Incomplete,
     /// The planner could not plan it (see the reason).
     Unplannable,
+    /// Planned at a coarse sample spacing only: its estimate could not beat the chosen plan
+    /// (see `estimated_cost` and the reason).
+    ScreenedOut,
 }
 
 /// One row of the table of candidates.
@@ -49,6 +52,10 @@ pub struct CandidateReport {
     pub openings: usize,
     /// Largest engagement left outside the z-cut regions, deg.
     pub max_alpha_deg: Option<f64>,
+    /// The cost estimated at the screening's coarse sample spacing (at the standard force).
+    pub estimated_cost: Option<f64>,
+    /// The screening's sample spacing, mm.
+    pub screening_spacing_mm: Option<f64>,
 }
 
 impl CandidateReport {
@@ -67,6 +74,8 @@ impl CandidateReport {
             z_cuts: 0,
             openings: 0,
             max_alpha_deg: None,
+            estimated_cost: None,
+            screening_spacing_mm: None,
         }
     }
 

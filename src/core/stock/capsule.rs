@@ -192,7 +192,7 @@ fn line_distance(p: (f64, f64), u: (f64, f64)) -> f64 {
 }
 
 /// The set of points within `r` of a segment.
-pub(super) struct Capsule {
+pub struct Capsule {
     a: (f64, f64),
     b: (f64, f64),
     r: f64,
@@ -207,7 +207,7 @@ pub(super) struct Capsule {
 }
 
 impl Capsule {
-    pub(super) fn new(a: (f64, f64), b: (f64, f64), r: f64) -> Capsule {
+    pub fn new(a: (f64, f64), b: (f64, f64), r: f64) -> Capsule {
         let (dx, dy) = (b.0 - a.0, b.1 - a.1);
         let len = dx.hypot(dy);
         let dir = (len > DEGENERATE_SEGMENT_MM).then(|| ((dx / len, dy / len), len));
@@ -277,7 +277,7 @@ impl Capsule {
     }
 
     /// The x-interval of the capsule on the line at `y` (the capsule is convex).
-    pub(super) fn row_interval(&self, y: f64) -> Option<(f64, f64)> {
+    pub fn row_interval(&self, y: f64) -> Option<(f64, f64)> {
         let mut lo = f64::INFINITY;
         let mut hi = f64::NEG_INFINITY;
         for chord in [self.disc_chord(self.a, y), self.disc_chord(self.b, y)].into_iter().flatten() {

@@ -18,6 +18,7 @@ mod certified_air;
 mod compare;
 mod tiles;
 
+pub use capsule::Capsule;
 pub use capsule_rows::CapsuleRows;
 pub use compare::CellRect;
 pub use tiles::Certified;

@@ -47,7 +47,8 @@ pub struct CandidateDto {
     pub tool_id: i64,
     pub name: String,
     pub diameter_mm: f64,
-    /// `chosen`, `planned`, `cannot_reach`, `incomplete` or `unplannable`.
+    /// `chosen`, `planned`, `cannot_reach`, `incomplete`, `unplannable` or `screened_out`
+    /// (planned at the screening's coarse spacing only: its estimate could not win).
     #[schema(value_type = String)]
     pub status: CandidateStatus,
     pub reason: Option<String>,
@@ -64,6 +65,11 @@ pub struct CandidateDto {
     pub openings: usize,
     /// Largest engagement left outside the z-cut regions, deg.
     pub max_alpha_deg: Option<f64>,
+    /// The cost estimated at the screening's coarse sample spacing, at the standard force
+    /// (every candidate screened when more than one can reach the cavity).
+    pub estimated_cost: Option<f64>,
+    /// The screening's sample spacing, mm.
+    pub screening_spacing_mm: Option<f64>,
 }
 
 /// A step of a layer.
@@ -264,6 +270,8 @@ fn candidate(r: &CandidateReport, tool_id: i64) -> CandidateDto {
         z_cuts: r.z_cuts,
         openings: r.openings,
         max_alpha_deg: r.max_alpha_deg,
+        estimated_cost: r.estimated_cost,
+        screening_spacing_mm: r.screening_spacing_mm,
     }
 }
 

@@ -1,0 +1,205 @@
+//! `cargo bench --bench plans`: how long the planning jobs take, against one analysis of
+//! `../shared/data/tiger.nc` measured in the same run (BENCHMARKS.md, "Plans").
+//!
+//! Every case is a job as the API runs it: the request is checked and resolved against a
+//! freshly migrated and seeded database (`kinds::prepare`, not timed), then the worker's
+//! part is timed (`kinds::run`: the computation, the result, the program and the scene).
+//! The cases:
+//! - `tiger`: tiger.nc analysed with the 6 mm square end mill at 0.05 mm in its stock of
+//!   tiger.camotics (the yardstick; timed before and after the others, the faster counts);
+//! - `case study`: the README's case-study cavity (90 × 70 mm, corners R8, a 12 mm slot,
+//!   35 mm deep) with every default (six candidate diameters, sample spacing 0.05 mm);
+//! - `readme plan`: the README's plan example (the same cavity, `diameters_mm: [10]`,
+//!   sample spacing 0.1 mm);
+//! - `slot box`: the README's trochoid example (an 80 × 60 mm box with a 12 mm slot, 10 mm
+//!   deep, the 10 mm end mill);
+//! - `cavity layer`: trochoids for the case-study cavity in one 10 mm layer, 10 mm end mill.
+//!
+//! Arguments: words that pick the cases whose label contains one (the yardstick always
+//! runs), `--runs N` to time each case N times and keep the fastest, and `--alone` to
+//! leave the yardstick out (for profiling one case; no ratios then).
+
+use dieplan::core::progress::NoProgress;
+use dieplan::service::jobs::kinds;
+use dieplan::service::jobs::model::JobKind;
+use serde_json::{json, Value};
+use std::time::Instant;
+
+fn data(name: &str) -> String {
+    let path = format!("{}/../shared/data/{name}", env!("CARGO_MANIFEST_DIR"));
+    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+/// The case-study cavity's contour (README, "Process planning").
+fn cavity_contour() -> Value {
+    json!({"outer": [[8, 0], [82, 0, 0.414214], [90, 8], [90, 29], [114, 29, 1], [114, 41], [90, 41],
+                     [90, 62, 0.414214], [82, 70], [8, 70, 0.414214], [0, 62], [0, 8, 0.414214]]})
+}
+
+/// One job to time.
+struct Case {
+    label: &'static str,
+    kind: JobKind,
+    input: Value,
+}
+
+fn cases() -> Vec<Case> {
+    vec![
+        Case {
+            label: "case study, all defaults",
+            kind: JobKind::Plan,
+            input: json!({"contour": cavity_contour(), "z_top": 0, "z_bottom": -35}),
+        },
+        Case {
+            label: "readme plan example (D10, 0.1 mm)",
+            kind: JobKind::Plan,
+            input: json!({"contour": cavity_contour(), "z_top": 0, "z_bottom": -35, "diameters_mm": [10],
+                          "sample_spacing_mm": 0.1}),
+        },
+        Case {
+            label: "trochoids, slot box",
+            kind: JobKind::Trochoids,
+            input: json!({"contour": {"outer": [[0, 0], [80, 0], [80, 24], [120, 24], [120, 36], [80, 36], [80, 60], [0, 60]]},
+                          "z_top": 0, "z_bottom": -10, "tool_type": "square", "diameter_mm": 10}),
+        },
+        Case {
+            label: "trochoids, cavity layer",
+            kind: JobKind::Trochoids,
+            input: json!({"contour": cavity_contour(), "z_top": 0, "z_bottom": -10, "tool_type": "square",
+                          "diameter_mm": 10}),
+        },
+    ]
+}
+
+fn yardstick() -> Case {
+    Case {
+        label: "tiger.nc analysis, D6 at 0.05 mm",
+        kind: JobKind::Analysis,
+        input: json!({
+            "program": {"gcode": data("tiger.nc")}, "tool_type": "square", "diameter_mm": 6,
+            "stock": {"box": {"x_min": -2, "y_min": -1, "z_min": -32, "x_max": 92, "y_max": 89, "z_max": 0}},
+            "sample_spacing_mm": 0.05
+        }),
+    }
+}
+
+/// A case resolved against the database, ready to run.
+struct Prepared {
+    label: &'static str,
+    kind: JobKind,
+    input: String,
+    prepared: String,
+}
+
+/// The fastest of `runs` runs of the job, s, and its result.
+fn time(case: &Prepared, runs: usize) -> (f64, Value) {
+    let mut best = f64::INFINITY;
+    let mut result = Value::Null;
+    for _ in 0..runs {
+        let start = Instant::now();
+        let out = kinds::run(case.kind, &case.input, &case.prepared, &NoProgress)
+            .unwrap_or_else(|e| panic!("{}: {e}", case.label));
+        best = best.min(start.elapsed().as_secs_f64());
+        result = out.result;
+    }
+    (best, result)
+}
+
+/// The key figures of a job's result, to see that speed did not change them.
+fn figures(kind: JobKind, r: &Value) -> String {
+    match kind {
+        JobKind::Plan => {
+            let chosen = r["candidates"]
+                .as_array()
+                .and_then(|c| c.iter().find(|c| c["status"] == "chosen"))
+                .map_or("none".to_string(), |c| c["name"].as_str().unwrap_or("?").to_string());
+            let fates: Vec<String> = r["candidates"]
+                .as_array()
+                .map(|c| {
+                    c.iter()
+                        .map(|c| {
+                            format!(
+                                "D{} {} {}",
+                                c["diameter_mm"],
+                                c["status"].as_str().unwrap_or("?"),
+                                c["cost"].as_f64().map_or(String::new(), |v| format!("{v:.2}"))
+                            )
+                        })
+                        .collect()
+                })
+                .unwrap_or_default();
+            let t = &r["totals"];
+            format!(
+                "chosen {chosen}; {} layers; removed {:.1} cm³; cut {:.1} m; {:.1} min kinematic; cost {:.2}; tuning {} × F*; [{}]",
+                r["layers"].as_array().map_or(0, Vec::len),
+                t["removed_volume_mm3"].as_f64().unwrap_or(0.0) / 1000.0,
+                t["cutting_length_mm"].as_f64().unwrap_or(0.0) / 1000.0,
+                t["kinematic_time_min"].as_f64().unwrap_or(0.0),
+                t["cost"].as_f64().unwrap_or(0.0),
+                r["tuning"]["force_factor"],
+                fates.join(", ")
+            )
+        }
+        JobKind::Trochoids => format!(
+            "{} treatments, α max {} → {}, verification passed {}",
+            r["treatments"].as_array().map_or(0, Vec::len),
+            r["base_max_alpha_deg"],
+            r["verification"]["outside_zcut"]["max_alpha_deg"],
+            r["verification"]["passed"]
+        ),
+        _ => format!("{} samples, α max {}", r["summary"]["samples"], r["summary"]["alpha_deg"]["max"]),
+    }
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).filter(|a| a != "--bench").collect();
+    let mut runs = 1;
+    let mut alone = false;
+    let mut words = Vec::new();
+    let mut it = args.into_iter();
+    while let Some(a) = it.next() {
+        if a == "--runs" {
+            runs = it.next().and_then(|n| n.parse().ok()).unwrap_or(1).max(1);
+        } else if a == "--alone" {
+            alone = true;
+        } else {
+            words.push(a.to_lowercase());
+        }
+    }
+    let wanted = |label: &str| words.is_empty() || words.iter().any(|w| label.to_lowercase().contains(w.as_str()));
+
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let runtime = tokio::runtime::Runtime::new().expect("a tokio runtime");
+    let pool = runtime.block_on(dieplan::service::store::open(&dir.path().join("bench.sqlite"))).expect("database");
+    let prepare = |case: Case| -> Prepared {
+        let prepared = runtime
+            .block_on(kinds::prepare(&pool, case.kind, case.input.clone(), ""))
+            .unwrap_or_else(|e| panic!("{}: {e:?}", case.label));
+        Prepared { label: case.label, kind: case.kind, input: case.input.to_string(), prepared: prepared.to_string() }
+    };
+    let tiger = prepare(yardstick());
+    let chosen: Vec<Prepared> = cases().into_iter().filter(|c| wanted(c.label)).map(prepare).collect();
+
+    let mut timed = Vec::new();
+    let mut run_cases = || {
+        for case in &chosen {
+            let (secs, result) = time(case, runs);
+            println!("{}: {secs:.2} s ({})", case.label, figures(case.kind, &result));
+            timed.push((case.label, secs));
+        }
+    };
+    if alone {
+        run_cases();
+        return;
+    }
+    let (before, result) = time(&tiger, runs);
+    println!("{}: {before:.2} s ({})", tiger.label, figures(tiger.kind, &result));
+    run_cases();
+    let (after, _) = time(&tiger, runs);
+    println!("{} again: {after:.2} s", tiger.label);
+    let unit = before.min(after);
+    println!("ratios to one tiger.nc analysis ({unit:.2} s, the faster of the two):");
+    for (label, secs) in timed {
+        println!("  {label}: {:.2} ×", secs / unit);
+    }
+}

@@ -1,0 +1,68 @@
+//! Screening the candidates before planning them in full: each candidate that can reach the
+//! cavity is planned and costed at a coarse sample spacing (a few times the default), and
+//! only those whose estimate can still beat the best complete plan are planned at the
+//! requested spacing. The chosen plan, its figures and its verification are always those of
+//! the full spacing; a candidate screened out is reported with its estimate.
+
+use super::evaluate::evaluate;
+use super::layer::plan_layers;
+use super::spec::{ProcessOptions, ToolCandidate};
+use crate::core::analysis::{DEFAULT_MAX_SPACING_MM, SPACING_PER_DIAMETER};
+use crate::core::progress::Progress;
+use crate::core::CoreError;
+
+/// The screening samples this many times more coarsely than the plan (**assumed**: at 4 ×
+/// the default 0.05 mm, 0.2 mm, the case study's candidates cost within 10 % of their full
+/// plans; see the process tests).
+pub const SCREEN_SPACING_FACTOR: f64 = 4.0;
+
+/// A candidate can still win while its estimate, less this share, is below the cost of the
+/// best complete plan (**assumed**: twice the largest gap seen between a screening estimate
+/// and its full plan).
+pub const SCREEN_MARGIN: f64 = 0.2;
+
+/// What the screening of one candidate found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Estimate {
+    /// The cost at the standard force, at the coarse spacing.
+    pub cost: f64,
+    /// Every layer passed its verification at the coarse spacing.
+    pub passes: bool,
+    /// The coarse spacing, mm.
+    pub spacing_mm: f64,
+}
+
+/// The sample spacing of `candidate`'s plan under `options`, mm.
+pub fn plan_spacing_mm(candidate: &ToolCandidate, options: &ProcessOptions) -> f64 {
+    options.sample_spacing_mm.unwrap_or((SPACING_PER_DIAMETER * candidate.tool.diameter_mm).min(DEFAULT_MAX_SPACING_MM))
+}
+
+/// Plans and costs `candidate` for the layers `cavity` at the coarse spacing; `Ok(Err(reason))`
+/// when it cannot be planned so.
+pub fn estimate(
+    cavity: &super::cavity::Cavity,
+    candidate: &ToolCandidate,
+    options: &ProcessOptions,
+    progress: &dyn Progress,
+) -> Result<Result<Estimate, String>, CoreError> {
+    let spacing_mm = SCREEN_SPACING_FACTOR * plan_spacing_mm(candidate, options);
+    let coarse = ProcessOptions { sample_spacing_mm: Some(spacing_mm), ..options.clone() };
+    let stage = crate::core::progress::Stage { inner: progress, from: 0.0, span: 0.9 };
+    let layers = match super::unplannable_unless_cancelled(plan_layers(cavity, candidate, &coarse, &stage))? {
+        Ok(l) => l,
+        Err(reason) => return Ok(Err(reason)),
+    };
+    let passes = layers.iter().all(|l| l.insertion.verification.passed);
+    let evaluation = evaluate(&layers, candidate, &coarse, 1.0, &crate::core::progress::NoProgress);
+    Ok(super::unplannable_unless_cancelled(evaluation)?.map(|e| Estimate { cost: e.cost.total, passes, spacing_mm }))
+}
+
+/// Whether a candidate of estimate `e` can still beat the best complete plan so far (its
+/// cost, and whether it passed its verification): a plan that fails verification is beaten
+/// by any that passes, so against one every candidate can still win.
+pub fn can_still_win(e: &Estimate, best: Option<(f64, bool)>) -> bool {
+    match best {
+        None | Some((_, false)) => true,
+        Some((cost, true)) => e.cost * (1.0 - SCREEN_MARGIN) < cost,
+    }
+}
