@@ -336,6 +336,14 @@ fn unknown_m_codes_are_warnings_and_standard_auxiliary_codes_pass_silently() {
 }
 
 #[test]
+fn a_bad_line_in_a_loop_is_reported_once_however_often_it_runs() {
+    let text = "G1 F100\no1 repeat [3]\nG1 X10 $$$\no1 endrepeat\nM2";
+    let e = errors(text, &ParseOptions::default());
+    assert!(!e.is_empty(), "the bad word is an error");
+    assert_eq!(e.iter().filter(|x| x.line == 3).count(), 1, "{e:?}");
+}
+
+#[test]
 fn each_bad_word_is_one_error_at_its_column() {
     let e = errors("G1 X10 $$$ Y2 F100 Q", &ParseOptions::default());
     assert_eq!(e.len(), 2, "{e:?}");
