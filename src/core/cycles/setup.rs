@@ -66,6 +66,9 @@ pub struct CycleSetup {
     pub retract_z_mm: Option<f64>,
     /// Feed of plunges, mm/min; default [`DEFAULT_PLUNGE_FEED_RATIO`] × the cutting feed.
     pub plunge_feed_mm_min: Option<f64>,
+    /// Feed of the moves that cut nothing (the return half of a trochoid loop), mm/min;
+    /// default the cutting feed.
+    pub air_feed_mm_min: Option<f64>,
     /// Rapid rate for the time estimate, mm/min.
     pub rapid_mm_min: f64,
     /// Tool number written on every move, if known.
@@ -81,6 +84,7 @@ impl CycleSetup {
             clearance_z_mm,
             retract_z_mm: None,
             plunge_feed_mm_min: None,
+            air_feed_mm_min: None,
             rapid_mm_min: DEFAULT_RAPID_MM_MIN,
             tool: None,
         }
@@ -102,6 +106,9 @@ impl CycleSetup {
         if let Some(f) = self.plunge_feed_mm_min {
             require_positive("plunge_feed_mm_min", f)?;
         }
+        if let Some(f) = self.air_feed_mm_min {
+            require_positive("air_feed_mm_min", f)?;
+        }
         require_positive("rapid_mm_min", self.rapid_mm_min)?;
         Ok(())
     }
@@ -114,6 +121,11 @@ impl CycleSetup {
     /// Plunge feed, mm/min.
     pub fn plunge_feed_mm_min(&self) -> f64 {
         self.plunge_feed_mm_min.unwrap_or(DEFAULT_PLUNGE_FEED_RATIO * self.feed_mm_min())
+    }
+
+    /// Feed of the moves in the air, mm/min: the given one, else the cutting feed.
+    pub fn air_feed_mm_min(&self) -> f64 {
+        self.air_feed_mm_min.unwrap_or_else(|| self.feed_mm_min())
     }
 
     /// The R plane, mm.

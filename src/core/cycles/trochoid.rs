@@ -16,6 +16,14 @@
 //! runs them clockwise (G2) with the links on the left.
 //!
 //! The swept band is `2(ρ + r)` wide; the radial depth at the front of a loop is the pitch.
+//!
+//! **Lean loops**: loop `k` meets new material only in the crescent of its disc (radius
+//! `ρ + r`) outside the previous loop's disc, which lies where `cos φ > −p/(2(ρ + r))`
+//! (φ from the direction of advance) for equal radii: the front half, which the first arc
+//! sweeps. The second arc, the return half, then runs through swept space and is written at
+//! the setup's air feed ([`CycleSetup::air_feed_mm_min`]). It stays a half circle: the
+//! shortest return that keeps the path tangent-continuous, so the machine never stops at a
+//! corner (a straight chord back would turn 90° at both ends).
 
 use super::arcs::{at_z, helix_turns, on_circle, PathBuilder};
 use super::guide::Guide;
@@ -92,6 +100,8 @@ pub struct LoopPlan {
     normals: Vec<(f64, f64)>,
     /// Loops run clockwise (G2).
     pub clockwise: bool,
+    /// Tool radius r, mm.
+    pub tool_radius_mm: f64,
     /// Warnings about the loops (class C radii).
     pub warnings: Vec<String>,
 }
@@ -237,7 +247,15 @@ impl LoopPlan {
                 s_mm[*last]
             ));
         }
-        Ok(LoopPlan { centres, s_mm, rho_mm, normals, clockwise: direction.outside_material_clockwise(), warnings })
+        Ok(LoopPlan {
+            centres,
+            s_mm,
+            rho_mm,
+            normals,
+            clockwise: direction.outside_material_clockwise(),
+            tool_radius_mm: r,
+            warnings,
+        })
     }
 
     /// Number of loops.
@@ -260,15 +278,30 @@ impl LoopPlan {
         on_circle(self.centres[0], self.rho_mm[0], self.entry_dir(0))
     }
 
+    /// Whether the return half of loop `k` runs in the air: the loop before it swept the
+    /// whole disc of radius `ρ_{k−1} + r` about its centre (its radius is at most r, so the
+    /// tool covered the centre too), and the loop's own front half sweeps the crescent beyond
+    /// that disc, which reaches into the back half only when the loop is larger than the one
+    /// before (see the module documentation). The first loop's return cleans the floor its
+    /// helical entry left, so it cuts.
+    pub fn return_in_air(&self, k: usize) -> bool {
+        k > 0
+            && k < self.rho_mm.len()
+            && self.rho_mm[k - 1] <= self.tool_radius_mm + LENGTH_EPS_MM
+            && self.rho_mm[k] <= self.rho_mm[k - 1] + LENGTH_EPS_MM
+    }
+
     /// Writes the loops and links at height `z_mm`, from [`LoopPlan::start`] (where the
-    /// builder must be) to the exit of the last loop.
-    pub fn append_loops(&self, b: &mut PathBuilder, z_mm: f64, feed_mm_min: f64) {
+    /// builder must be) to the exit of the last loop: the front half of each loop and the
+    /// links at `feed_mm_min`, the return halves that cut nothing at `air_feed_mm_min`.
+    pub fn append_loops(&self, b: &mut PathBuilder, z_mm: f64, feed_mm_min: f64, air_feed_mm_min: f64) {
         for (k, (&c, &rho)) in self.centres.iter().zip(&self.rho_mm).enumerate() {
             let a_in = self.entry_dir(k);
             let a_out = self.exit_dir(k);
             b.arc_xy(on_circle(c, -rho, a_in), c, self.clockwise, feed_mm_min);
             let exit = on_circle(c, rho, a_out);
-            b.arc_xy(exit, c, self.clockwise, feed_mm_min);
+            let back = if self.return_in_air(k) { air_feed_mm_min } else { feed_mm_min };
+            b.arc_xy(exit, c, self.clockwise, back);
             if k + 1 < self.centres.len() {
                 let next = on_circle(self.centres[k + 1], self.rho_mm[k + 1], a_out);
                 b.line(at_z(next, z_mm), feed_mm_min);
@@ -301,7 +334,7 @@ impl LoopPlan {
                 turns
             }
         };
-        self.append_loops(b, z_mm, setup.feed_mm_min());
+        self.append_loops(b, z_mm, setup.feed_mm_min(), setup.air_feed_mm_min());
         b.rapid_z(retract);
         Ok(turns)
     }

@@ -291,3 +291,51 @@ fn from_solid_stock_only_the_first_loop_slots_and_the_others_engage_as_in_an_ope
     eprintln!("solid start: α max {first:.1}° on the first loop, {rest:.1}° after");
     assert!(first > 175.0 && (rest - concave_engagement_angle_rad(6.0, 0.5, R10).to_degrees()).abs() < 1.0);
 }
+
+#[test]
+fn the_return_half_of_every_loop_after_the_first_runs_at_the_air_feed_and_cuts_nothing() {
+    let air = 5760.0;
+    let setup = CycleSetup { air_feed_mm_min: Some(air), ..grooving_setup() };
+    let (rho, pitch) = (1.0, 0.2);
+    let c = trochoid_along(&straight(30.0), &params(LoopRadius::Fixed { rho_mm: rho }, pitch), &setup).unwrap();
+    let feed = setup.feed_mm_min();
+    // Per loop: the front half at the cutting feed, the return half at the air feed (but the
+    // first loop's, which cleans the floor after the entry), the link at the cutting feed.
+    let arcs = arcs(&c);
+    assert_eq!(arcs[0].feed_mm_min, Some(feed));
+    assert_eq!(arcs[1].feed_mm_min, Some(feed));
+    for pair in arcs[2..].chunks(2) {
+        assert_eq!((pair[0].feed_mm_min, pair[1].feed_mm_min), (Some(feed), Some(air)));
+    }
+    // In a slot already open at the start (the approach hole), the simulation finds the air
+    // moves in the air: at most the slivers the front half leaves at the tips of its crescent.
+    let box_ = StockRegion::Rect(Rect { x_min: -20.0, y_min: -20.0, x_max: 60.0, y_max: 20.0 });
+    let hole = StockRegion::Circle { cx: 0.0, cy: 0.0, r: rho + R10 };
+    let spec = spec(vec![box_], vec![hole], 0.0, -10.0);
+    let (mut air_alpha, mut air_length, mut cut_alpha) = (0.0_f64, 0.0, 0.0_f64);
+    analyze_with(&c.toolpath(), &spec, &NoProgress, |s| {
+        let alpha = s.contact.alpha_rad.to_degrees();
+        if s.sample.feed_mm_min > feed {
+            air_alpha = air_alpha.max(alpha);
+            air_length += s.sample.step_mm;
+        } else {
+            cut_alpha = cut_alpha.max(alpha);
+        }
+    })
+    .unwrap();
+    eprintln!("air moves: {air_length:.0} mm, α max {air_alpha:.2}°; cutting moves α max {cut_alpha:.1}°");
+    assert!(air_length > 0.45 * std::f64::consts::PI * rho * c.report.loops as f64);
+    assert!(air_alpha < 2.0 && cut_alpha > 30.0, "{air_alpha} {cut_alpha}");
+}
+
+#[test]
+fn a_loop_larger_than_the_one_before_or_than_the_tool_cuts_on_its_return() {
+    let g = straight(10.0);
+    let plan =
+        LoopPlan::from_stations(&g, vec![0.0, 1.0, 2.0, 3.0], vec![1.0, 1.0, 1.5, 1.4], R10, CutDirection::Climb)
+            .unwrap();
+    let air: Vec<bool> = (0..plan.loops()).map(|k| plan.return_in_air(k)).collect();
+    assert_eq!(air, [false, true, false, true]);
+    let wide = LoopPlan::from_stations(&g, vec![0.0, 1.0, 2.0], vec![6.0, 6.0, 6.0], R10, CutDirection::Climb).unwrap();
+    assert!(!wide.return_in_air(1) && !wide.return_in_air(2));
+}

@@ -8,6 +8,7 @@
 //! pieces by that test; a run of air longer than [`MIN_AIR_RUN_RADII`] tool radii is replaced
 //! by a straight feed move where that chord is itself in the air, by a hop over it (retract,
 //! rapid, plunge in the air) where that is quicker than feeding along it, and kept otherwise.
+//! Whatever is fed through the air (kept runs and straight links) goes at the air feed.
 
 use crate::core::analysis::sampling::move_length;
 use crate::core::feed::split::sub_move;
@@ -92,6 +93,8 @@ pub struct Relink {
     pub hop_z_mm: f64,
     pub rapid_mm_min: f64,
     pub plunge_feed_mm_min: f64,
+    /// Feed of the moves kept or written in the air, mm/min.
+    pub air_feed_mm_min: f64,
     pub tool_radius_mm: f64,
 }
 
@@ -156,7 +159,9 @@ pub fn trim_path(path: &[Move], zone: &ClearedZone, relink: &Relink) -> (Vec<Mov
         let length: f64 = run.iter().map(move_length).sum();
         let (a, b) = (run[0].start, run[run.len() - 1].end);
         let template = run[0];
-        let feed = template.feed_mm_min.unwrap_or(relink.plunge_feed_mm_min);
+        let feed = relink.air_feed_mm_min;
+        // What stays of the run cuts nothing: it goes at the air feed.
+        run.iter_mut().for_each(|m| m.feed_mm_min = Some(feed));
         if length < MIN_AIR_RUN_RADII * relink.tool_radius_mm && !at_end {
             out.append(run);
             return;
@@ -171,7 +176,7 @@ pub fn trim_path(path: &[Move], zone: &ClearedZone, relink: &Relink) -> (Vec<Mov
             + chord / relink.rapid_mm_min
             + (relink.hop_z_mm - relink.z_mm) / relink.plunge_feed_mm_min;
         if zone.chord_is_air(xy(a), xy(b)) && chord / feed <= hop_time {
-            out.push(Move { motion: Motion::Linear, start: a, end: b, ..template });
+            out.push(Move { motion: Motion::Linear, start: a, end: b, feed_mm_min: Some(feed), ..template });
             report.links += 1;
             report.removed_mm -= chord;
         } else if hop_time < length / feed {
@@ -242,7 +247,14 @@ mod tests {
     }
 
     fn relink() -> Relink {
-        Relink { z_mm: -5.0, hop_z_mm: 1.0, rapid_mm_min: 20_000.0, plunge_feed_mm_min: 300.0, tool_radius_mm: 5.0 }
+        Relink {
+            z_mm: -5.0,
+            hop_z_mm: 1.0,
+            rapid_mm_min: 20_000.0,
+            plunge_feed_mm_min: 300.0,
+            air_feed_mm_min: FAST_FEED_MM_MIN,
+            tool_radius_mm: 5.0,
+        }
     }
 
     #[test]
@@ -277,15 +289,28 @@ mod tests {
     }
 
     #[test]
-    fn a_long_air_run_at_a_slow_feed_is_hopped_over() {
+    fn a_long_air_run_at_a_slow_air_feed_is_hopped_over() {
         let mut zone = ClearedZone::new(5.0);
         zone.add(Point::new(50.0, 0.0), 20.0);
         let slow = Move { feed_mm_min: Some(500.0), ..line((0.0, 0.0), (100.0, 0.0), -5.0) };
-        let (out, report) = trim_path(&[slow], &zone, &relink());
+        let (out, report) = trim_path(&[slow], &zone, &Relink { air_feed_mm_min: 500.0, ..relink() });
         assert_eq!(report.hops, 1);
         assert!(out.iter().any(|m| matches!(m.motion, Motion::Rapid) && m.end.z == 1.0));
         let last = out.last().unwrap();
         assert!(last.end.x == 100.0 && last.feed_mm_min == Some(500.0), "{out:?}");
+    }
+
+    #[test]
+    fn what_is_fed_through_the_air_goes_at_the_air_feed_and_the_cut_at_its_own() {
+        let mut zone = ClearedZone::new(5.0);
+        zone.add(Point::new(50.0, 0.0), 20.0);
+        let cut = Move { feed_mm_min: Some(1000.0), ..line((0.0, 0.0), (100.0, 0.0), -5.0) };
+        let (out, report) = trim_path(&[cut], &zone, &relink());
+        assert_eq!(report.links, 1);
+        let feed_at = |x: f64| out.iter().find(|m| m.start.x <= x && x < m.end.x).and_then(|m| m.feed_mm_min);
+        assert_eq!(feed_at(10.0), Some(1000.0));
+        assert_eq!(feed_at(50.0), Some(FAST_FEED_MM_MIN));
+        assert_eq!(feed_at(90.0), Some(1000.0));
     }
 
     #[test]

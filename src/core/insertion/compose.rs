@@ -3,11 +3,13 @@
 //! of seed 004 Table 1 step 1), then the z-cut division stretches (slots along the axis in
 //! passes of the reduced axial depth, alternating direction), then the base path with what
 //! the trochoids removed cut out and re-linked. Between treatments the tool goes over at the
-//! safe height.
+//! safe height. A trochoid that starts where the treatments before it at the level have
+//! already swept (several branches leave one medial-axis node) goes straight down there.
 
 use super::cleared::{trim_path, ClearedZone, Relink, TrimReport, SAME_LEVEL_MM};
 use super::opening::OpeningStretch;
-use super::spec::InsertionSpec;
+use super::pitch::loop_engagement_deg;
+use super::spec::{InsertionSpec, PITCH_DESIGN_MARGIN_DEG};
 use super::treatments::{Stretch, TrochoidStretch, ZCutStretch};
 use crate::core::analysis::sampling::move_length;
 use crate::core::cycles::arcs::helix_turns;
@@ -15,6 +17,7 @@ use crate::core::cycles::arcs::{at_z, PathBuilder};
 use crate::core::cycles::setup::DEFAULT_PLUNGE_FEED_RATIO;
 use crate::core::cycles::trochoid::Entry;
 use crate::core::cycles::{z_levels, CycleSetup};
+use crate::core::geometry::Point;
 use crate::core::tolerance::LENGTH_EPS_MM;
 use crate::core::toolpath::{Motion, Move, Section, Step, P3};
 use crate::core::CoreError;
@@ -37,6 +40,7 @@ pub struct LevelMoves {
 fn grooving_setup(spec: &InsertionSpec, z_from_mm: f64) -> CycleSetup {
     CycleSetup {
         retract_z_mm: Some(z_from_mm + RAMP_START_ABOVE_MM),
+        air_feed_mm_min: Some(spec.air_feed_mm_min()),
         rapid_mm_min: spec.rapid_mm_min,
         ..CycleSetup::new(spec.grooving, spec.tool.flutes, spec.safe_z_mm)
     }
@@ -45,19 +49,59 @@ fn grooving_setup(spec: &InsertionSpec, z_from_mm: f64) -> CycleSetup {
 /// Moves of the first loop, written after the helix: a half circle and the rest of the turn.
 const FIRST_LOOP_MOVES: usize = 2;
 
+/// Loops whose whole disc the parts of a level written so far have swept: centre and loop
+/// radius ρ (the tool is in the air wherever its centre lies within ρ of one).
+#[derive(Debug, Default)]
+struct Swept {
+    discs: Vec<(Point, f64)>,
+}
+
+impl Swept {
+    /// Adds what `stretch` sweeps: the loops of a trochoid no larger than the tool (a larger
+    /// loop leaves a core), the final circle of an opening.
+    fn add(&mut self, stretch: &Stretch, r_mm: f64) {
+        match stretch {
+            Stretch::Trochoid(t) => {
+                let whole = t.plan.centres.iter().zip(&t.plan.rho_mm).filter(|(_, rho)| **rho <= r_mm + LENGTH_EPS_MM);
+                self.discs.extend(whole.map(|(c, rho)| (*c, *rho)));
+            }
+            Stretch::Opening(o) if o.final_radius_mm() <= r_mm + LENGTH_EPS_MM => {
+                self.discs.push((o.centre, o.final_radius_mm()));
+            }
+            Stretch::Opening(_) | Stretch::ZCut(_) => {}
+        }
+    }
+
+    /// Whether trochoid `t` may go straight down into the space already swept instead of
+    /// ramping into the material: its start lies within a swept disc, and its first loop,
+    /// cut against that disc, engages no more than the pitch design limit (the engagement
+    /// of a loop after the previous one, MODEL.md §7, at the distance between their centres).
+    fn holds_start_of(&self, t: &TrochoidStretch, spec: &InsertionSpec) -> bool {
+        let (start, c, rho) = (t.plan.start(), t.plan.centres[0], t.plan.rho_mm[0]);
+        let limit = spec.alpha_limit_deg - PITCH_DESIGN_MARGIN_DEG;
+        self.discs.iter().any(|&(d, rho_d)| {
+            start.distance_mm(d) <= rho_d && loop_engagement_deg(rho_d, rho, c.distance_mm(d), spec.r_mm()) <= limit
+        })
+    }
+}
+
 /// The moves of a trochoid at `z_mm`, from the safe height above its start back to it, and
 /// how many of them make the approach hole (up to the helix and the full circle at the
-/// bottom that follows it: seed 004 Table 1 step 1).
+/// bottom that follows it: seed 004 Table 1 step 1). A trochoid that starts in space
+/// already swept (`in_swept_space`) goes straight down there at the plunge feed instead, and
+/// has no approach hole.
 pub fn trochoid_moves(
     t: &TrochoidStretch,
     spec: &InsertionSpec,
     z_from_mm: f64,
     z_mm: f64,
+    in_swept_space: bool,
 ) -> Result<(Vec<Move>, usize), CoreError> {
     let setup = grooving_setup(spec, z_from_mm);
     let mut b = PathBuilder::starting_at(at_z(t.plan.start(), spec.safe_z_mm), &setup);
-    let ramp = spec.ramp_pitch_mm(t.plan.rho_mm[0]);
-    t.plan.append_pass(&mut b, z_mm, Entry::Helix { pitch_mm: ramp }, &setup)?;
+    let entry =
+        if in_swept_space { Entry::Plunge } else { Entry::Helix { pitch_mm: spec.ramp_pitch_mm(t.plan.rho_mm[0]) } };
+    t.plan.append_pass(&mut b, z_mm, entry, &setup)?;
     b.rapid_z(spec.safe_z_mm);
     let moves = b.finish();
     let helix = moves.iter().position(|m| matches!(m.motion, Motion::Arc { .. }) && m.end.z < m.start.z);
@@ -232,9 +276,10 @@ pub fn compose(
             continue;
         };
         let mut level = LevelMoves::default();
+        let mut swept = Swept::default();
         for (i, s) in stretches.iter().enumerate() {
             let (moves, entry_moves) = match s {
-                Stretch::Trochoid(t) => trochoid_moves(t, spec, z_from, z)?,
+                Stretch::Trochoid(t) => trochoid_moves(t, spec, z_from, z, swept.holds_start_of(t, spec))?,
                 Stretch::ZCut(c) => (zcut_moves(c, spec, z_from, z)?, 0),
                 Stretch::Opening(o) => opening_moves(o, spec, z_from, z)?,
             };
@@ -247,6 +292,7 @@ pub fn compose(
             labels.resize(first, Some(stretch_section(Some((i, s)), entry_moves > 0, k, z, spec)));
             labels.extend((0..moves.len()).map(|m| Some(stretch_section(Some((i, s)), m < entry_moves, k, z, spec))));
             level.stretch_moves.push(moves);
+            swept.add(s, spec.r_mm());
         }
         let relink = Relink {
             z_mm: z,
@@ -258,6 +304,7 @@ pub fn compose(
                     spec.tool.flutes,
                     spec.roughing.spindle_rpm,
                 ),
+            air_feed_mm_min: spec.air_feed_mm_min(),
             tool_radius_mm: spec.r_mm(),
         };
         let (trimmed, trim) = trim_path(part, zone, &relink);

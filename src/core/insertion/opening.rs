@@ -86,13 +86,15 @@ mod tests {
     use crate::core::tool::{EndMill, ToolType};
 
     #[test]
-    fn a_30_mm_hole_opens_in_steps_that_grow_outwards_and_never_exceed_rd() {
+    fn a_30_mm_hole_opens_in_steps_that_grow_outwards_and_never_exceed_a_straight_cut_at_the_limit() {
         let tool = EndMill { tool_type: ToolType::Square, diameter_mm: 10.0, flutes: 6, corner_radius_mm: 0.0 };
         let c = CuttingConditions { spindle_rpm: 4800.0, fz_mm: 0.1, rd_mm: 0.5, ad_mm: 10.0 };
         let spec = InsertionSpec::new(tool, c, c, 0.0, -10.0);
         let o = plan_opening(Point::new(0.0, 0.0), 30.0, &spec).unwrap();
         let steps: Vec<f64> = o.radii_mm.windows(2).map(|w| w[1] - w[0]).collect();
-        assert!(steps[0] < 0.3 && steps.iter().all(|s| *s <= 0.5 + 1e-12), "{steps:?}");
+        // r·(1 − cos 40°) = 1.17 mm: no turn's step engages more than a straight cut at the limit.
+        assert!((spec.max_pitch_mm() - 5.0 * (1.0 - 40f64.to_radians().cos())).abs() < 1e-12);
+        assert!(steps[0] < 0.3 && steps.iter().all(|s| *s <= spec.max_pitch_mm() + 1e-12), "{steps:?}");
         assert!(steps.windows(2).take(steps.len() - 2).all(|w| w[1] >= w[0] - 1e-12));
         assert!((o.final_radius_mm() - (30.0 - 5.0 - spec.wall_gap_mm)).abs() < 1e-9);
     }

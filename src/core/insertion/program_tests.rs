@@ -66,14 +66,22 @@ fn every_level_comments_each_of_its_operations_and_regions_in_the_order_they_are
     assert!(labels.iter().all(Option::is_some), "every move belongs to a part");
     let text = write_program(&plan.toolpath, &WriterOptions::default());
     let comments: Vec<&str> = text.lines().filter(|l| l.starts_with("(LAYER")).collect();
-    // Each level: for each region, its helical entry then its trochoid (or its z-cut); then
-    // the contour-parallel path.
+    // Each level: for each region, its helical entry (unless it starts where the regions
+    // before it have swept: then it goes straight down) then its trochoid (or its z-cut);
+    // then the contour-parallel path.
     let regions = plan.treatments.len() - 1;
+    let mut total = 0;
+    let mut straight_down = 0;
     for (k, z) in plan.levels_mm.iter().enumerate() {
         let mut expected = Vec::new();
         for (i, t) in plan.treatments[..regions].iter().enumerate() {
+            let hole = (0..plan.toolpath.moves.len()).any(|m| {
+                plan.move_treatment[m] == i && plan.move_entry[m] && (plan.toolpath.moves[m].end.z - z).abs() < 1e-9
+            });
+            straight_down += usize::from(t.kind == TreatmentKind::Trochoid && !hole);
             let steps: &[&str] = match t.kind {
-                TreatmentKind::Trochoid => &["HELICAL BORING", "TROCHOIDAL GROOVING"],
+                TreatmentKind::Trochoid if hole => &["HELICAL BORING", "TROCHOIDAL GROOVING"],
+                TreatmentKind::Trochoid => &["TROCHOIDAL GROOVING"],
                 TreatmentKind::Opening => &["HELICAL BORING", "SPIRAL HOLE EXPANSION"],
                 TreatmentKind::ZCut => &["Z-CUT DIVISION"],
                 TreatmentKind::Kept => &[],
@@ -84,8 +92,12 @@ fn every_level_comments_each_of_its_operations_and_regions_in_the_order_they_are
         let level: Vec<&str> =
             comments.iter().copied().filter(|c| c.starts_with(&format!("(LAYER {} ", k + 1))).collect();
         assert_eq!(level, expected, "{text}");
+        total += expected.len();
     }
-    assert!(regions > 0 && comments.len() == plan.levels_mm.len() * (2 * regions + 1) - zcuts(&plan));
+    assert!(regions > 0 && comments.len() == total);
+    // The trochoids that leave the medial-axis node where an earlier one starts go straight
+    // down into its swept disc.
+    assert!(straight_down > 0, "{text}");
     // The labels agree with the planner's own record of which move belongs to what (the
     // rapids that lead to a helical entry belong to it, where the record has the trochoid).
     for (i, label) in
@@ -105,11 +117,6 @@ fn every_level_comments_each_of_its_operations_and_regions_in_the_order_they_are
             (plan.move_treatment[i] < regions).then_some(plan.move_treatment[i])
         );
     }
-}
-
-/// Z-cut stretches have one comment per level, not two.
-fn zcuts(plan: &InsertionPlan) -> usize {
-    plan.levels_mm.len() * plan.treatments.iter().filter(|t| t.kind == TreatmentKind::ZCut).count()
 }
 
 #[test]

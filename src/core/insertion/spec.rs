@@ -30,6 +30,11 @@ pub const DEFAULT_WALL_GAP_MM: f64 = 0.05;
 /// boring with a ball end mill).
 pub const DEFAULT_RAMP_ANGLE_DEG: f64 = 3.0;
 
+/// The air feed, when none is given, as a multiple of the grooving feed (**assumed**: the
+/// largest feed the plans' and the feeds jobs' optimisers allow by default, twice the
+/// standard feed; the papers move through cleared space at the cutting feed).
+pub const DEFAULT_AIR_FEED_PER_GROOVING_FEED: f64 = 2.0;
+
 /// Smallest default helix pitch, mm: a small circle would otherwise take hundreds of turns.
 pub const MIN_DEFAULT_RAMP_PITCH_MM: f64 = 0.1;
 
@@ -67,8 +72,13 @@ pub struct InsertionSpec {
     /// Lower bound of class A's R/r (2–3).
     pub class_a_ratio: f64,
     pub loop_size: LoopSize,
-    /// Largest trochoid pitch, mm; default the grooving Rd.
+    /// Largest trochoid pitch, mm; default none but the engagement limit's (see
+    /// [`InsertionSpec::max_pitch_mm`]).
     pub pitch_mm: Option<f64>,
+    /// Feed of the moves that cut nothing (the return halves of the trochoid loops, links
+    /// through cleared space), mm/min; default [`DEFAULT_AIR_FEED_PER_GROOVING_FEED`] × the
+    /// grooving feed.
+    pub air_feed_mm_min: Option<f64>,
     /// Axial depth of the z-cut division passes, mm.
     pub zcut_ad_mm: f64,
     /// Depth per turn of the helical entry of a trochoid, mm; default a
@@ -107,6 +117,7 @@ impl InsertionSpec {
             class_a_ratio: CLASS_A_RATIO_DEFAULT,
             loop_size: LoopSize::Variable,
             pitch_mm: None,
+            air_feed_mm_min: None,
             zcut_ad_mm: DEFAULT_ZCUT_AD_MM,
             ramp_pitch_mm: None,
             direction: CutDirection::Climb,
@@ -122,9 +133,37 @@ impl InsertionSpec {
         self.tool.radius_mm()
     }
 
-    /// The largest trochoid pitch, mm.
+    /// The largest trochoid pitch, mm: the request's, else the radial depth of a straight cut
+    /// at the engagement limit, `r·(1 − cos α_limit)` (MODEL.md §2, `α = acos(1 − Rd/r)`),
+    /// at most the tool diameter. A loop's engagement at a pitch is at least a straight
+    /// cut's at that depth, so no pitch above it keeps a loop under the limit; the planner
+    /// takes the largest pitch below it that does ([`super::pitch::pitch_for_limit`]).
     pub fn max_pitch_mm(&self) -> f64 {
-        self.pitch_mm.unwrap_or(self.grooving.rd_mm)
+        self.pitch_mm.unwrap_or_else(|| {
+            let limit = self.alpha_limit_deg.to_radians().min(std::f64::consts::PI);
+            self.r_mm() * (1.0 - limit.cos())
+        })
+    }
+
+    /// The largest pitch of a loop of radius `rho_mm`, mm: [`InsertionSpec::max_pitch_mm`],
+    /// but for a loop larger than the tool the request's pitch or the grooving Rd. Such a
+    /// loop leaves a core of radius `ρ − r` about its centre that the next loops' returns
+    /// cut into, which the pitch model (the crescent beyond the previous loop's disc) does
+    /// not see; at the grooving Rd they stay under the limit (the papers' pitch).
+    pub fn max_pitch_for_loop_mm(&self, rho_mm: f64) -> f64 {
+        if rho_mm > self.r_mm() + LENGTH_EPS_MM {
+            self.pitch_mm.unwrap_or(self.grooving.rd_mm.max(MIN_PITCH_MM).min(self.max_pitch_mm()))
+        } else {
+            self.max_pitch_mm()
+        }
+    }
+
+    /// Feed of the moves in the air, mm/min.
+    pub fn air_feed_mm_min(&self) -> f64 {
+        self.air_feed_mm_min.unwrap_or_else(|| {
+            DEFAULT_AIR_FEED_PER_GROOVING_FEED
+                * crate::core::conditions::feed_mm_min(self.grooving.fz_mm, self.tool.flutes, self.grooving.spindle_rpm)
+        })
     }
 
     /// Depth per turn of a helical entry on a circle of radius `radius_mm`: the request's, or
@@ -190,9 +229,12 @@ impl InsertionSpec {
         if let Some(p) = self.pitch_mm {
             require_positive("pitch_mm", p)?;
         }
+        if let Some(f) = self.air_feed_mm_min {
+            require_positive("air_feed_mm_min", f)?;
+        }
         let max_pitch = self.max_pitch_mm();
         if max_pitch < MIN_PITCH_MM {
-            let field = if self.pitch_mm.is_some() { "pitch_mm" } else { "grooving.rd_mm" };
+            let field = if self.pitch_mm.is_some() { "pitch_mm" } else { "alpha_limit_deg" };
             return Err(CoreError::invalid(
                 field,
                 format!("the largest trochoid pitch must be at least {MIN_PITCH_MM} mm, got {max_pitch} mm"),

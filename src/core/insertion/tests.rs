@@ -125,11 +125,11 @@ fn a_ball_end_mill_or_an_unordered_layer_is_refused_naming_the_field() {
 #[test]
 fn steps_so_small_the_plan_would_never_end_are_refused_before_planning_naming_the_field() {
     let tiny = 1e-9;
-    let grooving = CuttingConditions { rd_mm: tiny, ..spec(-10.0).grooving };
     let roughing = CuttingConditions { ad_mm: tiny, ..spec(-10.0).roughing };
     let cases = [
         (InsertionSpec { pitch_mm: Some(tiny), ..spec(-10.0) }, "pitch_mm:"),
-        (InsertionSpec { grooving, ..spec(-10.0) }, "grooving.rd_mm:"),
+        // A limit so low that a straight cut at it is thinner than the smallest pitch.
+        (InsertionSpec { alpha_limit_deg: 1.5, ..spec(-10.0) }, "alpha_limit_deg:"),
         (InsertionSpec { zcut_ad_mm: tiny, ..spec(-10.0) }, "zcut_ad_mm:"),
         (InsertionSpec { roughing, ..spec(-10.0) }, "roughing.ad_mm:"),
         (InsertionSpec { ramp_pitch_mm: Some(tiny), ..spec(-10.0) }, "ramp_pitch_mm:"),
@@ -163,8 +163,10 @@ fn a_circular_pocket_is_opened_from_its_centre_by_a_helix_and_a_limit_keeping_sp
     let plan = plan_insertion(&circle, &spec(-10.0), None, &NoProgress).unwrap();
     show("circle", &plan);
     let opening = plan.treatments.iter().find(|t| t.kind == TreatmentKind::Opening).expect("an opening");
-    // Steps grow from about 0.2 mm near the centre (machined radius close to r) to Rd.
-    assert!(opening.pitch_min_mm.unwrap() < 0.3 && opening.pitch_max_mm.unwrap() <= 0.5 + 1e-12, "{opening:?}");
+    // Steps grow from about 0.2 mm near the centre (machined radius close to r), never above
+    // a straight cut's depth at the limit.
+    let most = spec(-10.0).max_pitch_mm();
+    assert!(opening.pitch_min_mm.unwrap() < 0.3 && opening.pitch_max_mm.unwrap() <= most + 1e-12, "{opening:?}");
     assert!(plan.verification.passed, "{:?}", plan.verification);
 }
 

@@ -222,7 +222,8 @@ fn plan_trochoid(
     while s_mm[s_mm.len() - 1] < length - LENGTH_EPS_MM {
         let s = s_mm[s_mm.len() - 1];
         let rho = rho_mm[rho_mm.len() - 1];
-        let max_p = spec.max_pitch_mm().min(length - s);
+        let mut max_p = spec.max_pitch_for_loop_mm(rho).min(length - s);
+        max_p = max_p.min(spec.max_pitch_for_loop_mm(rho_at(s + max_p)));
         let p = pitch_for_limit(rho, |p| rho_at(s + p), r, design_limit, max_p).ok_or_else(|| {
             CoreError::unsolvable(
                 "alpha_limit_deg",

@@ -312,6 +312,11 @@ fn build(request: &TrochoidsRequest, prepared: &TrochoidsPrepared) -> Result<Bui
         spec.direction = d;
     }
     spec.sample_spacing_mm = request.sample_spacing_mm;
+    // The return halves of the loops and the links through cleared space run at the air
+    // feed, which the machine's largest feed caps.
+    if let Some(max) = prepared.base.max_feed_mm_min {
+        spec.air_feed_mm_min = Some(spec.air_feed_mm_min().min(max));
+    }
     Ok((pocket, spec, path))
 }
 
