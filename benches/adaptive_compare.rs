@@ -16,8 +16,8 @@
 //! Engagement is counted apart for the ramps and the bottom circle of each approach hole
 //! (the slice simulation cannot see a ramp's sloped floor, so that circle looks like a slot)
 //! and for dieplan's z-cut division passes (reduced axial depth, told by their comments).
-//! `ADAPTIVE_COMPARE_FULL_LOOPS=1` also plans dieplan's loops as before issue 29 (returns and
-//! links at the cutting feed, pitch at most the grooving Rd) for reference.
+//! `ADAPTIVE_COMPARE_FULL_LOOPS=1` also plans dieplan's loops in full, for reference: their
+//! returns and the links at the cutting feed, the pitch at most the grooving Rd.
 
 use dieplan::core::analysis::sampling::move_length;
 use dieplan::core::analysis::{analyze_with, AnalysisSpec, StockRegion};
@@ -344,8 +344,8 @@ fn main() {
         };
         let ours = plan_and_judge(&dir, case, &s, &spec, "");
         if std::env::var_os("ADAPTIVE_COMPARE_FULL_LOOPS").is_some() {
-            // The loops as they were before issue 29, for reference: the return halves and the
-            // links at the cutting feed, the pitch at most the grooving Rd.
+            // Full loops, for reference: the return halves and the links at the cutting feed,
+            // the pitch at most the grooving Rd.
             let feed =
                 dieplan::core::conditions::feed_mm_min(s.conditions.fz_mm, s.tool.flutes, s.conditions.spindle_rpm);
             let full =

@@ -15,7 +15,7 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(dirname "$here")"
 out="${1:-$root/target/adaptive}"
 pocket="${2:-}"
-stepovers="${ADAPTIVE_STEPOVERS:-20 15 12 10 8 6}"
+stepovers="${ADAPTIVE_STEPOVERS:-20 12 8 6 4 3}"
 
 has_area() {
     python3 - <<'EOF' 2>/dev/null

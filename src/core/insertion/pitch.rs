@@ -130,6 +130,14 @@ mod tests {
     }
 
     #[test]
+    fn at_the_design_limit_of_39_degrees_a_12_mm_slot_takes_0_19_mm_and_loops_of_the_tool_radius_0_57_mm() {
+        let most = 5.0 * (1.0 - 40f64.to_radians().cos());
+        let slot = pitch_for_limit(1.0, |_| 1.0, 5.0, 39.0, most).unwrap();
+        let wide = pitch_for_limit(5.0, |_| 5.0, 5.0, 39.0, most).unwrap();
+        assert!(approx_eq(slot, 0.19, 0.01) && approx_eq(wide, 0.57, 0.01), "{slot} {wide}");
+    }
+
+    #[test]
     fn a_loop_that_meets_the_limit_at_the_requested_pitch_keeps_it() {
         assert!(approx_eq(pitch_for_limit(5.0, |_| 5.0, 5.0, 40.0, 0.5).unwrap(), 0.5, 0.0));
     }

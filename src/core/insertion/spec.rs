@@ -232,6 +232,15 @@ impl InsertionSpec {
         if let Some(f) = self.air_feed_mm_min {
             require_positive("air_feed_mm_min", f)?;
         }
+        if self.pitch_mm.is_none() && self.grooving.rd_mm < MIN_PITCH_MM {
+            return Err(CoreError::invalid(
+                "grooving.rd_mm",
+                format!(
+                    "is the pitch of trochoid loops larger than the tool and must be at least {MIN_PITCH_MM} mm, got {} mm",
+                    self.grooving.rd_mm
+                ),
+            ));
+        }
         let max_pitch = self.max_pitch_mm();
         if max_pitch < MIN_PITCH_MM {
             let field = if self.pitch_mm.is_some() { "pitch_mm" } else { "alpha_limit_deg" };

@@ -125,9 +125,11 @@ fn a_ball_end_mill_or_an_unordered_layer_is_refused_naming_the_field() {
 #[test]
 fn steps_so_small_the_plan_would_never_end_are_refused_before_planning_naming_the_field() {
     let tiny = 1e-9;
+    let grooving = CuttingConditions { rd_mm: tiny, ..spec(-10.0).grooving };
     let roughing = CuttingConditions { ad_mm: tiny, ..spec(-10.0).roughing };
     let cases = [
         (InsertionSpec { pitch_mm: Some(tiny), ..spec(-10.0) }, "pitch_mm:"),
+        (InsertionSpec { grooving, ..spec(-10.0) }, "grooving.rd_mm:"),
         // A limit so low that a straight cut at it is thinner than the smallest pitch.
         (InsertionSpec { alpha_limit_deg: 1.5, ..spec(-10.0) }, "alpha_limit_deg:"),
         (InsertionSpec { zcut_ad_mm: tiny, ..spec(-10.0) }, "zcut_ad_mm:"),
