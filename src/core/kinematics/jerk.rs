@@ -13,11 +13,13 @@
 //!   missing): the S-curves take the extra length they need from the cruise, at most at the
 //!   cruise speed.
 //!
-//! A hill's S-curve profile, with the lowest acceleration and jerk of the segments it spans,
-//! never goes faster than the plan at any point of the path (its acceleration is no higher,
-//! it starts from the same speed and never exceeds the plan's peak), so the extra time is
-//! never negative; it is clamped at 0 against rounding and shared among the hill's pieces in
-//! proportion to their time.
+//! A hill's S-curve profile, with the lowest acceleration and jerk of the segments where it
+//! speeds up or slows down (not of those it cruises through: a cruise on an arc, whose
+//! speed changes get only part of the limit, does not slow the ramps on the lines beside
+//! it), never goes faster than the plan at any point of the path (its acceleration is no
+//! higher, it starts from the same speed and never exceeds the plan's peak), so the extra
+//! time is never negative; it is clamped at 0 against rounding and shared among the hill's
+//! pieces in proportion to their time.
 
 use super::planner::{Piece, PieceKind};
 use super::scurve::hill_time_s;
@@ -111,8 +113,13 @@ pub(super) fn add_jerk_time(segments: &[Segment], pieces: &[Piece], segment_time
         for p in span {
             length_mm += p.length_mm;
             plan_s += p.time_s;
-            accel = accel.min(segments[p.segment].accel_mm_s2);
-            jerk = jerk.min(segments[p.segment].jerk_mm_s3);
+            if p.kind != PieceKind::Cruise {
+                accel = accel.min(segments[p.segment].accel_mm_s2);
+                jerk = jerk.min(segments[p.segment].jerk_mm_s3);
+            }
+        }
+        if !accel.is_finite() || !jerk.is_finite() {
+            continue; // a cruise alone: nothing to re-time
         }
         let s_curve_s = hill_time_s(hill.v_in, hill.v_out, hill.cap, length_mm, accel, jerk);
         let extra_s = (s_curve_s - plan_s).max(0.0);

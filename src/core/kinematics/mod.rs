@@ -34,7 +34,9 @@
 //!   too. M0/M1 stops wait no time (the operator's is not counted).
 //! - Acceleration is zero at both ends of every speed change (symmetric S-curves); a change of
 //!   direction between blocks does not cost jerk beyond the junction speed; on arcs the
-//!   tangential and centripetal accelerations each get the whole limit (no sharing).
+//!   acceleration limit is shared as LinuxCNC's planner shares it: √3/2 of it for the
+//!   centripetal part, 1/2 for speeding up and slowing down along the arc
+//!   ([`ARC_NORMAL_ACCEL_SHARE`], [`ARC_TANGENTIAL_ACCEL_SHARE`]); the jerk is not shared.
 //! - No block-processing-time limit (very short blocks at high feed could be slower still),
 //!   no servo lag (following error): only the planner's acceleration and jerk limits.
 //! - Defaults **assumed**, not from the papers: a 200-block look-ahead
@@ -61,6 +63,7 @@ pub use junction::ARC_LIKE_MAX_TURN_DEG;
 pub use limits::{MachineLimits, TimeOptions, DEFAULT_JUNCTION_DEVIATION_MM, DEFAULT_LOOK_AHEAD_BLOCKS};
 pub use report::{KinematicBreakdown, MachiningTime};
 pub use scurve::{hill_time_s, ramp_distance_mm, ramp_time_s};
+pub use segments::{ARC_NORMAL_ACCEL_SHARE, ARC_TANGENTIAL_ACCEL_SHARE};
 
 use crate::core::error::CoreError;
 use crate::core::toolpath::Toolpath;

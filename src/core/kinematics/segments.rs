@@ -3,7 +3,12 @@
 //!
 //! Arcs stay whole (no chords): their centripetal acceleration `v²/R` and its steady-state
 //! jerk `v³/R²` (uniform circular motion) are bounded by the weaker of the two axes of the
-//! arc's plane, which caps the speed on the arc.
+//! arc's plane, which caps the speed on the arc. The acceleration is shared between the
+//! two directions as LinuxCNC's trajectory planner shares it (`tp.h`,
+//! `TP_ACC_RATIO_TANGENTIAL` 0.5 and `TP_ACC_RATIO_NORMAL` √(1 − 0.5²); `tp.c`: "limit
+//! acceleration for circular arcs to allow for normal acceleration"): the centripetal part
+//! gets [`ARC_NORMAL_ACCEL_SHARE`] of the limit, speeding up and slowing down along the arc
+//! [`ARC_TANGENTIAL_ACCEL_SHARE`], so their sum never exceeds the axes' limit.
 
 use super::limits::MachineLimits;
 use crate::core::analysis::sampling::{arc_sweep, move_length};
@@ -22,6 +27,15 @@ const MIN_ARC_RADIUS_MM: f64 = 1e-9;
 /// A move starting farther than this (mm) from the previous move's end is a discontinuity:
 /// the machine is assumed to stop there.
 const CONTINUITY_TOLERANCE_MM: f64 = 1e-6;
+
+/// Share of the acceleration limit left to speed changes along an arc (LinuxCNC's
+/// `TP_ACC_RATIO_TANGENTIAL`).
+pub const ARC_TANGENTIAL_ACCEL_SHARE: f64 = 0.5;
+
+/// Share of the acceleration limit the centripetal acceleration of an arc may use, so that
+/// with [`ARC_TANGENTIAL_ACCEL_SHARE`] the vector sum stays within the limit:
+/// `√(1 − 0.5²)` (LinuxCNC's `TP_ACC_RATIO_NORMAL`).
+pub const ARC_NORMAL_ACCEL_SHARE: f64 = 0.866_025_403_784_438_6;
 
 /// Below this, a direction cosine is zero (the axis does not move).
 const AXIS_COSINE_EPS: f64 = 1e-12;
@@ -231,8 +245,8 @@ fn shape(m: &Move, machine: &MachineLimits) -> Option<Shape> {
         let normal = if sin_helix > AXIS_COSINE_EPS { limits[axial] / sin_helix } else { f64::INFINITY };
         planar.min(normal)
     };
-    // Planar speed v·cos: centripetal (v cos)²/R ≤ a_n and circular jerk (v cos)³/R² ≤ j_n.
-    let centripetal_mm_s = (in_plane(machine.accel_mm_s2) * radius_mm).sqrt();
+    // Planar speed v·cos: centripetal (v cos)²/R ≤ share · a_n and circular jerk (v cos)³/R² ≤ j_n.
+    let centripetal_mm_s = (ARC_NORMAL_ACCEL_SHARE * in_plane(machine.accel_mm_s2) * radius_mm).sqrt();
     let circular_jerk_mm_s = (in_plane(machine.jerk_mm_s3) * radius_mm * radius_mm).cbrt();
     Some(Shape {
         kind: SegmentKind::Arc,
@@ -240,7 +254,7 @@ fn shape(m: &Move, machine: &MachineLimits) -> Option<Shape> {
         u_start: tangent(start_angle),
         u_end: tangent(start_angle + sweep),
         speed_limit_mm_s: centripetal_mm_s.min(circular_jerk_mm_s) / cos_helix.max(AXIS_COSINE_EPS),
-        accel_mm_s2: path_limit(machine.accel_mm_s2),
+        accel_mm_s2: ARC_TANGENTIAL_ACCEL_SHARE * path_limit(machine.accel_mm_s2),
         jerk_mm_s3: path_limit(machine.jerk_mm_s3),
     })
 }
