@@ -28,7 +28,7 @@ pub use report::{InsertionPlan, Treatment, TreatmentKind};
 pub use spec::{
     InsertionSpec, LoopSize, DEFAULT_INSERTION_ALPHA_LIMIT_DEG, DEFAULT_WALL_GAP_MM, PITCH_DESIGN_MARGIN_DEG,
 };
-pub use verify::{EngagementCheck, Spot, Verification};
+pub use verify::{EngagementCheck, Overload, Spot, Verification, MAX_LISTED_OVERLOADS};
 
 use crate::core::analysis::geometry::{PathGeometry, SampleGeometry};
 use crate::core::analysis::{AnalysisSpec, StockRegion};
@@ -255,7 +255,8 @@ fn plan_rounds(
     let analysis = analysis_spec(pocket, spec);
     let r = spec.r_mm();
     let empty = Zone::new(r);
-    let before = verify::check_engagement(&base, &analysis, &empty, &[], progress, |_| {})?;
+    let base_roles = verify::MoveRoles { entry: &[], zcut: &[], zcut_zone: &empty };
+    let before = verify::check_engagement(&base, &analysis, &base_roles, progress, |_| {})?;
     // The verification of the rounds with the force model, when the samples are kept: it
     // changes no engagement, only adds the forces.
     let verifying = AnalysisSpec { force_model: sampled.or(analysis.force_model), ..analysis.clone() };
@@ -297,7 +298,10 @@ fn plan_rounds(
         debug_assert_eq!(path.moves.len(), composed.owner.len());
         let mut geometry = sampled.map(|_| PathGeometry::new(r));
         let default_rpm = analysis.default_spindle_rpm;
-        let after = verify::check_engagement(&path, &verifying, &zcut, &composed.entry, progress, |s| {
+        let zcut_moves: Vec<bool> =
+            composed.owner.iter().map(|&o| matches!(stretches.get(o), Some(Stretch::ZCut(_)))).collect();
+        let roles = verify::MoveRoles { entry: &composed.entry, zcut: &zcut_moves, zcut_zone: &zcut };
+        let after = verify::check_engagement(&path, &verifying, &roles, progress, |s| {
             if let Some(g) = geometry.as_mut() {
                 g.samples.push(SampleGeometry::of(s, default_rpm));
             }

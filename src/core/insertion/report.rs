@@ -14,6 +14,9 @@ use crate::core::medial::{Boundary, BranchClasses, CriticalBranches, CriticalInt
 use crate::core::toolpath::Toolpath;
 use serde::Serialize;
 
+/// Most moves a warning names (all are in `verification.overloads`).
+const MAX_MOVES_IN_WARNING: usize = 8;
+
 /// Points closer than this to the reachable area's edge are not counted as left over, mm
 /// (the coverage raster's resolution).
 const COVERAGE_TOLERANCE_CELLS: f64 = 2.0;
@@ -267,8 +270,23 @@ pub(super) fn assemble(p: Parts) -> InsertionPlan {
     });
     if p.after.outside.overloaded > 0 {
         warnings.push(format!(
-            "{} samples outside the z-cut regions still exceed {}° after {} rounds (largest {:.1}°): see verification.first_overload",
-            p.after.outside.overloaded, spec.alpha_limit_deg, p.rounds, p.after.outside.max_alpha_deg
+            "{} samples outside the z-cut regions still exceed {}° after {} rounds (largest {:.1}°, first at move {}): see verification.overloads",
+            p.after.outside.overloaded,
+            spec.alpha_limit_deg,
+            p.rounds,
+            p.after.outside.max_alpha_deg,
+            p.after.first_overload.map_or(0, |o| o.line)
+        ));
+    }
+    if p.after.crossing.overloaded > 0 {
+        let spikes = p.after.overloads.iter().filter(|o| o.in_zcut_region);
+        let moves: Vec<String> = spikes.map(|o| o.line_from.to_string()).take(MAX_MOVES_IN_WARNING).collect();
+        warnings.push(format!(
+            "{} samples of full-depth moves exceed {}° where they cross the z-cut regions (largest {:.1}°; short spikes at the corners, at moves {}): see verification.overloads",
+            p.after.crossing.overloaded,
+            spec.alpha_limit_deg,
+            p.after.crossing.max_alpha_deg,
+            moves.join(", ")
         ));
     }
     let passed = p.after.outside.overloaded == 0 && gouges == 0 && uncleared <= 0.0;
@@ -276,8 +294,11 @@ pub(super) fn assemble(p: Parts) -> InsertionPlan {
         alpha_limit_deg: spec.alpha_limit_deg,
         outside_zcut: p.after.outside,
         inside_zcut: p.after.inside,
+        crossing_zcut: p.after.crossing,
         ramps: p.after.ramps,
         first_overload: p.after.first_overload,
+        overloads: p.after.overloads.clone(),
+        overload_stretches: p.after.overload_stretches,
         gouges,
         min_wall_margin_mm: if min_margin.is_finite() { min_margin } else { 0.0 },
         first_gouge,

@@ -48,11 +48,35 @@ fn show(name: &str, plan: &InsertionPlan) {
     }
     println!("  verification {:?}", plan.verification);
     println!("  trim {:?}, moves {}", plan.trim, plan.toolpath.moves.len());
+    assert_overloads_are_listed_with_their_lines(plan);
     if let Some(o) = plan.verification.first_overload {
         let i = o.line as usize - 1;
         for m in &plan.toolpath.moves[i.saturating_sub(3)..(i + 2).min(plan.toolpath.moves.len())] {
             println!("    {m:?}");
         }
+    }
+}
+
+/// Every overloaded sample outside the z-cut passes is in one of the listed stretches, each
+/// named by its moves and peaking above the limit (issue 29: spikes are reported with their
+/// lines).
+fn assert_overloads_are_listed_with_their_lines(plan: &InsertionPlan) {
+    let v = &plan.verification;
+    let overloaded = v.outside_zcut.overloaded + v.crossing_zcut.overloaded;
+    assert_eq!(v.overloads.is_empty(), overloaded == 0, "{v:?}");
+    assert!(v.overloads.len() <= MAX_LISTED_OVERLOADS && v.overload_stretches >= v.overloads.len());
+    if v.overload_stretches <= MAX_LISTED_OVERLOADS {
+        assert_eq!(v.overloads.iter().map(|o| o.samples).sum::<usize>(), overloaded, "{v:?}");
+    }
+    if v.crossing_zcut.overloaded > 0 {
+        assert!(v.overloads.iter().any(|o| o.in_zcut_region), "{v:?}");
+        assert!(plan.warnings.iter().any(|w| w.contains("cross the z-cut regions")), "{:?}", plan.warnings);
+    }
+    for o in &v.overloads {
+        assert!(o.line_from >= 1 && o.line_from <= o.line_to, "{o:?}");
+        assert!((o.line_from..=o.line_to).contains(&o.peak.line), "{o:?}");
+        assert!(o.peak.value > v.alpha_limit_deg && o.samples >= 1 && o.length_mm > 0.0, "{o:?}");
+        assert!(o.line_to as usize <= plan.toolpath.moves.len(), "{o:?}");
     }
 }
 
@@ -70,6 +94,11 @@ fn a_box_cavity_with_a_12_mm_slot_gets_a_complete_gouge_free_program_within_the_
     let plan = plan_insertion(&pocket, &spec(-10.0), None, &NoProgress).unwrap();
     show("box", &plan);
     assert!(plan.verification.passed, "{:?}", plan.verification);
+    // What the wall pass still meets is short spikes where it turns the corners the z-cut
+    // division cut first, each listed with its move.
+    for o in &plan.verification.overloads {
+        assert!(o.in_zcut_region && o.length_mm <= 0.5, "{o:?}");
+    }
 }
 
 #[test]
@@ -84,6 +113,8 @@ fn a_slot_too_narrow_for_trochoids_is_cut_by_z_cut_division_and_reported_so() {
     assert_eq!(long.class, Some(crate::core::medial::RadiusClass::C));
     assert_eq!(long.passes_per_level, 4, "10 mm in passes of at most 2.5 mm");
     assert!(long.area_mm2 > 0.9 * 10.0 * 30.0, "{long:?}");
+    // The z-cut passes are judged apart from the full-depth moves crossing their regions.
+    assert!(plan.verification.inside_zcut.samples > 0, "{:?}", plan.verification);
     assert!(plan.verification.passed, "{:?}", plan.verification);
 }
 
@@ -108,6 +139,7 @@ fn fixed_radius_trochoids_of_seed_004_figure_4_come_down_in_pitch_and_what_they_
     // where that still exceeds the limit it is reported, not hidden.
     if v.outside_zcut.overloaded > 0 {
         assert!(!v.passed && v.first_overload.is_some());
+        assert_eq!(v.overloads[0].line_from, v.first_overload.unwrap().line, "{v:?}");
         assert!(plan.warnings.iter().any(|w| w.contains("still exceed")), "{:?}", plan.warnings);
     }
 }

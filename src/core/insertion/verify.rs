@@ -10,7 +10,7 @@ use crate::core::drawing::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE
 use crate::core::geometry::{Pocket, Point};
 use crate::core::medial::Boundary;
 use crate::core::progress::Progress;
-use crate::core::toolpath::Toolpath;
+use crate::core::toolpath::{Move, Toolpath};
 use crate::core::CoreError;
 use serde::Serialize;
 
@@ -31,6 +31,42 @@ pub struct Spot {
     pub line: u32,
     /// α (deg) for an overload, the wall margin (mm, negative) for a gouge.
     pub value: f64,
+}
+
+/// Most overloaded stretches listed one by one (all are counted in
+/// [`Verification::overload_stretches`]).
+pub const MAX_LISTED_OVERLOADS: usize = 64;
+
+/// A stretch of consecutive cutting samples of the full-depth moves above the limit: a spike
+/// at a corner is a few samples long; each is listed with its program lines.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Overload {
+    /// The program's moves (1-based) of its first and last sample.
+    pub line_from: u32,
+    pub line_to: u32,
+    pub samples: usize,
+    /// Path length over its samples, mm.
+    pub length_mm: f64,
+    /// Where α peaks (`value`: α, deg).
+    pub peak: Spot,
+    /// Some of it lies in a region the z-cut division cut first, on a move at the full depth
+    /// (the wall pass crossing it at a corner, for example).
+    pub in_zcut_region: bool,
+}
+
+impl Overload {
+    /// The first and last line of a written program that the stretch spans: `moves` are the
+    /// program's moves that may hold it, each with the line the writer ended it on
+    /// ([`crate::core::nc::WrittenProgram::move_lines`]); a move is in the stretch when its
+    /// source `line` is (blocks split from one move keep its line).
+    pub fn written_lines<'a>(&self, moves: impl IntoIterator<Item = (&'a Move, u32)>) -> Option<(u32, u32)> {
+        moves
+            .into_iter()
+            .filter(|(m, _)| (self.line_from..=self.line_to).contains(&m.line))
+            .fold(None, |span, (_, line)| {
+                Some(span.map_or((line, line), |(a, b): (u32, u32)| (a.min(line), b.max(line))))
+            })
+    }
 }
 
 /// The engagement of one kind of sample.
@@ -58,13 +94,22 @@ pub struct Verification {
     pub alpha_limit_deg: f64,
     /// Horizontal cutting samples outside the z-cut regions: must have no overload.
     pub outside_zcut: EngagementCheck,
-    /// Samples inside the z-cut regions (cut at the reduced axial depth).
+    /// Samples of the z-cut passes (cut at the reduced axial depth).
     pub inside_zcut: EngagementCheck,
+    /// Samples of the full-depth moves where they cross a z-cut region (the wall pass at a
+    /// corner the z-cut division cut first): their overloads, short spikes, do not fail the
+    /// check, but each is listed in `overloads` with its lines.
+    pub crossing_zcut: EngagementCheck,
     /// Samples of ramps and plunges (the tool going down: axial engagement) and of the
     /// approach holes (a trochoid's helical entry and the full circle at its bottom).
     pub ramps: EngagementCheck,
     /// The first overloaded sample outside the z-cut regions.
     pub first_overload: Option<Spot>,
+    /// Stretches of overloaded samples of the full-depth moves, outside the z-cut regions or
+    /// crossing them, in program order (at most [`MAX_LISTED_OVERLOADS`]), and how many
+    /// there are.
+    pub overloads: Vec<Overload>,
+    pub overload_stretches: usize,
     /// Test points where the tool comes closer to a wall than `r + allowance`.
     pub gouges: usize,
     /// Smallest `clearance − r − allowance` of the tool centre below the top, mm.
@@ -82,22 +127,36 @@ pub struct Verification {
 pub struct EngagementOutcome {
     pub outside: EngagementCheck,
     pub inside: EngagementCheck,
+    pub crossing: EngagementCheck,
     pub ramps: EngagementCheck,
     pub first_overload: Option<Spot>,
     pub overloaded: Vec<(Point, f64)>,
+    pub overloads: Vec<Overload>,
+    pub overload_stretches: usize,
     /// The samples kept for drawing (see [`SampleCollector`]).
     pub samples: PathSamples,
     /// Material the path removed, mm³.
     pub removed_volume_mm3: f64,
 }
 
-/// Simulates `path` and sorts its samples into outside the z-cut zone, inside it and ramps,
-/// handing every sample to `sink` too.
+/// Which moves of a program are which, for [`check_engagement`].
+pub struct MoveRoles<'a> {
+    /// Per move: part of an approach hole (judged with the ramps).
+    pub entry: &'a [bool],
+    /// Per move: a pass of the z-cut division (cut at the reduced axial depth).
+    pub zcut: &'a [bool],
+    /// The regions the z-cut division clears (to flag the full-depth moves crossing them).
+    pub zcut_zone: &'a ClearedZone,
+}
+
+/// Simulates `path` and sorts its samples into the z-cut passes, ramps, the full-depth moves
+/// crossing the z-cut regions and the rest (which must stay under the limit), listing the
+/// stretches of the last two above it with their lines and handing every sample to `sink`
+/// too.
 pub fn check_engagement(
     path: &Toolpath,
     analysis: &AnalysisSpec,
-    zcut_zone: &ClearedZone,
-    entry_moves: &[bool],
+    roles: &MoveRoles,
     progress: &dyn Progress,
     mut sink: impl FnMut(&SampleResult),
 ) -> Result<EngagementOutcome, CoreError> {
@@ -105,12 +164,18 @@ pub fn check_engagement(
     let mut out = EngagementOutcome {
         outside: EngagementCheck::default(),
         inside: EngagementCheck::default(),
+        crossing: EngagementCheck::default(),
         ramps: EngagementCheck::default(),
         first_overload: None,
         overloaded: Vec::new(),
+        overloads: Vec::new(),
+        overload_stretches: 0,
         samples: PathSamples::default(),
         removed_volume_mm3: 0.0,
     };
+    let flag = |roles: &[bool], m: usize| roles.get(m).copied().unwrap_or(false);
+    // The stretch of overloaded samples being followed, if the last sample was one.
+    let mut open: Option<Overload> = None;
     let total_length_mm: f64 = path.moves.iter().map(move_length).sum();
     let mut collector = SampleCollector::new(total_length_mm, DRAWING_SAMPLE_BINS);
     let simulated = analyze_with(path, analysis, progress, |r| {
@@ -122,31 +187,64 @@ pub fn check_engagement(
         let m = &path.moves[r.sample.move_index];
         let alpha = r.contact.alpha_rad.to_degrees();
         let p = Point::new(r.sample.p.x, r.sample.p.y);
-        let entry = entry_moves.get(r.sample.move_index).copied().unwrap_or(false);
+        let entry = flag(roles.entry, r.sample.move_index);
         if entry || r.plunge || (m.end.z - m.start.z).abs() > super::cleared::SAME_LEVEL_MM {
             collector.add_with(r, true);
             out.ramps.add(alpha, limit);
-        } else if zcut_zone.is_air(p) {
+            close(&mut open, &mut out);
+        } else if flag(roles.zcut, r.sample.move_index) {
             collector.add_with(r, true);
             out.inside.add(alpha, limit);
+            close(&mut open, &mut out);
         } else {
-            collector.add(r);
-            out.outside.add(alpha, limit);
+            let crossing = roles.zcut_zone.is_air(p);
+            if crossing {
+                collector.add_with(r, true);
+                out.crossing.add(alpha, limit);
+            } else {
+                collector.add(r);
+                out.outside.add(alpha, limit);
+            }
             if alpha > limit {
-                out.overloaded.push((p, alpha));
-                out.first_overload.get_or_insert(Spot {
-                    x_mm: p.x,
-                    y_mm: p.y,
-                    z_mm: r.sample.p.z,
-                    line: r.sample.line,
-                    value: alpha,
+                let here = Spot { x_mm: p.x, y_mm: p.y, z_mm: r.sample.p.z, line: r.sample.line, value: alpha };
+                if !crossing {
+                    out.overloaded.push((p, alpha));
+                    out.first_overload.get_or_insert(here);
+                }
+                let run = open.get_or_insert(Overload {
+                    line_from: here.line,
+                    line_to: here.line,
+                    samples: 0,
+                    length_mm: 0.0,
+                    peak: here,
+                    in_zcut_region: false,
                 });
+                run.line_to = here.line;
+                run.samples += 1;
+                run.length_mm += r.sample.step_mm;
+                if alpha > run.peak.value {
+                    run.peak = here;
+                }
+                run.in_zcut_region |= crossing;
+            } else {
+                close(&mut open, &mut out);
             }
         }
     })?;
+    close(&mut open, &mut out);
     out.samples = collector.finish();
     out.removed_volume_mm3 = simulated.summary.removed_volume_mm3;
     Ok(out)
+}
+
+/// Ends the stretch of overloaded samples being followed, if any, and lists it.
+fn close(open: &mut Option<Overload>, out: &mut EngagementOutcome) {
+    if let Some(run) = open.take() {
+        out.overload_stretches += 1;
+        if out.overloads.len() < MAX_LISTED_OVERLOADS {
+            out.overloads.push(run);
+        }
+    }
 }
 
 /// Checks every move that goes below `z_top_mm` against the walls: the tool centre must stay

@@ -74,8 +74,8 @@ pub use options::{
 pub use parse::{interpret, parse_gcode, Interpreted};
 pub use report::MAX_QUOTED_WORD_CHARS;
 pub use writer::{
-    write_program, Dialect, LineNumbers, WriterOptions, DEFAULT_DECIMALS, DEFAULT_FEED_DECIMALS, MAX_DECIMALS,
-    MAX_SEQUENCE_NUMBER,
+    write_program, write_program_mapped, Dialect, LineNumbers, WriterOptions, WrittenProgram, DEFAULT_DECIMALS,
+    DEFAULT_FEED_DECIMALS, MAX_DECIMALS, MAX_SEQUENCE_NUMBER,
 };
 
 use crate::core::toolpath::P3;

@@ -131,11 +131,26 @@ const SAFETY_LINE: &str = "G21 G17 G90 G94 G40 G80 G49";
 
 /// Writes `path` as an NC program (see the module documentation for its layout).
 pub fn write_program(path: &Toolpath, options: &WriterOptions) -> String {
+    write_program_mapped(path, options).text
+}
+
+/// A written program and where each move of the path went.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct WrittenProgram {
+    pub text: String,
+    /// Per move of the path: the (1-based) line of the text that ends it (its own block;
+    /// a Fanuc arc of several turns ends on its last piece). Moves after the path's end
+    /// event are not written and have none.
+    pub move_lines: Vec<u32>,
+}
+
+/// [`write_program`], with the line of each move.
+pub fn write_program_mapped(path: &Toolpath, options: &WriterOptions) -> WrittenProgram {
     let mut writer = Writer::new(path, options);
     writer.header();
     writer.body();
     writer.footer();
-    writer.out
+    WrittenProgram { text: writer.out, move_lines: writer.move_lines }
 }
 
 /// The writer's state: what the control knows from the lines written so far.
@@ -167,6 +182,9 @@ struct Writer<'a> {
     /// The safe height (units of 10^−decimals); `None` only for a path without moves and
     /// options without a safe height.
     safe_z: Option<i64>,
+    /// Lines written so far, and the line ending each move written.
+    lines_written: u32,
+    move_lines: Vec<u32>,
 }
 
 impl<'a> Writer<'a> {
@@ -198,6 +216,8 @@ impl<'a> Writer<'a> {
             start_pending: false,
             fallback_rpm: if has_speed { None } else { options.spindle_rpm },
             safe_z,
+            lines_written: 0,
+            move_lines: Vec::with_capacity(path.moves.len()),
         }
     }
 
@@ -207,6 +227,7 @@ impl<'a> Writer<'a> {
     fn raw_line(&mut self, text: &str) {
         self.out.push_str(text);
         self.out.push('\n');
+        self.lines_written += 1;
     }
 
     /// Ends the line being built (nothing if it is empty), with its N number.
@@ -225,6 +246,7 @@ impl<'a> Writer<'a> {
         self.out.push_str(&self.line);
         self.out.push('\n');
         self.line.clear();
+        self.lines_written += 1;
     }
 
     fn separate(&mut self) {
@@ -319,6 +341,7 @@ impl<'a> Writer<'a> {
             }
             self.start_if_pending();
             self.write_move(m);
+            self.move_lines.push(self.lines_written);
         }
         self.retract();
         for e in &events[next..] {

@@ -75,6 +75,8 @@ pub struct Evaluation {
     pub force_factor: f64,
     pub target_force_n: f64,
     pub program: Toolpath,
+    /// Per move of the program: the cavity layer it belongs to (links to a layer included).
+    pub move_layer: Vec<usize>,
     /// Per move of the program: the share of one tool's life it uses.
     pub move_consumption: Vec<f64>,
     pub layers: Vec<LayerFigures>,
@@ -321,6 +323,7 @@ pub fn evaluate(
         target_force_n: spec.rule.target_force_n,
         move_consumption: wear_of.iter().map(|w| w / life_arc).collect(),
         program,
+        move_layer: owner,
         layers: layer_figures,
         total,
         consumption,

@@ -22,6 +22,7 @@ pub mod cavity;
 pub mod evaluate;
 pub mod feeds;
 pub mod layer;
+mod overload_lines;
 mod parallel;
 mod report;
 pub mod screen;
@@ -42,6 +43,7 @@ pub use cavity::{
 };
 pub use evaluate::{Evaluation, Figures, LayerFigures, StepFigures};
 pub use layer::{LayerPlan, Step};
+pub use overload_lines::overload_program_lines;
 pub use report::{CandidateReport, CandidateStatus, Comparison, LayerReport, ProcessPlan};
 pub use screen::{Estimate, SCREEN_MARGIN, SCREEN_SPACING_FACTOR};
 pub use spec::{ProcessOptions, ToolCandidate, DEFAULT_MAX_FORCE_FACTOR, DEFAULT_TARGET_CONSUMPTION};

@@ -7,7 +7,7 @@ use super::evaluate::{Evaluation, Figures, LayerFigures};
 use super::layer::LayerPlan;
 use super::spec::ToolCandidate;
 use super::tune::Tuning;
-use crate::core::insertion::{TreatmentKind, Verification};
+use crate::core::insertion::{Overload, TreatmentKind, Verification};
 use serde::Serialize;
 
 /// Uncleared area below this counts as cleared, mm² per layer (the coverage raster's noise).
@@ -133,6 +133,11 @@ pub struct LayerReport {
     pub base_max_alpha_deg: f64,
     pub max_alpha_deg: f64,
     pub verification_passed: bool,
+    /// The stretches of samples of the full-depth moves above the limit (outside the z-cut
+    /// regions, or short spikes where the wall pass crosses them), with the layer program's
+    /// moves, and how many.
+    pub overloads: Vec<Overload>,
+    pub overload_stretches: usize,
     pub gouges: usize,
     pub uncleared_area_mm2: f64,
     #[serde(flatten)]
@@ -197,6 +202,8 @@ pub(super) fn assemble(
                 base_max_alpha_deg: plan.base_max_alpha_deg,
                 max_alpha_deg: v.outside_zcut.max_alpha_deg,
                 verification_passed: v.passed,
+                overloads: v.overloads.clone(),
+                overload_stretches: v.overload_stretches,
                 gouges: v.gouges,
                 uncleared_area_mm2: v.uncleared_area_mm2,
                 figures: figures.clone(),

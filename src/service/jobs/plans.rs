@@ -15,7 +15,7 @@ use crate::core::drawing::process_scene::process_scene;
 use crate::core::drawing::scene::Scene;
 use crate::core::insertion::DEFAULT_INSERTION_ALPHA_LIMIT_DEG;
 use crate::core::kinematics::MachineLimits;
-use crate::core::nc::write_program;
+use crate::core::nc::{write_program, write_program_mapped};
 use crate::core::operation::Operation;
 use crate::core::process::{
     check_process, plan_process, BaselineSpec, Cavity, CavityInput, CavityLayer, ProcessOptions, ToolCandidate,
@@ -527,7 +527,7 @@ pub fn run(request: PlanRequest, prepared: PlanPrepared, progress: &dyn Progress
     writer_base.tool.id = chosen.tool_id;
     writer_base.tool.name = chosen.name.clone();
     writer_base.tool.geometry = chosen.tool.into();
-    let program = write_program(&plan.evaluation.program, &request.output.to_writer(&writer_base));
+    let written = write_program_mapped(&plan.evaluation.program, &request.output.to_writer(&writer_base));
     // The baseline's program: the same output options, with the ball, its name and its speed.
     let baseline_program = plan.baseline.as_ref().zip(prepared.baseline.as_ref()).map(|(b, p)| {
         let mut writer_base = prepared.writer_base.clone();
@@ -538,8 +538,8 @@ pub fn run(request: PlanRequest, prepared: PlanPrepared, progress: &dyn Progress
         write_program(&b.program, &request.output.to_writer(&writer_base))
     });
     let scene = process_scene(&cavity.whole(), &plan);
-    let result = PlanResult::new(&prepared, &plan, &program, baseline_program.as_deref().unwrap_or_default());
-    Ok(PlanOutput { result, program, baseline_program, scene })
+    let result = PlanResult::new(&prepared, &plan, &written, baseline_program.as_deref().unwrap_or_default());
+    Ok(PlanOutput { result, program: written.text, baseline_program, scene })
 }
 
 /// What a plan job hands back: its result, the chosen tool's program, the baseline's program

@@ -6,9 +6,11 @@ use super::conditions::NamedRef;
 use super::costing_result::CutLengthDto;
 use super::feeds_result::ProgramInfoDto;
 use super::plans::{BaselinePrepared, PlanPrepared, RowRef};
+use super::trochoids_result::OverloadDto;
+use crate::core::nc::WrittenProgram;
 use crate::core::process::{
-    Baseline, CandidateReport, CandidateStatus, Comparison, Figures, LayerReport, LayerRole, ProcessPlan, Step, Tuning,
-    TuningOutcome,
+    overload_program_lines, Baseline, CandidateReport, CandidateStatus, Comparison, Figures, LayerReport, LayerRole,
+    ProcessPlan, Step, Tuning, TuningOutcome,
 };
 use serde::Serialize;
 use utoipa::ToSchema;
@@ -102,6 +104,11 @@ pub struct LayerDto {
     pub max_alpha_deg: f64,
     /// No overload outside the z-cut regions, no gouge, nothing reachable left.
     pub verification_passed: bool,
+    /// The stretches of samples of the full-depth moves above the engagement limit (outside
+    /// the z-cut regions, or short spikes where the wall pass crosses them), each with its
+    /// lines (at most 64 listed; all counted in `overload_stretches`).
+    pub overloads: Vec<OverloadDto>,
+    pub overload_stretches: usize,
     pub gouges: usize,
     pub uncleared_area_mm2: f64,
     pub removed_volume_mm3: f64,
@@ -280,7 +287,7 @@ fn program_info(moves: usize, text: &str) -> ProgramInfoDto {
     ProgramInfoDto { moves_in: moves, moves_out: moves, lines: text.lines().count(), bytes: text.len() }
 }
 
-fn layer(l: &LayerReport) -> LayerDto {
+fn layer(l: &LayerReport, program_lines: &[Option<(u32, u32)>]) -> LayerDto {
     LayerDto {
         index: l.index,
         role: l.role,
@@ -293,6 +300,13 @@ fn layer(l: &LayerReport) -> LayerDto {
         base_max_alpha_deg: l.base_max_alpha_deg,
         max_alpha_deg: l.max_alpha_deg,
         verification_passed: l.verification_passed,
+        overloads: l
+            .overloads
+            .iter()
+            .enumerate()
+            .map(|(i, o)| OverloadDto::new(o, program_lines.get(i).copied().flatten()))
+            .collect(),
+        overload_stretches: l.overload_stretches,
         gouges: l.gouges,
         uncleared_area_mm2: l.uncleared_area_mm2,
         removed_volume_mm3: l.figures.removed_volume_mm3,
@@ -302,10 +316,11 @@ fn layer(l: &LayerReport) -> LayerDto {
 }
 
 impl PlanResult {
-    /// The result of `plan`, whose program is `program` and its baseline's `baseline_program`
-    /// (empty without a baseline).
-    pub fn new(prepared: &PlanPrepared, plan: &ProcessPlan, program: &str, baseline_program: &str) -> Self {
+    /// The result of `plan`, whose program is `program` (with the line of each of its
+    /// moves) and its baseline's `baseline_program` (empty without a baseline).
+    pub fn new(prepared: &PlanPrepared, plan: &ProcessPlan, program: &WrittenProgram, baseline_program: &str) -> Self {
         let e = &plan.evaluation;
+        let overload_lines = overload_program_lines(plan, &program.move_lines);
         PlanResult {
             material: prepared.material.clone(),
             machine: prepared.machine.clone(),
@@ -320,7 +335,7 @@ impl PlanResult {
                 .collect(),
             skipped: prepared.skipped.clone(),
             chosen_tool_id: prepared.candidates[plan.chosen].tool_id,
-            layers: plan.layers.iter().map(layer).collect(),
+            layers: plan.layers.iter().zip(&overload_lines).map(|(l, lines)| layer(l, lines)).collect(),
             tuning: plan.tuning.into(),
             totals: TotalsDto {
                 figures: e.total.into(),
@@ -338,7 +353,7 @@ impl PlanResult {
                 .zip(prepared.baseline.as_ref())
                 .map(|(b, p)| BaselineDto::new(b, p, baseline_program)),
             comparison: plan.comparison.map(Into::into),
-            program: program_info(e.program.moves.len(), program),
+            program: program_info(e.program.moves.len(), &program.text),
             warnings: plan.warnings.clone(),
         }
     }

@@ -16,7 +16,7 @@ use crate::core::drawing::scene::Scene;
 use crate::core::geometry::Pocket;
 use crate::core::insertion::{check_plan, plan_insertion, InsertionSpec, LoopSize};
 use crate::core::medial::{CLASS_A_RATIO_MAX, CLASS_A_RATIO_MIN};
-use crate::core::nc::write_program;
+use crate::core::nc::write_program_mapped;
 use crate::core::operation::Operation;
 use crate::core::progress::Progress;
 use crate::core::CoreError;
@@ -95,7 +95,9 @@ pub struct TrochoidsRequest {
     pub loop_size: Option<LoopSizeInput>,
     /// The fixed loop radius ρ, mm (with `loop_size: fixed`).
     pub loop_radius_mm: Option<f64>,
-    /// Largest trochoid pitch, mm (default the grooving Rd); smaller where the limit needs.
+    /// Largest trochoid pitch, mm (default a straight cut's depth at the engagement limit,
+    /// `r·(1 − cos α_limit)`, and the grooving Rd for loops larger than the tool); smaller
+    /// where the limit needs.
     pub pitch_mm: Option<f64>,
     /// Axial depth of the z-cut division passes, mm (default 2.5).
     pub zcut_ad_mm: Option<f64>,
@@ -330,7 +332,7 @@ pub fn run(
     let (pocket, spec, path) = build(&request, &prepared).map_err(reread)?;
     let plan = plan_insertion(&pocket, &spec, path.as_ref(), progress)?;
     let options = request.output.to_writer(&prepared.base);
-    let program = write_program(&plan.toolpath, &options);
+    let written = write_program_mapped(&plan.toolpath, &options);
     let scene = insertion_scene(&pocket, &spec, &plan);
-    Ok((TrochoidsResult::new(prepared, path.is_some(), &program, plan), program, scene))
+    Ok((TrochoidsResult::new(prepared, path.is_some(), &written, plan), written.text, scene))
 }

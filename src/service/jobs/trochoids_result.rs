@@ -6,9 +6,9 @@ use super::conditions::{NamedRef, ToolRef};
 use super::feeds_result::ProgramInfoDto;
 use super::trochoids::TrochoidsPrepared;
 use crate::core::conditions::CuttingConditions;
-use crate::core::insertion::{EngagementCheck, InsertionPlan, Spot, Treatment, TreatmentKind};
+use crate::core::insertion::{EngagementCheck, InsertionPlan, Overload, Spot, Treatment, TreatmentKind};
 use crate::core::medial::{NodeKind, RadiusClass};
-use crate::core::nc::{toolpath_to_json, JsonProgram};
+use crate::core::nc::{toolpath_to_json, JsonProgram, WrittenProgram};
 use serde::Serialize;
 use utoipa::ToSchema;
 
@@ -166,17 +166,62 @@ impl From<Spot> for SpotDto {
     }
 }
 
+/// A stretch of consecutive samples above the engagement limit (a short spike at a corner
+/// of a wall pass is a few samples long).
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct OverloadDto {
+    /// First and last line of the job's program (`GET /v1/jobs/{id}/program`) it spans.
+    pub program_lines: Option<[u32; 2]>,
+    /// First and last move (1-based) of the planned path (of the layer's own plan, in a
+    /// plan; the line of the given program, for a given path).
+    pub layer_moves: [u32; 2],
+    pub samples: usize,
+    pub length_mm: f64,
+    /// The largest engagement, deg, and where it is (mm; z of the layer's plan, before a
+    /// copy of the layer moves down).
+    pub max_alpha_deg: f64,
+    pub x: f64,
+    pub y: f64,
+    pub z: f64,
+    /// In a region the z-cut division cleared, but on a move at the full depth.
+    pub in_zcut_region: bool,
+}
+
+impl OverloadDto {
+    pub fn new(o: &Overload, program_lines: Option<(u32, u32)>) -> Self {
+        OverloadDto {
+            program_lines: program_lines.map(|(a, b)| [a, b]),
+            layer_moves: [o.line_from, o.line_to],
+            samples: o.samples,
+            length_mm: o.length_mm,
+            max_alpha_deg: o.peak.value,
+            x: o.peak.x_mm,
+            y: o.peak.y_mm,
+            z: o.peak.z_mm,
+            in_zcut_region: o.in_zcut_region,
+        }
+    }
+}
+
 /// The checks of the new path by the full simulation.
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct VerificationDto {
     pub alpha_limit_deg: f64,
     /// Cutting samples outside the z-cut regions: none may be above the limit.
     pub outside_zcut: EngagementCheckDto,
-    /// Samples inside the z-cut regions (cut at the reduced axial depth).
+    /// Samples of the z-cut passes (cut at the reduced axial depth).
     pub inside_zcut: EngagementCheckDto,
+    /// Samples of the full-depth moves where they cross a z-cut region (the wall pass at a
+    /// corner the z-cut division cut first): their spikes are listed in `overloads`.
+    pub crossing_zcut: EngagementCheckDto,
     /// Ramps, plunges and the approach holes (helical entries and the circle after them).
     pub ramps: EngagementCheckDto,
     pub first_overload: Option<SpotDto>,
+    /// The stretches of samples of the full-depth moves above the limit (outside the z-cut
+    /// regions, or crossing them), each with its lines (at most 64 listed; all counted in
+    /// `overload_stretches`).
+    pub overloads: Vec<OverloadDto>,
+    pub overload_stretches: usize,
     /// Test points closer to a wall than r + allowance.
     pub gouges: usize,
     pub min_wall_margin_mm: f64,
@@ -224,7 +269,7 @@ pub struct TrochoidsResult {
 }
 
 impl TrochoidsResult {
-    pub fn new(prepared: TrochoidsPrepared, given: bool, program: &str, plan: InsertionPlan) -> Self {
+    pub fn new(prepared: TrochoidsPrepared, given: bool, program: &WrittenProgram, plan: InsertionPlan) -> Self {
         let branches = plan
             .axis
             .branches
@@ -290,8 +335,18 @@ impl TrochoidsResult {
                 alpha_limit_deg: v.alpha_limit_deg,
                 outside_zcut: v.outside_zcut.into(),
                 inside_zcut: v.inside_zcut.into(),
+                crossing_zcut: v.crossing_zcut.into(),
                 ramps: v.ramps.into(),
                 first_overload: v.first_overload.map(SpotDto::from),
+                overloads: v
+                    .overloads
+                    .iter()
+                    .map(|o| {
+                        let moves = plan.toolpath.moves.iter().zip(program.move_lines.iter().copied());
+                        OverloadDto::new(o, o.written_lines(moves))
+                    })
+                    .collect(),
+                overload_stretches: v.overload_stretches,
                 gouges: v.gouges,
                 min_wall_margin_mm: v.min_wall_margin_mm,
                 first_gouge: v.first_gouge.map(SpotDto::from),
@@ -303,8 +358,8 @@ impl TrochoidsResult {
             program: ProgramInfoDto {
                 moves_in: plan.base_moves,
                 moves_out: plan.toolpath.moves.len(),
-                lines: program.lines().count(),
-                bytes: program.len(),
+                lines: program.text.lines().count(),
+                bytes: program.text.len(),
             },
             path: toolpath_to_json(&plan.toolpath),
             warnings: plan.warnings,

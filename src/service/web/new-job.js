@@ -34,7 +34,7 @@ const FIELDS = {
     ...DEPTHS,
     num('alpha_limit_deg', 'Engagement limit α', '°', '40'),
     num('allowance_mm', 'Allowance on walls', 'mm', '0'),
-    num('pitch_mm', 'Largest trochoid pitch', 'mm', 'grooving Rd'),
+    num('pitch_mm', 'Largest trochoid pitch', 'mm', 'r(1 − cos α limit)'),
     num('zcut_ad_mm', 'Z-cut depth per pass', 'mm', '2.5'),
     { key: 'direction', label: 'Direction', type: 'select', options: [['', 'climb (default)'], ['conventional', 'conventional']] },
   ],

@@ -91,6 +91,28 @@ fn the_small_path_matches_its_golden_files_in_both_dialects_with_and_without_n_n
 }
 
 /// The words of `text` that start with `letter`, line by line (comments skipped).
+#[test]
+fn the_line_given_for_each_move_is_the_written_block_that_ends_where_the_move_ends() {
+    let path = small_path();
+    for dialect in [Dialect::Fanuc, Dialect::LinuxCnc] {
+        for numbered in [false, true] {
+            let written = write_program_mapped(&path, &options(dialect, numbered));
+            assert_eq!(written.text, write_program(&path, &options(dialect, numbered)));
+            assert_eq!(written.move_lines.len(), path.moves.len(), "every move before the end event");
+            let parsed = parse_gcode(&written.text, &ParseOptions::default()).unwrap();
+            let tolerance = 10f64.powi(-(DEFAULT_DECIMALS as i32));
+            for (m, &line) in path.moves.iter().zip(&written.move_lines) {
+                let block = parsed.moves.iter().rev().find(|p| p.line == line);
+                let block = block.unwrap_or_else(|| panic!("{dialect:?}: no move on line {line}"));
+                let (a, b) = (block.end, m.end);
+                let gap = (a.x - b.x).abs().max((a.y - b.y).abs()).max((a.z - b.z).abs());
+                assert!(gap <= tolerance, "{dialect:?} line {line}: {a:?} vs {b:?}");
+            }
+            assert!(written.move_lines.windows(2).all(|w| w[0] < w[1]), "{:?}", written.move_lines);
+        }
+    }
+}
+
 fn words(text: &str, letter: char) -> Vec<String> {
     text.lines()
         .filter(|l| !l.starts_with('(') && !l.starts_with('%') && !l.starts_with('O'))
