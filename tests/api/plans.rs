@@ -60,6 +60,10 @@ async fn the_case_study_cavity_gets_a_complete_plan_with_the_cheapest_tool_and_t
         assert_eq!(l["gouges"], 0, "{l}");
         assert!(l["uncleared_area_mm2"].as_f64().unwrap() <= 1.0, "{l}");
         assert!(!l["steps"].as_array().unwrap().is_empty());
+        // Every overloaded stretch (none is expected here) would be listed with its lines.
+        let overloads = l["overloads"].as_array().unwrap();
+        assert!(overloads.len() <= l["overload_stretches"].as_u64().unwrap() as usize, "{l}");
+        assert!(overloads.iter().all(|o| o["program_lines"].is_array()), "{l}");
     }
     // It clears the cavity: the simulated removal is the cavity's volume.
     let (removed, volume) =

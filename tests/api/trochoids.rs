@@ -57,6 +57,20 @@ async fn assert_complete_and_gouge_free(app: &TestApp, job: &Value) {
     assert!((length(&gcode) - length(&json)).abs() < 1e-3 * length(&json), "{} vs {}", length(&gcode), length(&json));
     let (a, b) = (gcode.moves.last().unwrap().end, json.moves.last().unwrap().end);
     assert!((a.x - b.x).abs() < 1e-3 && (a.y - b.y).abs() < 1e-3 && (a.z - b.z).abs() < 1e-3);
+    // Whatever still spikes above the limit (where the wall pass crosses a z-cut region) is
+    // listed with the lines of the served program, each a motion block there.
+    let overloads = v["overloads"].as_array().unwrap();
+    assert_eq!(overloads.is_empty(), v["crossing_zcut"]["overloaded"] == 0, "{v}");
+    for o in overloads {
+        assert_eq!(o["in_zcut_region"], true, "{o}");
+        let lines = o["program_lines"].as_array().unwrap_or_else(|| panic!("{o}"));
+        let (first, last) = (lines[0].as_u64().unwrap() as u32, lines[1].as_u64().unwrap() as u32);
+        assert!(first <= last, "{o}");
+        for line in [first, last] {
+            assert!(gcode.moves.iter().any(|m| m.line == line), "{o}: line {line} is no motion block");
+        }
+        assert!(o["max_alpha_deg"].as_f64().unwrap() > 40.0, "{o}");
+    }
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
