@@ -25,5 +25,6 @@ mod programs;
 mod recalibration;
 mod restarts;
 mod retention;
+mod tool_defaults;
 mod trochoids;
 mod web;
