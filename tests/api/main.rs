@@ -16,6 +16,7 @@ mod errors;
 mod fair_queue;
 mod feeds;
 mod fit;
+mod job_blobs;
 mod jobs;
 mod keys;
 mod nc_programs;
