@@ -77,14 +77,20 @@ async fn submit(
     let wait = preferred_wait(headers).map(|n| n.min(state.config.effective_max_wait_s()));
     if let Some(seconds) = wait {
         let deadline = tokio::time::Instant::now() + Duration::from_secs(seconds);
+        // The job is read again only when it is the one announced as finished, or when
+        // announcements were missed: with many clients waiting, every finished job would
+        // otherwise cost each of them a read.
+        let mut look = true;
         loop {
-            let row = store::get(&state.pool, &id).await?;
-            if row.status()?.is_terminal() {
-                let mut response = job_response(&state.pool, StatusCode::CREATED, &row).await?;
-                let h = response.headers_mut();
-                h.insert(header::LOCATION, header_value(&location));
-                h.insert("preference-applied", header_value(&format!("wait={seconds}")));
-                return Ok(response);
+            if look {
+                let row = store::get(&state.pool, &id).await?;
+                if row.status()?.is_terminal() {
+                    let mut response = job_response(&state.pool, StatusCode::CREATED, &row).await?;
+                    let h = response.headers_mut();
+                    h.insert(header::LOCATION, header_value(&location));
+                    h.insert("preference-applied", header_value(&format!("wait={seconds}")));
+                    return Ok(response);
+                }
             }
             if *stopping.borrow_and_update() {
                 break;
@@ -92,7 +98,8 @@ async fn submit(
             tokio::select! {
                 received = tokio::time::timeout_at(deadline, finished.recv()) => match received {
                     Err(_) => break,
-                    Ok(Ok(_)) | Ok(Err(tokio::sync::broadcast::error::RecvError::Lagged(_))) => continue,
+                    Ok(Ok(done)) => look = done == id,
+                    Ok(Err(tokio::sync::broadcast::error::RecvError::Lagged(_))) => look = true,
                     Ok(Err(tokio::sync::broadcast::error::RecvError::Closed)) => break,
                 },
                 _ = stopping.changed() => break,
