@@ -54,7 +54,8 @@ pub async fn material(pool: &SqlitePool, id: Option<i64>, name: Option<&str>) ->
     Ok(found)
 }
 
-/// The tool with `id`, or the one tool of `tool_type` and `diameter_mm`.
+/// The tool with `id`, or the default tool of `tool_type` and `diameter_mm` (the `default`
+/// flag of `/v1/tools`).
 pub async fn tool(
     pool: &SqlitePool,
     id: Option<i64>,
@@ -80,29 +81,37 @@ pub async fn tool(
     let (Some(tool_type), Some(d)) = (tool_type, diameter_mm) else {
         return Err(ApiError::field("tool_id", "give tool_id, or tool_type and diameter_mm"));
     };
+    default_tool(pool, tool_type, d).await
+}
+
+/// The default tool of `tool_type` and diameter `d`; the errors name `diameter_mm` (no
+/// such tool) or `tool_id` (tools, but none of them the default).
+pub async fn default_tool(pool: &SqlitePool, tool_type: ToolType, d: f64) -> Result<Tool, ApiError> {
     if !(d.is_finite() && d > 0.0) {
         return Err(ApiError::field("diameter_mm", format!("must be a finite number > 0, got {d}")));
     }
-    let tools =
-        sqlx::query_as::<_, Tool>("SELECT * FROM tools WHERE tool_type = ? AND abs(diameter_mm - ?) <= ? ORDER BY id")
-            .bind(tool_type.as_str())
-            .bind(d)
-            .bind(DIAMETER_FILTER_TOLERANCE_MM)
-            .fetch_all(pool)
-            .await?;
-    match tools.as_slice() {
-        [] => Err(ApiError::field(
+    let tools = sqlx::query_as::<_, Tool>(
+        "SELECT * FROM tools WHERE tool_type = ? AND abs(diameter_mm - ?) <= ?
+         ORDER BY is_default DESC, abs(diameter_mm - ?), id",
+    )
+    .bind(tool_type.as_str())
+    .bind(d)
+    .bind(DIAMETER_FILTER_TOLERANCE_MM)
+    .bind(d)
+    .fetch_all(pool)
+    .await?;
+    match tools.first() {
+        None => Err(ApiError::field(
             "diameter_mm",
             format!("no {} end mill of diameter {d} mm in the database", tool_type.as_str()),
         )),
-        [one] => Ok(one.clone()),
-        many => Err(ApiError::field(
+        Some(t) if t.data.default == Some(true) => Ok(t.clone()),
+        Some(_) => Err(ApiError::field(
             "tool_id",
             format!(
-                "{} {} end mills of {d} mm match (ids {}): give tool_id",
-                many.len(),
+                "none of the {} end mills of {d} mm (ids {}) is the default: give tool_id, or make one the default (PATCH /v1/tools/{{id}} with {{\"default\": true}})",
                 tool_type.as_str(),
-                many.iter().map(|t| t.id.to_string()).collect::<Vec<_>>().join(", ")
+                tools.iter().map(|t| t.id.to_string()).collect::<Vec<_>>().join(", ")
             ),
         )),
     }

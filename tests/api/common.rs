@@ -219,3 +219,19 @@ impl TestApp {
         panic!("job {id} did not start");
     }
 }
+
+/// A database file migrated up to `version` only (a shop's database before a later
+/// migration), in a directory to start the app in; with a pool on it to write rows.
+pub async fn database_before(version: i64) -> (Arc<TempDir>, PathBuf, sqlx::SqlitePool) {
+    use sqlx::sqlite::{SqliteConnectOptions, SqlitePoolOptions};
+    use std::str::FromStr;
+    let dir = Arc::new(tempfile::tempdir().expect("temp dir"));
+    let path = dir.path().join("shop.sqlite");
+    let options = SqliteConnectOptions::from_str(&format!("sqlite://{}", path.display()))
+        .expect("sqlite path")
+        .create_if_missing(true)
+        .foreign_keys(true);
+    let pool = SqlitePoolOptions::new().max_connections(1).connect_with(options).await.expect("database");
+    dieplan::service::store::MIGRATOR.run_to(version, &pool).await.expect("migrations");
+    (dir, path, pool)
+}

@@ -20,7 +20,7 @@ async fn a_job_without_wait_is_accepted_with_a_location_and_finishes_when_polled
     assert_eq!(job["status"], "succeeded");
     assert_eq!(job["progress"], 1.0);
     assert!(job["started_at"].is_string() && job["finished_at"].is_string());
-    assert_eq!(job["input"], conditions_job()["input"]);
+    assert_eq!(app.get(&format!("{location}/input")).await.body, conditions_job()["input"]);
     assert_eq!(app.get(&location).await.body["id"], id);
     app.stop().await;
 }

@@ -2,12 +2,9 @@
 //! and §9): the seeded rows say where their values come from, a shop's own rows and edits
 //! survive the migration, and a plan's baseline program is served beside the plan's.
 
-use crate::common::{assert_problem, close, TestApp};
+use crate::common::{assert_problem, close, database_before, TestApp};
 use dieplan::core::nc::{parse_gcode, ParseOptions};
-use dieplan::service::store::MIGRATOR;
 use serde_json::{json, Value};
-use sqlx::sqlite::{SqliteConnectOptions, SqlitePoolOptions};
-use std::str::FromStr;
 
 /// The last migration before the one under test.
 const BEFORE_RECALIBRATION: i64 = 5;
@@ -57,14 +54,7 @@ async fn the_recalibration_leaves_a_shops_own_rows_edits_and_jobs_alone() {
     // A shop's database as it was before the migration: it has measured the D8 square end
     // mill's life, edited the R5 ball's conventional conditions, added a tool of its own with
     // its conditions, and finished a job.
-    let dir = std::sync::Arc::new(tempfile::tempdir().unwrap());
-    let path = dir.path().join("shop.sqlite");
-    let options = SqliteConnectOptions::from_str(&format!("sqlite://{}", path.display()))
-        .unwrap()
-        .create_if_missing(true)
-        .foreign_keys(true);
-    let pool = SqlitePoolOptions::new().max_connections(1).connect_with(options).await.unwrap();
-    MIGRATOR.run_to(BEFORE_RECALIBRATION, &pool).await.unwrap();
+    let (dir, path, pool) = database_before(BEFORE_RECALIBRATION).await;
     for sql in [
         "UPDATE tool_life SET life_m = 250, gamma_table = '[[0, 1], [30, 1], [180, 9]]', force_exponent = 2, source = 'user', edited = 1
          WHERE seed_key = 'tool_life:square-8:skd61'",

@@ -5,6 +5,7 @@ use super::analysis::{build, resolve, AnalysisPrepared, AnalysisRequest, PathJob
 use super::conditions::NamedRef;
 use super::costing_result::CostingResult;
 use super::inputs::StockInput;
+use super::model::ProgramPart;
 use super::program_input::ProgramInput;
 use super::store;
 use crate::core::analysis::check;
@@ -145,10 +146,14 @@ pub async fn prepare(pool: &SqlitePool, request: CostingRequest) -> Result<Costi
             let row = store::get(pool, id)
                 .await
                 .map_err(|_| ApiError::field("job_id", format!("no job with id {}", excerpt(id))))?;
-            let options = ProgramInput::options_of_job_input(&row.input);
-            let text = row.program.ok_or_else(|| {
+            let text = store::program_part(pool, id, ProgramPart::Main).await?.ok_or_else(|| {
                 ApiError::field("job_id", format!("job {id} ({}, {}) has no NC program", row.kind, row.status))
             })?;
+            // The input may be large: it is read off the async runtime.
+            let input = store::input(pool, id).await?.unwrap_or_default();
+            let options = tokio::task::spawn_blocking(move || ProgramInput::options_of_job_input(&input))
+                .await
+                .map_err(|e| ApiError::Internal(e.to_string()))?;
             (Some(text), options)
         }
         None => (None, None),

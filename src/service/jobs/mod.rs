@@ -14,6 +14,7 @@ pub mod kinds;
 pub mod lane;
 pub mod model;
 pub mod output;
+pub mod plan_tools;
 pub mod plans;
 pub mod plans_result;
 pub mod program_input;

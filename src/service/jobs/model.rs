@@ -86,6 +86,8 @@ pub struct JobLinks {
     /// This job.
     #[serde(rename = "self")]
     pub this: String,
+    /// Its input as submitted (`getJobInput`).
+    pub input: String,
     /// The NC program, when the job produced one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub program: Option<String>,
@@ -97,7 +99,7 @@ pub struct JobLinks {
     pub drawing: Option<String>,
 }
 
-/// A job with its input and, once finished, its result or error.
+/// A job and, once finished, its result or error (its input is at `links.input`).
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct Job {
     pub id: String,
@@ -116,16 +118,20 @@ pub struct Job {
     /// The id of the API key that created it; null when it was made while the service
     /// ran without keys.
     pub key_id: Option<i64>,
-    /// The input as submitted.
-    pub input: serde_json::Value,
-    /// The result, when succeeded; its shape depends on `kind`.
-    pub result: Option<serde_json::Value>,
+    /// Size of the input as submitted, bytes.
+    pub input_bytes: i64,
+    /// Size of the result, bytes, once succeeded.
+    pub result_bytes: Option<i64>,
     /// Why it failed.
     pub error: Option<Problem>,
     pub links: JobLinks,
+    /// The result, once succeeded (absent before); its shape depends on `kind`. Served as
+    /// stored.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub result: Option<serde_json::Value>,
 }
 
-/// A job without its input and result, as lists show it.
+/// A job as lists show it: its row, without its input and result.
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct JobSummary {
     pub id: String,
@@ -137,23 +143,39 @@ pub struct JobSummary {
     pub finished_at: Option<String>,
     /// The id of the API key that created it; null when made without keys.
     pub key_id: Option<i64>,
+    /// The title of the problem of a failed job.
+    pub error_title: Option<String>,
+    /// Headline figures of a succeeded job's result: its numbers, short texts and flags at
+    /// the top level and one level down (`totals.cost`), at most 32.
+    pub summary: Option<serde_json::Value>,
     pub links: JobLinks,
 }
 
-impl From<Job> for JobSummary {
-    fn from(job: Job) -> Self {
-        JobSummary {
-            id: job.id,
-            kind: job.kind,
-            status: job.status,
-            progress: job.progress,
-            created_at: job.created_at,
-            started_at: job.started_at,
-            finished_at: job.finished_at,
-            key_id: job.key_id,
-            links: job.links,
-        }
-    }
+/// Most figures in a job's [`JobSummary::summary`].
+pub const MAX_HEADLINE_FIGURES: usize = 32;
+/// Longest text kept in a summary, characters.
+const MAX_HEADLINE_TEXT_CHARS: usize = 80;
+
+/// The headline figures of a result: the numbers, short texts and flags of its top level
+/// and of its objects one level down, keyed `name` and `object.name`, at most
+/// [`MAX_HEADLINE_FIGURES`] (the top level first).
+pub fn headline(result: &serde_json::Value) -> serde_json::Value {
+    use serde_json::{Map, Value};
+    let scalar = |v: &Value| match v {
+        Value::Number(_) | Value::Bool(_) => true,
+        Value::String(s) => s.chars().count() <= MAX_HEADLINE_TEXT_CHARS,
+        _ => false,
+    };
+    let mut figures = Map::new();
+    let Some(top) = result.as_object() else {
+        return Value::Object(figures);
+    };
+    let first = top.iter().filter(|(_, v)| scalar(v)).map(|(k, v)| (k.clone(), v.clone()));
+    let nested = top.iter().filter_map(|(k, v)| Some((k, v.as_object()?))).flat_map(|(k, inner)| {
+        inner.iter().filter(|(_, v)| scalar(v)).map(move |(name, v)| (format!("{k}.{name}"), v.clone()))
+    });
+    figures.extend(first.chain(nested).take(MAX_HEADLINE_FIGURES));
+    Value::Object(figures)
 }
 
 /// Which of a job's NC programs `GET /v1/jobs/{id}/program` serves.
@@ -173,5 +195,20 @@ impl ProgramPart {
             ProgramPart::Main => "main",
             ProgramPart::Baseline => "baseline",
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    #[test]
+    fn a_summary_keeps_the_short_figures_of_the_top_two_levels_and_no_lists() {
+        let result = json!({"chosen_tool_id": 7, "name": "x".repeat(81), "totals": {"cost": 12.5, "ok": true,
+            "layers": [1, 2]}, "candidates": [{"cost": 1}], "deep": {"a": {"b": 1}}});
+        assert_eq!(headline(&result), json!({"chosen_tool_id": 7, "totals.cost": 12.5, "totals.ok": true}));
+        let wide: serde_json::Map<String, serde_json::Value> = (0..50).map(|i| (format!("f{i}"), json!(i))).collect();
+        assert_eq!(headline(&serde_json::Value::Object(wide)).as_object().map(|m| m.len()), Some(MAX_HEADLINE_FIGURES));
     }
 }

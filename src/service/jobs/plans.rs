@@ -3,14 +3,14 @@
 //! a breakdown per layer and step, the tuning to about 90 % of one tool, and the comparison
 //! with the conventional ball-end baseline.
 
-use super::analysis::{resolve, PathJobRefs, Resolved};
 use super::conditions::NamedRef;
 use super::costing::machine_limits;
 use super::inputs::{read_contour, read_dxf, ContourInput};
 use super::output::OutputOptions;
+use super::plan_tools;
 use super::plans_result::PlanResult;
 use super::trochoids::DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM;
-use crate::core::conditions::{feed_mm_min, standard_centres, CuttingConditions};
+use crate::core::conditions::{standard_centres, CuttingConditions};
 use crate::core::drawing::process_scene::process_scene;
 use crate::core::drawing::scene::Scene;
 use crate::core::insertion::DEFAULT_INSERTION_ALPHA_LIMIT_DEG;
@@ -26,7 +26,6 @@ use crate::core::tool::{EndMill, ToolType};
 use crate::core::tool_life::ToolLifeModel;
 use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
-use crate::service::jobs::feeds::MAX_FEED_PER_STANDARD;
 use crate::service::lookup;
 use crate::service::resources::Source;
 use serde::{Deserialize, Serialize};
@@ -62,10 +61,15 @@ pub struct PlanRequest {
     pub z_top: Option<f64>,
     pub z_bottom: Option<f64>,
     pub layers: Option<Vec<LayerInput>>,
-    /// `square` (default) or `radius`: the flat end mills to choose from.
+    /// `square` (default) or `radius`: the flat end mills of `diameters_mm` and of the
+    /// default range.
     pub tool_type: Option<ToolType>,
-    /// The candidate diameters (default: every tool of the type from 6 to 16 mm).
+    /// Candidate diameters: the default tool of `tool_type` of each (default, when neither
+    /// this nor `tool_ids` is given: the default tool of every diameter from 6 to 16 mm).
     pub diameters_mm: Option<Vec<f64>>,
+    /// Candidate tools by id (flat end mills, square or radius), beside or instead of
+    /// `diameters_mm`; a tool both name is one candidate.
+    pub tool_ids: Option<Vec<i64>>,
     pub material_id: Option<i64>,
     /// Material name (default SKD61).
     pub material: Option<String>,
@@ -194,11 +198,6 @@ fn validate(r: &PlanRequest) -> Result<(), ApiError> {
     );
     if let Some(ds) = &r.diameters_mm {
         v.check(!ds.is_empty(), "diameters_mm", "needs at least one diameter");
-        v.check(
-            ds.len() <= MAX_PLAN_CANDIDATES,
-            "diameters_mm",
-            format!("at most {MAX_PLAN_CANDIDATES} candidate diameters, got {}", ds.len()),
-        );
         for (i, d) in ds.iter().enumerate() {
             v.positive(&format!("diameters_mm[{i}]"), *d);
             if let Some(k) = ds[..i].iter().position(|e| (e - d).abs() <= DIAMETER_TOLERANCE_MM) {
@@ -206,6 +205,20 @@ fn validate(r: &PlanRequest) -> Result<(), ApiError> {
             }
         }
     }
+    if let Some(ids) = &r.tool_ids {
+        v.check(!ids.is_empty(), "tool_ids", "needs at least one tool id");
+        for (i, id) in ids.iter().enumerate() {
+            if let Some(k) = ids[..i].iter().position(|e| e == id) {
+                v.check(false, &format!("tool_ids[{i}]"), format!("repeats tool_ids[{k}]"));
+            }
+        }
+    }
+    let named = r.diameters_mm.as_ref().map_or(0, Vec::len) + r.tool_ids.as_ref().map_or(0, Vec::len);
+    v.check(
+        named <= MAX_PLAN_CANDIDATES,
+        if r.tool_ids.is_some() { "tool_ids" } else { "diameters_mm" },
+        format!("at most {MAX_PLAN_CANDIDATES} candidates (diameters_mm and tool_ids together), got {named}"),
+    );
     if let Some(a) = r.alpha_limit_deg {
         v.within("alpha_limit_deg", a, 5.0, 179.0);
     }
@@ -252,101 +265,12 @@ fn read_cavity(r: &PlanRequest) -> Result<CavityInput, ApiError> {
     Ok(CavityInput::Depth { pocket, z_top_mm: r.z_top.unwrap_or(0.0), z_bottom_mm: r.z_bottom.unwrap_or(0.0) })
 }
 
-/// Resolves one candidate tool; `Err(reason)` when the database lacks what it needs.
-async fn resolve_candidate(
-    pool: &SqlitePool,
-    tool_id: i64,
-    material_id: i64,
-    machine_id: i64,
-    default_tool_price: f64,
-) -> Result<Result<(CandidatePrepared, super::analysis::AnalysisPrepared), String>, ApiError> {
-    let refs = PathJobRefs {
-        tool_id: Some(tool_id),
-        tool_type: None,
-        diameter_mm: None,
-        material_id: Some(material_id),
-        material: None,
-        machine_id: Some(machine_id),
-        spindle_rpm: None,
-    };
-    let Resolved { prepared: base, standard, machine_max_feed_mm_min, .. } = resolve(pool, &refs).await?;
-    let name = base.tool.name.clone();
-    let row = |op: Operation| async move { lookup::standard_conditions(pool, tool_id, material_id, op).await };
-    let (Some(standard), Some(model)) = (standard, base.force_model.as_ref()) else {
-        return Ok(Err(format!("{name}: no standard side-cutting conditions or force model")));
-    };
-    let (Some(rough), Some(inter), Some(groove)) = (
-        row(Operation::RoughSideCutting).await?,
-        row(Operation::IntermediateRoughSideCutting).await?,
-        row(Operation::TrochoidalGrooving).await?,
-    ) else {
-        return Ok(Err(format!(
-            "{name}: needs rough, intermediate-rough and trochoidal-grooving conditions in {}",
-            base.material.name
-        )));
-    };
-    let Some(life) = lookup::tool_life(pool, tool_id, material_id).await? else {
-        return Ok(Err(format!("{name}: no tool-life data in {}", base.material.name)));
-    };
-    let tool: EndMill = base.tool.geometry.into();
-    let s = standard.data;
-    let (t_um, arc_mm) = standard_centres(tool.radius_mm(), s.conditions())?;
-    let standard_force_n = model.model.force_n(t_um, arc_mm, model.model.ad_ref_mm);
-    let standard_feed = feed_mm_min(s.fz_mm, tool.flutes, s.spindle_rpm);
-    let price = sqlx::query_scalar::<_, Option<f64>>("SELECT price FROM tools WHERE id = ?")
-        .bind(tool_id)
-        .fetch_one(pool)
-        .await?;
-    let candidate = CandidatePrepared {
-        tool_id,
-        name,
-        tool,
-        roughing: rough.data.conditions(),
-        intermediate: inter.data.conditions(),
-        grooving: groove.data.conditions(),
-        force_model: model.model,
-        standard_force_n,
-        life_m: life.data.life_m,
-        gamma_table: life.data.gamma_table.iter().map(|g| (g.0, g.1)).collect(),
-        force_exponent: life.data.force_exponent,
-        standard_arc_length_mm: arc_mm,
-        standard_fz_mm: s.fz_mm,
-        min_feed_mm_min: feed_mm_min(s.fz_min_mm, tool.flutes, s.spindle_rpm),
-        max_feed_mm_min: (MAX_FEED_PER_STANDARD * standard_feed).min(machine_max_feed_mm_min),
-        tool_price: price.unwrap_or(default_tool_price),
-    };
-    Ok(Ok((candidate, base)))
-}
-
 /// Checks the request and resolves the candidates, the baseline, the machine and the rates.
 pub async fn prepare(pool: &SqlitePool, request: PlanRequest) -> Result<PlanPrepared, ApiError> {
     validate(&request)?;
     let material = lookup::material(pool, request.material_id, request.material.as_deref()).await?;
     let tool_type = request.tool_type.unwrap_or(ToolType::Square);
-    let tools: Vec<(i64, f64)> = match &request.diameters_mm {
-        Some(ds) => {
-            let mut ids = Vec::new();
-            for (i, d) in ds.iter().enumerate() {
-                let t = lookup::tool(pool, None, Some(tool_type), Some(*d)).await.map_err(|e| match e {
-                    ApiError::Validation(_) => ApiError::field(
-                        format!("diameters_mm[{i}]"),
-                        format!("no single {} end mill of {d} mm in the database", tool_type.as_str()),
-                    ),
-                    other => other,
-                })?;
-                ids.push((t.id, *d));
-            }
-            ids
-        }
-        None => sqlx::query_as::<_, (i64, f64)>(
-            "SELECT id, diameter_mm FROM tools WHERE tool_type = ? AND diameter_mm BETWEEN ? AND ? ORDER BY diameter_mm, id",
-        )
-        .bind(tool_type.as_str())
-        .bind(CANDIDATE_DIAMETER_RANGE_MM.0)
-        .bind(CANDIDATE_DIAMETER_RANGE_MM.1)
-        .fetch_all(pool)
-        .await?,
-    };
+    let picks = plan_tools::pick(pool, &request, tool_type).await?;
     let machine_id = match request.machine_id {
         Some(id) => id,
         None => sqlx::query_scalar::<_, i64>("SELECT id FROM machines ORDER BY id LIMIT 1")
@@ -356,18 +280,20 @@ pub async fn prepare(pool: &SqlitePool, request: PlanRequest) -> Result<PlanPrep
     };
     let rates = lookup::cost_rates(pool, request.cost_rates_id).await?;
     let (mut candidates, mut skipped, mut writer_base) = (Vec::new(), Vec::new(), None);
-    for (i, (id, _)) in tools.iter().enumerate() {
-        match resolve_candidate(pool, *id, material.id, machine_id, rates.data.default_tool_price).await? {
+    let mut faults = Validator::new();
+    for pick in &picks {
+        match plan_tools::resolve(pool, pick.tool_id, material.id, machine_id, rates.data.default_tool_price).await? {
             Ok((c, base)) => {
                 writer_base.get_or_insert(base);
                 candidates.push(c);
             }
-            Err(reason) if request.diameters_mm.is_some() => {
-                return Err(ApiError::field(format!("diameters_mm[{i}]"), reason))
-            }
-            Err(reason) => skipped.push(reason),
+            Err(reason) => match &pick.field {
+                Some(field) => faults.fail(field.clone(), reason),
+                None => skipped.push(reason),
+            },
         }
     }
+    faults.finish()?;
     let Some(writer_base) = writer_base else {
         return Err(ApiError::field(
             "diameters_mm",
@@ -416,7 +342,7 @@ async fn resolve_baseline(
     let missing = |what: &str| ApiError::field("baseline", format!("{what}: give baseline: false to plan without it"));
     let ball = lookup::tool(pool, None, Some(ToolType::Ball), Some(BASELINE_BALL_DIAMETER_MM))
         .await
-        .map_err(|_| missing("no single R5 ball end mill in the database"))?;
+        .map_err(|_| missing("no default R5 ball end mill in the database"))?;
     let row = lookup::standard_conditions(pool, ball.id, material_id, Operation::ConventionalBallRoughing)
         .await?
         .ok_or_else(|| {

@@ -223,7 +223,7 @@ async fn worker_loop(inner: Arc<Inner>, n: usize, interactive_only: bool) {
     tracing::debug!(worker = n, "worker stopped");
 }
 
-async fn run_one(inner: &Arc<Inner>, row: store::JobRow) {
+async fn run_one(inner: &Arc<Inner>, row: store::Claimed) {
     let id = row.id.clone();
     let outcome = execute(inner, &row).await;
     if let Err(e) = outcome {
@@ -256,7 +256,17 @@ fn timed_out(limit: Duration, progress: f64) -> crate::service::error::Problem {
     ApiError::Status { status: axum::http::StatusCode::PAYLOAD_TOO_LARGE, detail }.problem()
 }
 
-async fn execute(inner: &Arc<Inner>, row: &store::JobRow) -> Result<(), sqlx::Error> {
+/// A job's output, serialized on the blocking thread that computed it: the result as
+/// JSON text with its headline figures, the programs and the scene.
+struct Serialized {
+    result: String,
+    summary: String,
+    program: Option<String>,
+    baseline: Option<String>,
+    scene: Option<String>,
+}
+
+async fn execute(inner: &Arc<Inner>, row: &store::Claimed) -> Result<(), sqlx::Error> {
     let pool = &inner.pool;
     let id = row.id.as_str();
     if row.attempts > MAX_ATTEMPTS {
@@ -280,9 +290,18 @@ async fn execute(inner: &Arc<Inner>, row: &store::JobRow) -> Result<(), sqlx::Er
     let control = Arc::new(JobControl::new(row.cancel_requested, inner.shutdown.clone(), inner.time_limit));
     inner.running.lock().unwrap_or_else(|p| p.into_inner()).insert(id.to_string(), control.clone());
 
-    let (input, prepared) = (row.input.clone(), row.prepared.clone());
+    let Some((input, prepared)) = store::work(pool, id).await? else {
+        let problem = ApiError::Internal(format!("job {id} has no stored input")).problem();
+        return store::fail(pool, id, &problem).await;
+    };
     let worker_control = control.clone();
-    let mut task = tokio::task::spawn_blocking(move || kinds::run(kind, &input, &prepared, worker_control.as_ref()));
+    let mut task = tokio::task::spawn_blocking(move || {
+        let kinds::JobOutput { result: value, program, baseline_program: baseline, scene } =
+            kinds::run(kind, &input, &prepared, worker_control.as_ref())?;
+        let result = serde_json::to_string(&value).unwrap_or_default();
+        let summary = super::model::headline(&value).to_string();
+        Ok::<_, CoreError>(Serialized { result, summary, program, baseline, scene })
+    });
     let mut tick = tokio::time::interval(PROGRESS_FLUSH);
     let mut last = 0.0;
     let joined = loop {
@@ -299,21 +318,24 @@ async fn execute(inner: &Arc<Inner>, row: &store::JobRow) -> Result<(), sqlx::Er
     };
 
     match joined {
-        Ok(Ok(output)) => {
-            let text = serde_json::to_string(&output.result).unwrap_or_default();
-            let (program, scene) = (output.program.as_deref(), output.scene.as_deref());
-            let parts: Vec<(ProgramPart, &str)> =
-                output.baseline_program.as_deref().map(|p| (ProgramPart::Baseline, p)).into_iter().collect();
+        Ok(Ok(done)) => {
+            let Serialized { result, summary, .. } = &done;
+            let (program, baseline, scene) = (done.program.as_deref(), done.baseline.as_deref(), done.scene.as_deref());
             let sizes = [
-                ("result", text.len()),
+                ("result", result.len()),
                 ("program", program.map_or(0, str::len)),
-                ("baseline program", output.baseline_program.as_deref().map_or(0, str::len)),
+                ("baseline program", baseline.map_or(0, str::len)),
                 ("scene", scene.map_or(0, str::len)),
             ];
             if let Some(problem) = oversized(&sizes) {
                 return store::fail(pool, id, &problem).await;
             }
-            match store::succeed(pool, id, &text, program, &parts, scene).await {
+            let programs = [(ProgramPart::Main, program), (ProgramPart::Baseline, baseline)]
+                .into_iter()
+                .filter_map(|(part, text)| Some((part, text?)))
+                .collect();
+            let outcome = store::Outcome { result, summary: Some(summary), programs, scene };
+            match store::succeed(pool, id, &outcome).await {
                 Ok(()) => Ok(()),
                 Err(e) => {
                     // The job must not stay `running` with its outcome lost.

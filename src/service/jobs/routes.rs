@@ -77,14 +77,20 @@ async fn submit(
     let wait = preferred_wait(headers).map(|n| n.min(state.config.effective_max_wait_s()));
     if let Some(seconds) = wait {
         let deadline = tokio::time::Instant::now() + Duration::from_secs(seconds);
+        // The job is read again only when it is the one announced as finished, or when
+        // announcements were missed: with many clients waiting, every finished job would
+        // otherwise cost each of them a read.
+        let mut look = true;
         loop {
-            let row = store::get(&state.pool, &id).await?;
-            if row.status()?.is_terminal() {
-                let mut response = (StatusCode::CREATED, axum::Json(row.to_job()?)).into_response();
-                let h = response.headers_mut();
-                h.insert(header::LOCATION, header_value(&location));
-                h.insert("preference-applied", header_value(&format!("wait={seconds}")));
-                return Ok(response);
+            if look {
+                let row = store::get(&state.pool, &id).await?;
+                if row.status()?.is_terminal() {
+                    let mut response = job_response(&state.pool, StatusCode::CREATED, &row).await?;
+                    let h = response.headers_mut();
+                    h.insert(header::LOCATION, header_value(&location));
+                    h.insert("preference-applied", header_value(&format!("wait={seconds}")));
+                    return Ok(response);
+                }
             }
             if *stopping.borrow_and_update() {
                 break;
@@ -92,20 +98,46 @@ async fn submit(
             tokio::select! {
                 received = tokio::time::timeout_at(deadline, finished.recv()) => match received {
                     Err(_) => break,
-                    Ok(Ok(_)) | Ok(Err(tokio::sync::broadcast::error::RecvError::Lagged(_))) => continue,
+                    Ok(Ok(done)) => look = done == id,
+                    Ok(Err(tokio::sync::broadcast::error::RecvError::Lagged(_))) => look = true,
                     Ok(Err(tokio::sync::broadcast::error::RecvError::Closed)) => break,
                 },
                 _ = stopping.changed() => break,
             }
         }
     }
-    let job = store::get(&state.pool, &id).await?.to_job()?;
-    let mut response = (StatusCode::ACCEPTED, axum::Json(job)).into_response();
+    let row = store::get(&state.pool, &id).await?;
+    let mut response = job_response(&state.pool, StatusCode::ACCEPTED, &row).await?;
     let h = response.headers_mut();
     h.insert(header::LOCATION, header_value(&location));
     h.insert(header::RETRY_AFTER, HeaderValue::from_static(RETRY_AFTER_S));
     Ok(response)
 }
+
+/// A job as JSON with `status`: its row, and its result spliced in as stored, never parsed
+/// (a result may be tens of megabytes).
+async fn job_response(pool: &sqlx::SqlitePool, status: StatusCode, row: &store::JobRow) -> Result<Response, ApiError> {
+    let job = row.to_job()?;
+    let mut body = serde_json::to_vec(&job).map_err(|e| ApiError::Internal(format!("serializing a job: {e}")))?;
+    let result = match row.status()? {
+        JobStatus::Succeeded => store::result(pool, &row.id).await?,
+        _ => None,
+    };
+    if let Some(result) = result {
+        // `job` serializes as an object without `result`: close it with the stored one.
+        body.pop();
+        body.reserve(result.len() + RESULT_KEY.len() + 1);
+        body.extend_from_slice(RESULT_KEY.as_bytes());
+        body.extend_from_slice(result.as_bytes());
+        body.push(b'}');
+    }
+    Ok((status, [(header::CONTENT_TYPE, HeaderValue::from_static(JSON))], body).into_response())
+}
+
+/// The key that [`job_response`] appends the stored result under.
+const RESULT_KEY: &str = ",\"result\":";
+/// The content type of JSON answers.
+const JSON: &str = "application/json";
 
 fn header_value(text: &str) -> HeaderValue {
     HeaderValue::from_str(text).unwrap_or_else(|_| HeaderValue::from_static(""))
@@ -237,7 +269,8 @@ pub async fn create_costing(
     submit(&state, &caller, JobKind::Costing, input, "", &headers).await
 }
 
-/// Reads a job: status, progress, timestamps, result or error.
+/// Reads a job: status, progress, timestamps, result or error (the input is at
+/// `links.input`).
 #[utoipa::path(get, path = "/v1/jobs/{id}", tag = "jobs", operation_id = "getJob",
     params(("id" = String, Path, description = "Job id")),
     responses(
@@ -247,8 +280,27 @@ pub async fn get_job(
     State(state): State<AppState>,
     caller: Caller,
     ApiPath(id): ApiPath<String>,
-) -> Result<axum::Json<Job>, ApiError> {
-    Ok(axum::Json(store::get_visible(&state.pool, &caller, &id).await?.to_job()?))
+) -> Result<Response, ApiError> {
+    let row = store::get_visible(&state.pool, &caller, &id).await?;
+    job_response(&state.pool, StatusCode::OK, &row).await
+}
+
+/// A job's input as submitted (JSON), as stored.
+#[utoipa::path(get, path = "/v1/jobs/{id}/input", tag = "jobs", operation_id = "getJobInput",
+    params(("id" = String, Path, description = "Job id")),
+    responses(
+        (status = 200, description = "The input as submitted", body = JobInput),
+        (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json")))]
+pub async fn get_input(
+    State(state): State<AppState>,
+    caller: Caller,
+    ApiPath(id): ApiPath<String>,
+) -> Result<Response, ApiError> {
+    let row = store::get_visible(&state.pool, &caller, &id).await?;
+    let input = store::input(&state.pool, &row.id)
+        .await?
+        .ok_or_else(|| ApiError::Internal(format!("job {id} has no stored input")))?;
+    Ok(([(header::CONTENT_TYPE, HeaderValue::from_static(JSON))], input).into_response())
 }
 
 /// Filters of `GET /v1/jobs`.
@@ -283,7 +335,7 @@ pub async fn list_jobs(
     }
     let (rows, total) =
         store::list(&state.pool, filter.status, filter.kind, caller.own_jobs_only(), limit, offset).await?;
-    let items = rows.iter().map(|r| r.to_job().map(JobSummary::from)).collect::<Result<Vec<_>, _>>()?;
+    let items = rows.iter().map(store::JobRow::to_summary).collect::<Result<Vec<_>, _>>()?;
     Ok(axum::Json(Page { items, total, limit, offset }))
 }
 
@@ -335,8 +387,7 @@ pub async fn cancel_job(
     } else {
         return Err(ApiError::Conflict(format!("job {id} has already finished ({})", row.status)));
     };
-    let job = store::get(&state.pool, &id).await?.to_job()?;
-    Ok((status, axum::Json(job)).into_response())
+    job_response(&state.pool, status, &store::get(&state.pool, &id).await?).await
 }
 
 /// Query of `GET /v1/jobs/{id}/program`.
@@ -369,10 +420,7 @@ pub async fn get_program(
 ) -> Result<Response, ApiError> {
     let row = store::get_visible(&state.pool, &caller, &id).await?;
     let part = query.part.unwrap_or_default();
-    let program = match part {
-        ProgramPart::Main => row.program.clone(),
-        ProgramPart::Baseline => store::program_part(&state.pool, &id, part).await?,
-    };
+    let program = store::program_part(&state.pool, &row.id, part).await?;
     match (row.status()?, program) {
         (_, Some(program)) => Ok(([(header::CONTENT_TYPE, "text/plain; charset=utf-8")], program).into_response()),
         (JobStatus::Queued | JobStatus::Running, None) if makes(row.kind()?, part) => {
@@ -458,6 +506,7 @@ pub fn router() -> OpenApiRouter<AppState> {
         .routes(routes!(create_job, list_jobs))
         .routes(routes!(get_job, cancel_job))
         .routes(routes!(get_program))
+        .routes(routes!(get_input))
         .routes(routes!(create_conditions))
         .routes(routes!(create_analysis))
         .routes(routes!(create_feeds))

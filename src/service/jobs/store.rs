@@ -1,23 +1,29 @@
-//! The `jobs` table.
+//! The `jobs` table and its blobs. A job's row holds what lists and polls show (status,
+//! progress, times, sizes, a few headline figures); its input, prepared form and result are
+//! in `job_blobs`, its NC programs in `job_programs` and its drawing in `job_scenes`, read
+//! only by the routes that serve them, as stored.
 
 use super::lane::Lane;
-use super::model::{Job, JobKind, JobLinks, JobStatus, ProgramPart};
+use super::model::{Job, JobKind, JobLinks, JobStatus, JobSummary, ProgramPart};
 use crate::service::auth::Caller;
 use crate::service::error::{excerpt, ApiError, Problem};
 use sqlx::SqlitePool;
 
-/// A row of `jobs`.
+/// The columns of a [`JobRow`]: the row's own, and whether the job left a main program.
+const ROW_COLUMNS: &str = "id, kind, status, progress, error, error_title, attempts, cancel_requested, created_at,
+    started_at, finished_at, updated_at, key_id, lane, input_bytes, result_bytes, summary,
+    EXISTS (SELECT 1 FROM job_programs p WHERE p.job_id = jobs.id AND p.part = 'main') AS has_program";
+
+/// A row of `jobs`: everything about a job but its blobs.
 #[derive(Debug, Clone, sqlx::FromRow)]
 pub struct JobRow {
     pub id: String,
     pub kind: String,
     pub status: String,
     pub progress: f64,
-    pub input: String,
-    pub prepared: String,
-    pub result: Option<String>,
+    /// The problem of a failed job (JSON).
     pub error: Option<String>,
-    pub program: Option<String>,
+    pub error_title: Option<String>,
     pub attempts: i64,
     pub cancel_requested: bool,
     pub created_at: String,
@@ -28,6 +34,12 @@ pub struct JobRow {
     pub key_id: Option<i64>,
     /// The queue lane it waits in (`interactive` or `batch`).
     pub lane: String,
+    pub input_bytes: i64,
+    pub result_bytes: Option<i64>,
+    /// Headline figures of the result (a small JSON object).
+    pub summary: Option<String>,
+    /// The job left a main NC program.
+    pub has_program: bool,
 }
 
 impl JobRow {
@@ -41,25 +53,32 @@ impl JobRow {
             .ok_or_else(|| ApiError::Internal(format!("job {} has unknown status {}", self.id, self.status)))
     }
 
-    /// The job as the API shows it.
+    /// A small JSON column of the row (`what`), read.
+    fn stored<T: serde::de::DeserializeOwned>(&self, what: &str, text: Option<&str>) -> Result<Option<T>, ApiError> {
+        text.map(serde_json::from_str)
+            .transpose()
+            .map_err(|e| ApiError::Internal(format!("job {}: stored {what} unreadable: {e}", self.id)))
+    }
+
+    fn links(&self) -> Result<JobLinks, ApiError> {
+        let drawn = self.status()? == JobStatus::Succeeded && super::drawings::draws(self.kind()?);
+        Ok(JobLinks {
+            this: format!("/v1/jobs/{}", self.id),
+            input: format!("/v1/jobs/{}/input", self.id),
+            program: self.has_program.then(|| format!("/v1/jobs/{}/program", self.id)),
+            views: drawn.then(|| format!("/v1/jobs/{}/views", self.id)),
+            drawing: drawn.then(|| format!("/v1/jobs/{}/drawing.svg", self.id)),
+        })
+    }
+
+    /// The job as the API shows it, without its result (which the routes serve as stored:
+    /// [`super::routes`]).
     pub fn to_job(&self) -> Result<Job, ApiError> {
-        let parse = |text: &str| -> Result<serde_json::Value, ApiError> {
-            serde_json::from_str(text)
-                .map_err(|e| ApiError::Internal(format!("job {}: stored JSON unreadable: {e}", self.id)))
-        };
-        let error = match &self.error {
-            Some(text) => Some(
-                serde_json::from_str::<Problem>(text)
-                    .map_err(|e| ApiError::Internal(format!("job {}: stored error unreadable: {e}", self.id)))?,
-            ),
-            None => None,
-        };
-        let status = self.status()?;
-        let drawn = status == JobStatus::Succeeded && super::drawings::draws(self.kind()?);
+        let error: Option<Problem> = self.stored("error", self.error.as_deref())?;
         Ok(Job {
             id: self.id.clone(),
             kind: self.kind()?,
-            status,
+            status: self.status()?,
             progress: self.progress,
             attempts: self.attempts,
             cancel_requested: self.cancel_requested,
@@ -68,15 +87,29 @@ impl JobRow {
             finished_at: self.finished_at.clone(),
             updated_at: self.updated_at.clone(),
             key_id: self.key_id,
-            input: parse(&self.input)?,
-            result: self.result.as_deref().map(parse).transpose()?,
+            input_bytes: self.input_bytes,
+            result_bytes: self.result_bytes,
+            result: None,
             error,
-            links: JobLinks {
-                this: format!("/v1/jobs/{}", self.id),
-                program: self.program.as_ref().map(|_| format!("/v1/jobs/{}/program", self.id)),
-                views: drawn.then(|| format!("/v1/jobs/{}/views", self.id)),
-                drawing: drawn.then(|| format!("/v1/jobs/{}/drawing.svg", self.id)),
-            },
+            links: self.links()?,
+        })
+    }
+
+    /// The job as lists show it.
+    pub fn to_summary(&self) -> Result<JobSummary, ApiError> {
+        let summary = self.stored("summary", self.summary.as_deref())?;
+        Ok(JobSummary {
+            id: self.id.clone(),
+            kind: self.kind()?,
+            status: self.status()?,
+            progress: self.progress,
+            created_at: self.created_at.clone(),
+            started_at: self.started_at.clone(),
+            finished_at: self.finished_at.clone(),
+            key_id: self.key_id,
+            error_title: self.error_title.clone(),
+            summary,
+            links: self.links()?,
         })
     }
 }
@@ -91,25 +124,32 @@ pub struct NewJob<'a> {
     pub lane: Lane,
 }
 
-/// Inserts a queued job.
+/// Inserts a queued job with its input and prepared form, in one transaction.
 pub async fn insert(pool: &SqlitePool, job: NewJob<'_>) -> Result<(), ApiError> {
-    sqlx::query(
-        "INSERT INTO jobs (id, kind, status, input, prepared, key_id, lane) VALUES (?, ?, 'queued', ?, ?, ?, ?)",
-    )
-    .bind(job.id)
-    .bind(job.kind.as_str())
-    .bind(job.input)
-    .bind(job.prepared)
-    .bind(job.key_id)
-    .bind(job.lane.as_str())
-    .execute(pool)
-    .await?;
+    let mut tx = pool.begin_with("BEGIN IMMEDIATE").await?;
+    sqlx::query("INSERT INTO jobs (id, kind, status, key_id, lane, input_bytes) VALUES (?, ?, 'queued', ?, ?, ?)")
+        .bind(job.id)
+        .bind(job.kind.as_str())
+        .bind(job.key_id)
+        .bind(job.lane.as_str())
+        .bind(i64::try_from(job.input.len()).unwrap_or(i64::MAX))
+        .execute(&mut *tx)
+        .await?;
+    for (part, body) in [("input", job.input), ("prepared", job.prepared)] {
+        sqlx::query("INSERT INTO job_blobs (job_id, part, body) VALUES (?, ?, ?)")
+            .bind(job.id)
+            .bind(part)
+            .bind(body)
+            .execute(&mut *tx)
+            .await?;
+    }
+    tx.commit().await?;
     Ok(())
 }
 
-/// Reads one job, or 404.
+/// Reads one job's row, or 404.
 pub async fn get(pool: &SqlitePool, id: &str) -> Result<JobRow, ApiError> {
-    sqlx::query_as::<_, JobRow>("SELECT * FROM jobs WHERE id = ?")
+    sqlx::query_as::<_, JobRow>(sqlx::AssertSqlSafe(format!("SELECT {ROW_COLUMNS} FROM jobs WHERE id = ?")))
         .bind(id)
         .fetch_optional(pool)
         .await?
@@ -125,6 +165,30 @@ pub async fn get_visible(pool: &SqlitePool, caller: &Caller, id: &str) -> Result
     } else {
         Err(ApiError::not_found(format!("no job with id {}", excerpt(id))))
     }
+}
+
+/// A blob of a job (`input`, `prepared` or `result`) as stored, if it has one.
+async fn blob(pool: &SqlitePool, id: &str, part: &str) -> Result<Option<String>, sqlx::Error> {
+    sqlx::query_scalar("SELECT body FROM job_blobs WHERE job_id = ? AND part = ?")
+        .bind(id)
+        .bind(part)
+        .fetch_optional(pool)
+        .await
+}
+
+/// The input of a job as submitted (JSON text).
+pub async fn input(pool: &SqlitePool, id: &str) -> Result<Option<String>, ApiError> {
+    Ok(blob(pool, id, "input").await?)
+}
+
+/// The result of a succeeded job (JSON text).
+pub async fn result(pool: &SqlitePool, id: &str) -> Result<Option<String>, ApiError> {
+    Ok(blob(pool, id, "result").await?)
+}
+
+/// What a worker runs a job from: its input as submitted and its prepared form.
+pub async fn work(pool: &SqlitePool, id: &str) -> Result<Option<(String, String)>, sqlx::Error> {
+    Ok(blob(pool, id, "input").await?.zip(blob(pool, id, "prepared").await?))
 }
 
 /// Lists jobs, newest first.
@@ -146,27 +210,40 @@ pub async fn list(
     .bind(owner)
     .fetch_one(pool)
     .await?;
-    let rows = sqlx::query_as::<_, JobRow>(
-        "SELECT * FROM jobs WHERE (?1 IS NULL OR status = ?1) AND (?2 IS NULL OR kind = ?2) AND (?5 IS NULL OR key_id = ?5)
-         ORDER BY created_at DESC, rowid DESC LIMIT ?3 OFFSET ?4",
-    )
-    .bind(status)
-    .bind(kind)
-    .bind(limit)
-    .bind(offset)
-    .bind(owner)
-    .fetch_all(pool)
-    .await?;
+    let sql = format!(
+        "SELECT {ROW_COLUMNS} FROM jobs WHERE (?1 IS NULL OR status = ?1) AND (?2 IS NULL OR kind = ?2) AND (?5 IS NULL OR key_id = ?5)
+         ORDER BY created_at DESC, rowid DESC LIMIT ?3 OFFSET ?4"
+    );
+    let rows = sqlx::query_as::<_, JobRow>(sqlx::AssertSqlSafe(sql))
+        .bind(status)
+        .bind(kind)
+        .bind(limit)
+        .bind(offset)
+        .bind(owner)
+        .fetch_all(pool)
+        .await?;
     Ok((rows, total))
 }
 
+/// A job a worker has claimed: what it needs to know before it reads the job's blobs.
+#[derive(Debug, Clone, sqlx::FromRow)]
+pub struct Claimed {
+    pub id: String,
+    pub kind: String,
+    /// Times a worker has started it, this time included.
+    pub attempts: i64,
+    /// A cancellation asked for before an interruption.
+    pub cancel_requested: bool,
+}
+
 /// Takes the oldest queued job of the interactive lane, else (unless `interactive_only`)
-/// the oldest of the batch lane, and marks it running.
-pub async fn claim_next(pool: &SqlitePool, interactive_only: bool) -> Result<Option<JobRow>, sqlx::Error> {
-    sqlx::query_as::<_, JobRow>("UPDATE jobs SET status = 'running', started_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), attempts = attempts + 1, progress = 0
+/// the oldest of the batch lane, and marks it running; returns its id, kind and counters,
+/// never its blobs.
+pub async fn claim_next(pool: &SqlitePool, interactive_only: bool) -> Result<Option<Claimed>, sqlx::Error> {
+    sqlx::query_as::<_, Claimed>("UPDATE jobs SET status = 'running', started_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), attempts = attempts + 1, progress = 0
          WHERE id = (SELECT id FROM jobs WHERE status = 'queued' AND (lane = 'interactive' OR NOT ?1)
                      ORDER BY lane = 'batch', created_at, rowid LIMIT 1) AND status = 'queued'
-         RETURNING *")
+         RETURNING id, kind, attempts, cancel_requested")
     .bind(interactive_only)
     .fetch_optional(pool)
     .await
@@ -195,25 +272,31 @@ pub async fn set_progress(pool: &SqlitePool, id: &str, progress: f64) -> Result<
     Ok(())
 }
 
-/// Marks a running job succeeded with its result (and NC program, its other programs and
-/// drawing scene, if any), in one transaction.
-pub async fn succeed(
-    pool: &SqlitePool,
-    id: &str,
-    result: &str,
-    program: Option<&str>,
-    parts: &[(ProgramPart, &str)],
-    scene: Option<&str>,
-) -> Result<(), sqlx::Error> {
+/// What a succeeded job leaves: its result (JSON text) and headline figures, its NC
+/// programs and its drawing scene.
+pub struct Outcome<'a> {
+    pub result: &'a str,
+    pub summary: Option<&'a str>,
+    pub programs: Vec<(ProgramPart, &'a str)>,
+    pub scene: Option<&'a str>,
+}
+
+/// Marks a running job succeeded with its outcome, in one transaction.
+pub async fn succeed(pool: &SqlitePool, id: &str, outcome: &Outcome<'_>) -> Result<(), sqlx::Error> {
     let mut tx = pool.begin_with("BEGIN IMMEDIATE").await?;
-    sqlx::query("UPDATE jobs SET status = 'succeeded', progress = 1, result = ?, program = ?, finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now')
+    sqlx::query("UPDATE jobs SET status = 'succeeded', progress = 1, result_bytes = ?, summary = ?, finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now')
          WHERE id = ?")
-    .bind(result)
-    .bind(program)
+    .bind(i64::try_from(outcome.result.len()).unwrap_or(i64::MAX))
+    .bind(outcome.summary)
     .bind(id)
     .execute(&mut *tx)
     .await?;
-    for (part, text) in parts {
+    sqlx::query("INSERT OR REPLACE INTO job_blobs (job_id, part, body) VALUES (?, 'result', ?)")
+        .bind(id)
+        .bind(outcome.result)
+        .execute(&mut *tx)
+        .await?;
+    for (part, text) in &outcome.programs {
         sqlx::query("INSERT OR REPLACE INTO job_programs (job_id, part, program) VALUES (?, ?, ?)")
             .bind(id)
             .bind(part.as_str())
@@ -221,7 +304,7 @@ pub async fn succeed(
             .execute(&mut *tx)
             .await?;
     }
-    if let Some(scene) = scene {
+    if let Some(scene) = outcome.scene {
         sqlx::query("INSERT OR REPLACE INTO job_scenes (job_id, scene) VALUES (?, ?)")
             .bind(id)
             .bind(scene)
@@ -231,7 +314,7 @@ pub async fn succeed(
     tx.commit().await
 }
 
-/// A program of a job other than its main one (`job_programs`), if it left one.
+/// A program of a job (`job_programs`), if it left one.
 pub async fn program_part(pool: &SqlitePool, id: &str, part: ProgramPart) -> Result<Option<String>, ApiError> {
     Ok(sqlx::query_scalar("SELECT program FROM job_programs WHERE job_id = ? AND part = ?")
         .bind(id)
@@ -248,8 +331,9 @@ pub async fn scene(pool: &SqlitePool, id: &str) -> Result<Option<String>, ApiErr
 /// Marks a job failed with a problem document.
 pub async fn fail(pool: &SqlitePool, id: &str, problem: &Problem) -> Result<(), sqlx::Error> {
     let text = serde_json::to_string(problem).unwrap_or_default();
-    sqlx::query("UPDATE jobs SET status = 'failed', error = ?, finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ?")
+    sqlx::query("UPDATE jobs SET status = 'failed', error = ?, error_title = ?, finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ?")
     .bind(text)
+    .bind(&problem.title)
     .bind(id)
     .execute(pool)
     .await?;
@@ -295,7 +379,8 @@ pub async fn request_cancel(pool: &SqlitePool, id: &str) -> Result<bool, sqlx::E
     Ok(done.rows_affected() == 1)
 }
 
-/// Removes a finished job with its result, program and scene; `false` when the job is
+/// Removes a finished job with its blobs, programs and scene (the foreign keys cascade);
+/// `false` when the job is
 /// still queued or running (cancel it first).
 pub async fn purge(pool: &SqlitePool, id: &str) -> Result<bool, sqlx::Error> {
     let done = sqlx::query("DELETE FROM jobs WHERE id = ? AND status IN ('succeeded', 'failed', 'cancelled')")

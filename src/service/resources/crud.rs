@@ -119,6 +119,7 @@ pub async fn create<R: Record>(pool: &SqlitePool, data: R::Data) -> Result<R, Ap
     let values = data.values();
     let row: SqliteRow = bind_values!(sqlx::query(AssertSqlSafe(sql)), &values).fetch_one(&mut *tx).await?;
     let id: i64 = sqlx::Row::try_get(&row, "id")?;
+    R::Data::after_write(&mut tx, id, None, &data).await?;
     let record = fetch::<R>(&mut tx, id).await?;
     tx.commit().await?;
     Ok(record)
@@ -135,23 +136,39 @@ pub async fn replace<R: Record>(
     let mut tx = pool.begin_with(WRITE_TRANSACTION).await?;
     let current = fetch::<R>(&mut tx, id).await?;
     etag::check(if_match, &current)?;
-    let record = write::<R>(&mut tx, id, data).await?;
+    let record = write::<R>(&mut tx, id, current.data(), data, Edit::Data).await?;
     tx.commit().await?;
     Ok(record)
 }
 
-/// Writes a row's data inside the caller's write transaction and reads it back.
-async fn write<R: Record>(conn: &mut SqliteConnection, id: i64, data: R::Data) -> Result<R, ApiError> {
+/// Whether a write changes the row's data, or only its flags ([`Resource::FLAGS`]).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Edit {
+    Data,
+    FlagsOnly,
+}
+
+/// Writes a row's data inside the caller's write transaction and reads it back; a write of
+/// its data marks it edited, so later migrations leave it alone.
+async fn write<R: Record>(
+    conn: &mut SqliteConnection,
+    id: i64,
+    before: &R::Data,
+    data: R::Data,
+    edit: Edit,
+) -> Result<R, ApiError> {
     check(conn, &data).await?;
     let sets: Vec<String> = R::Data::COLUMNS.iter().map(|c| format!("{c} = ?")).collect();
+    let edited = if edit == Edit::Data { "edited = 1, " } else { "" };
     let sql = format!(
-        "UPDATE {} SET {}, edited = 1, updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ?",
+        "UPDATE {} SET {}, {edited}updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ?",
         R::Data::TABLE,
         sets.join(", ")
     );
     let mut values = data.values();
     values.push(SqlValue::Int(id));
     bind_values!(sqlx::query(AssertSqlSafe(sql)), &values).execute(&mut *conn).await?;
+    R::Data::after_write(conn, id, Some(before), &data).await?;
     fetch::<R>(conn, id).await
 }
 
@@ -167,14 +184,26 @@ pub async fn patch<R: Record>(pool: &SqlitePool, id: i64, patch: Value, if_match
     let current = fetch::<R>(&mut tx, id).await?;
     etag::check(if_match, &current)?;
     let mut merged = serde_json::to_value(current.data()).map_err(|e| ApiError::Internal(e.to_string()))?;
-    if patch.get("source").is_none() {
+    let named = |key: &str| patch.get(key).is_some();
+    let edit = match patch.as_object() {
+        Some(fields) if !fields.is_empty() && fields.keys().all(|k| R::Data::FLAGS.contains(&k.as_str())) => {
+            Edit::FlagsOnly
+        }
+        _ => Edit::Data,
+    };
+    if !named("source") && edit == Edit::Data {
         merged["source"] = Value::from("user");
+    }
+    for flag in R::Data::FLAGS.iter().filter(|f| !named(f)) {
+        if let Some(fields) = merged.as_object_mut() {
+            fields.remove(*flag);
+        }
     }
     let removed: Vec<String> =
         patch.as_object().into_iter().flatten().filter(|(_, v)| v.is_null()).map(|(k, _)| k.clone()).collect();
     merge(&mut merged, patch);
     let data: R::Data = from_value(merged).map_err(|e| required_not_removable(e, &removed))?;
-    let record = write::<R>(&mut tx, id, data).await?;
+    let record = write::<R>(&mut tx, id, current.data(), data, edit).await?;
     tx.commit().await?;
     Ok(record)
 }
@@ -245,6 +274,7 @@ pub async fn delete<R: Record>(pool: &SqlitePool, id: i64, if_match: Option<&str
         .bind(id)
         .execute(&mut *tx)
         .await?;
+    R::Data::after_delete(&mut tx, id, current.data()).await?;
     tx.commit().await?;
     Ok(())
 }

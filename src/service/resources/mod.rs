@@ -11,10 +11,12 @@ pub mod standard_conditions;
 pub mod tool_life;
 pub mod tools;
 
-use crate::service::error::Validator;
+use crate::service::error::{ApiError, Validator};
 use serde::{Deserialize, Serialize};
 use sqlx::sqlite::SqliteRow;
-use sqlx::FromRow;
+use sqlx::{FromRow, SqliteConnection};
+use std::future::Future;
+use std::pin::Pin;
 use utoipa::{IntoParams, ToSchema};
 
 /// A value bound into a generated SQL statement.
@@ -98,6 +100,9 @@ pub struct Reference {
     pub id: i64,
 }
 
+/// What a [`Resource`] hook does inside the write transaction.
+pub type Hook<'a> = Pin<Box<dyn Future<Output = Result<(), ApiError>> + Send + 'a>>;
+
 /// The writable part of a table's row.
 pub trait Resource:
     Serialize + serde::de::DeserializeOwned + Clone + Send + Sync + Unpin + 'static + for<'r> FromRow<'r, SqliteRow>
@@ -118,6 +123,26 @@ pub trait Resource:
     /// Rows this one points at.
     fn references(&self) -> Vec<Reference> {
         Vec::new()
+    }
+    /// Fields that mark the row among others rather than describe it (a tool's `default`):
+    /// a patch of these alone leaves the row's `source` and `edited` mark as they are, and
+    /// a patch that does not name one leaves it out of the merged data, so that the hooks
+    /// read it as unchanged.
+    const FLAGS: &'static [&'static str] = &[];
+    /// Keeps what spans rows after the row `id` was inserted (`before`: none) or updated,
+    /// inside the same write transaction (e.g. one default tool per type and diameter).
+    fn after_write<'a>(
+        _conn: &'a mut SqliteConnection,
+        _id: i64,
+        _before: Option<&'a Self>,
+        _data: &'a Self,
+    ) -> Hook<'a> {
+        Box::pin(async { Ok(()) })
+    }
+    /// Keeps what spans rows after the row `id` (whose data was `deleted`) was deleted,
+    /// inside the same write transaction.
+    fn after_delete<'a>(_conn: &'a mut SqliteConnection, _id: i64, _deleted: &'a Self) -> Hook<'a> {
+        Box::pin(async { Ok(()) })
     }
 }
 

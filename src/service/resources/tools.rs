@@ -1,10 +1,11 @@
 //! End mills: `/v1/tools`.
 
 use super::routes::eq;
-use super::{ListFilter, PageRequest, Reference, Resource, Source, SqlValue, DIAMETER_FILTER_TOLERANCE_MM};
+use super::{Hook, ListFilter, PageRequest, Reference, Resource, Source, SqlValue, DIAMETER_FILTER_TOLERANCE_MM};
 use crate::core::tool::{EndMill, ToolType};
-use crate::service::error::Validator;
+use crate::service::error::{ApiError, Validator};
 use serde::{Deserialize, Serialize};
+use sqlx::{AssertSqlSafe, SqliteConnection};
 use utoipa::{IntoParams, ToSchema};
 
 /// How far a ball end mill's corner radius may differ from D/2, mm.
@@ -52,6 +53,18 @@ pub struct ToolData {
     /// Where the values come from (paper file and table, or the rule used).
     #[serde(default)]
     pub reference: String,
+    /// The default tool of its type and diameter: a request that names a tool by
+    /// `tool_type` and `diameter_mm` (and a plan's `diameters_mm`) takes it. One per type
+    /// and diameter; the seeded tools are the defaults. `true` makes this tool the default
+    /// and the previous one an ordinary tool, in the same transaction; `false` leaves the
+    /// type and diameter without a default (requests by size are then refused until one is
+    /// chosen). Left out: a new tool is the default when it is the first of its type and
+    /// diameter, an updated one keeps its flag (or, moved to another type or diameter, is
+    /// the default there when that one had none). When the default is deleted or moved
+    /// away, the oldest remaining tool of its type and diameter becomes the default.
+    #[serde(default)]
+    #[sqlx(rename = "is_default")]
+    pub default: Option<bool>,
 }
 
 /// The corner radius an end mill of `tool_type` and diameter `D` has when none is given:
@@ -96,6 +109,7 @@ impl Resource for ToolData {
         "price",
         "source",
         "reference",
+        "is_default",
     ];
     const REFERENCED_BY: &'static [(&'static str, &'static str, &'static str)] = &[
         ("standard_conditions", "tool_id", "standard conditions"),
@@ -116,6 +130,9 @@ impl Resource for ToolData {
             self.price.into(),
             self.source.as_str().into(),
             self.reference.clone().into(),
+            // Written clear: `after_write` sets it once the other default of the type and
+            // diameter is cleared (the unique index allows one default at every moment).
+            0i64.into(),
         ]
     }
 
@@ -163,6 +180,94 @@ impl Resource for ToolData {
     fn references(&self) -> Vec<Reference> {
         Vec::new()
     }
+
+    const FLAGS: &'static [&'static str] = &["default"];
+
+    fn after_write<'a>(conn: &'a mut SqliteConnection, id: i64, before: Option<&'a Self>, data: &'a Self) -> Hook<'a> {
+        Box::pin(async move {
+            let moved = before.is_some_and(|b| !b.same_combination(data));
+            let was_default = before.is_some_and(|b| b.default == Some(true));
+            let default = match data.default {
+                Some(flag) => flag,
+                None if before.is_some() && !moved => was_default,
+                None => !has_default(conn, data).await?,
+            };
+            if default {
+                make_default(conn, id, data).await?;
+            }
+            match before {
+                Some(b) if moved && was_default => promote_oldest(conn, b).await,
+                _ => Ok(()),
+            }
+        })
+    }
+
+    fn after_delete<'a>(conn: &'a mut SqliteConnection, _id: i64, deleted: &'a Self) -> Hook<'a> {
+        Box::pin(async move {
+            if deleted.default == Some(true) {
+                promote_oldest(conn, deleted).await?;
+            }
+            Ok(())
+        })
+    }
+}
+
+/// The SQL condition "of the tool's type and diameter" (two values: the type, the diameter):
+/// diameters that agree to 6 decimals (1 nm) are one diameter, as in the unique index of
+/// one default per type and diameter (migrations/0012_tool_defaults.sql).
+pub const SAME_TYPE_AND_DIAMETER_SQL: &str = "tool_type = ? AND round(diameter_mm, 6) = round(?, 6)";
+/// 10^6: the rounding of [`SAME_TYPE_AND_DIAMETER_SQL`], in Rust.
+const DIAMETER_ROUNDING: f64 = 1e6;
+
+impl ToolData {
+    /// `true` when both tools share a type and diameter, and so a default.
+    fn same_combination(&self, other: &ToolData) -> bool {
+        let key = |d: f64| (d * DIAMETER_ROUNDING).round() as i64;
+        self.tool_type == other.tool_type && key(self.diameter_mm) == key(other.diameter_mm)
+    }
+}
+
+/// `true` when another tool of `data`'s type and diameter is the default.
+async fn has_default(conn: &mut SqliteConnection, data: &ToolData) -> Result<bool, ApiError> {
+    let sql = format!("SELECT EXISTS (SELECT 1 FROM tools WHERE {SAME_TYPE_AND_DIAMETER_SQL} AND is_default = 1)");
+    Ok(sqlx::query_scalar::<_, bool>(AssertSqlSafe(sql))
+        .bind(data.tool_type.as_str())
+        .bind(data.diameter_mm)
+        .fetch_one(&mut *conn)
+        .await?)
+}
+
+/// Makes the tool `id` the default of its type and diameter, clearing the previous one.
+async fn make_default(conn: &mut SqliteConnection, id: i64, data: &ToolData) -> Result<(), ApiError> {
+    let clear = format!(
+        "UPDATE tools SET is_default = 0, updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now')
+         WHERE {SAME_TYPE_AND_DIAMETER_SQL} AND is_default = 1 AND id <> ?"
+    );
+    sqlx::query(AssertSqlSafe(clear))
+        .bind(data.tool_type.as_str())
+        .bind(data.diameter_mm)
+        .bind(id)
+        .execute(&mut *conn)
+        .await?;
+    sqlx::query("UPDATE tools SET is_default = 1 WHERE id = ?").bind(id).execute(&mut *conn).await?;
+    Ok(())
+}
+
+/// Makes the oldest tool of `data`'s type and diameter the default, when none is.
+async fn promote_oldest(conn: &mut SqliteConnection, data: &ToolData) -> Result<(), ApiError> {
+    let sql = format!(
+        "UPDATE tools SET is_default = 1, updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now')
+         WHERE id = (SELECT id FROM tools WHERE {SAME_TYPE_AND_DIAMETER_SQL} ORDER BY created_at, id LIMIT 1)
+           AND NOT EXISTS (SELECT 1 FROM tools WHERE {SAME_TYPE_AND_DIAMETER_SQL} AND is_default = 1)"
+    );
+    sqlx::query(AssertSqlSafe(sql))
+        .bind(data.tool_type.as_str())
+        .bind(data.diameter_mm)
+        .bind(data.tool_type.as_str())
+        .bind(data.diameter_mm)
+        .execute(&mut *conn)
+        .await?;
+    Ok(())
 }
 
 crate::record!(
@@ -184,6 +289,8 @@ pub struct ToolFilter {
     pub material_id: Option<i64>,
     /// Only rows of this source.
     pub source: Option<Source>,
+    /// `true`: only the default tool of every type and diameter; `false`: only the others.
+    pub default: Option<bool>,
     pub limit: Option<i64>,
     pub offset: Option<i64>,
 }
@@ -199,6 +306,7 @@ impl ListFilter for ToolFilter {
                 ("id IN (SELECT tool_id FROM standard_conditions WHERE material_id = ?)".to_string(), vec![m.into()])
             }),
             eq("source", self.source.map(Source::as_str)),
+            eq("is_default", self.default.map(i64::from)),
         ]
         .into_iter()
         .flatten()

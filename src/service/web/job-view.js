@@ -150,6 +150,24 @@ export async function jobView(id) {
     ].filter(Boolean));
   }
 
+  // The input is served apart from the job (it may be large): read when opened.
+  function inputPanel(job) {
+    const pre = h('pre', { class: 'code' }, 'Loading…');
+    const panel = h('details', { class: 'card raw' }, h('summary', {}, 'Input (JSON)'), pre);
+    let loaded = false;
+    panel.addEventListener('toggle', async () => {
+      if (!panel.open || loaded) return;
+      loaded = true;
+      try {
+        pre.textContent = pretty(await api('GET', job.links.input));
+      } catch (err) {
+        loaded = false;
+        pre.textContent = `Could not read the input: ${err.message || err}`;
+      }
+    });
+    return panel;
+  }
+
   function renderResult() {
     const r = job.result || {};
     const parts = [];
@@ -162,7 +180,7 @@ export async function jobView(id) {
     parts.push(h('section', { class: 'card' }, h('h2', {}, 'Result'), ...(SUMMARIES[job.kind]?.(r) || [h('p', { class: 'muted' }, 'See the raw result below.')]), warnings(r.warnings)));
     parts.push(drawingPanel(job));
     parts.push(h('details', { class: 'card raw' }, h('summary', {}, 'Raw result (JSON)'), h('pre', { class: 'code' }, pretty(job.result))));
-    parts.push(h('details', { class: 'card raw' }, h('summary', {}, 'Input (JSON)'), h('pre', { class: 'code' }, pretty(job.input))));
+    parts.push(inputPanel(job));
     body.replaceChildren(...parts);
   }
 

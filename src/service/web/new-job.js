@@ -367,12 +367,13 @@ export async function newJobView(params) {
   const source = params.get('from') || params.get('cost');
   if (source) {
     const job = await api('GET', `/v1/jobs/${encodeURIComponent(source)}`);
+    const original = await api('GET', job.links.input);
     let kind = job.kind;
-    let input = job.input;
+    let input = original;
     if (params.get('cost')) {
       kind = 'costing';
       const keep = allowed('costing');
-      input = Object.fromEntries(Object.entries(job.input).filter(([k]) => keep.has(k) && k !== 'program'));
+      input = Object.fromEntries(Object.entries(original).filter(([k]) => keep.has(k) && k !== 'program'));
       input = { job_id: job.id, ...input };
     }
     if (REQUEST_SCHEMAS[kind]) {

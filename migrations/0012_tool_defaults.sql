@@ -1,0 +1,20 @@
+-- Default tools (issue 30, item 6). A request that names its tool by tool_type and
+-- diameter_mm takes the default tool of that type and diameter, so a shop that adds a
+-- second tool of a size no longer makes those requests ambiguous.
+--   is_default  1 for the one default tool of its type and diameter (0 for the others).
+-- One default per type and diameter, enforced by a partial unique index; diameters that
+-- agree to 6 decimals are one diameter (src/service/resources/tools.rs uses the same
+-- expression). The seeded tools are the defaults; where a type and diameter has no seeded
+-- tool, its oldest tool is.
+ALTER TABLE tools ADD COLUMN is_default INTEGER NOT NULL DEFAULT 0 CHECK (is_default IN (0, 1));
+
+UPDATE tools SET is_default = 1
+WHERE id IN (
+    SELECT (SELECT c.id FROM tools c
+            WHERE c.tool_type = t.tool_type AND round(c.diameter_mm, 6) = round(t.diameter_mm, 6)
+            ORDER BY c.seed_key IS NULL, c.created_at, c.id LIMIT 1)
+    FROM tools t
+    GROUP BY t.tool_type, round(t.diameter_mm, 6)
+);
+
+CREATE UNIQUE INDEX tools_one_default ON tools (tool_type, round(diameter_mm, 6)) WHERE is_default = 1;

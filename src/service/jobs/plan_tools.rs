@@ -1,0 +1,135 @@
+//! The candidate tools of a plan: which tools the request names (by diameter, by id, or
+//! the default range) and what each needs from the database.
+
+use super::analysis::{resolve as resolve_path_job, AnalysisPrepared, PathJobRefs, Resolved};
+use super::plans::{CandidatePrepared, PlanRequest, CANDIDATE_DIAMETER_RANGE_MM};
+use crate::core::conditions::{feed_mm_min, standard_centres};
+use crate::core::operation::Operation;
+use crate::core::tool::{EndMill, ToolType};
+use crate::service::error::{ApiError, Validator};
+use crate::service::jobs::feeds::MAX_FEED_PER_STANDARD;
+use crate::service::lookup;
+use crate::service::resources::tools::Tool;
+use sqlx::SqlitePool;
+
+/// A candidate tool and the request field that named it (none: the default range, whose
+/// tools without the data to plan with are skipped rather than refused).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pick {
+    pub tool_id: i64,
+    pub field: Option<String>,
+}
+
+/// The candidate tools of a request: the default tool of `tool_type` of every diameter of
+/// `diameters_mm`, then the tools of `tool_ids` (a tool named twice is one candidate); or,
+/// when neither is given, the default tool of every diameter of the range. Every unknown
+/// diameter or id, and every ball end mill among the ids, is reported at once.
+pub async fn pick(pool: &SqlitePool, request: &PlanRequest, tool_type: ToolType) -> Result<Vec<Pick>, ApiError> {
+    if request.diameters_mm.is_none() && request.tool_ids.is_none() {
+        let ids = sqlx::query_scalar::<_, i64>(
+            "SELECT id FROM tools WHERE tool_type = ? AND is_default = 1 AND diameter_mm BETWEEN ? AND ?
+             ORDER BY diameter_mm, id",
+        )
+        .bind(tool_type.as_str())
+        .bind(CANDIDATE_DIAMETER_RANGE_MM.0)
+        .bind(CANDIDATE_DIAMETER_RANGE_MM.1)
+        .fetch_all(pool)
+        .await?;
+        return Ok(ids.into_iter().map(|tool_id| Pick { tool_id, field: None }).collect());
+    }
+    let mut v = Validator::new();
+    let mut picks: Vec<Pick> = Vec::new();
+    let mut add = |tool_id: i64, field: String| {
+        if picks.iter().all(|p| p.tool_id != tool_id) {
+            picks.push(Pick { tool_id, field: Some(field) });
+        }
+    };
+    for (i, d) in request.diameters_mm.iter().flatten().enumerate() {
+        let field = format!("diameters_mm[{i}]");
+        match lookup::default_tool(pool, tool_type, *d).await {
+            Ok(tool) => add(tool.id, field),
+            Err(ApiError::Validation(errors)) => errors.into_iter().for_each(|e| v.fail(field.clone(), e.reason)),
+            Err(other) => return Err(other),
+        }
+    }
+    for (i, id) in request.tool_ids.iter().flatten().enumerate() {
+        let field = format!("tool_ids[{i}]");
+        let tool = sqlx::query_as::<_, Tool>("SELECT * FROM tools WHERE id = ?").bind(id).fetch_optional(pool).await?;
+        match tool {
+            None => v.fail(field, format!("no tool with id {id}")),
+            Some(t) if t.data.tool_type == ToolType::Ball => v.fail(
+                field,
+                format!("tool {id} ({}) is a ball end mill: the proposed strategy needs flat end mills", t.data.name),
+            ),
+            Some(t) => add(t.id, field),
+        }
+    }
+    v.finish()?;
+    Ok(picks)
+}
+
+/// Resolves one candidate tool; `Err(reason)` when the database lacks what it needs.
+pub async fn resolve(
+    pool: &SqlitePool,
+    tool_id: i64,
+    material_id: i64,
+    machine_id: i64,
+    default_tool_price: f64,
+) -> Result<Result<(CandidatePrepared, AnalysisPrepared), String>, ApiError> {
+    let refs = PathJobRefs {
+        tool_id: Some(tool_id),
+        tool_type: None,
+        diameter_mm: None,
+        material_id: Some(material_id),
+        material: None,
+        machine_id: Some(machine_id),
+        spindle_rpm: None,
+    };
+    let Resolved { prepared: base, standard, machine_max_feed_mm_min, .. } = resolve_path_job(pool, &refs).await?;
+    let name = base.tool.name.clone();
+    let row = |op: Operation| async move { lookup::standard_conditions(pool, tool_id, material_id, op).await };
+    let (Some(standard), Some(model)) = (standard, base.force_model.as_ref()) else {
+        return Ok(Err(format!("{name}: no standard side-cutting conditions or force model")));
+    };
+    let (Some(rough), Some(inter), Some(groove)) = (
+        row(Operation::RoughSideCutting).await?,
+        row(Operation::IntermediateRoughSideCutting).await?,
+        row(Operation::TrochoidalGrooving).await?,
+    ) else {
+        return Ok(Err(format!(
+            "{name}: needs rough, intermediate-rough and trochoidal-grooving conditions in {}",
+            base.material.name
+        )));
+    };
+    let Some(life) = lookup::tool_life(pool, tool_id, material_id).await? else {
+        return Ok(Err(format!("{name}: no tool-life data in {}", base.material.name)));
+    };
+    let tool: EndMill = base.tool.geometry.into();
+    let s = standard.data;
+    let (t_um, arc_mm) = standard_centres(tool.radius_mm(), s.conditions())?;
+    let standard_force_n = model.model.force_n(t_um, arc_mm, model.model.ad_ref_mm);
+    let standard_feed = feed_mm_min(s.fz_mm, tool.flutes, s.spindle_rpm);
+    let price = sqlx::query_scalar::<_, Option<f64>>("SELECT price FROM tools WHERE id = ?")
+        .bind(tool_id)
+        .fetch_one(pool)
+        .await?;
+    let candidate = CandidatePrepared {
+        tool_id,
+        name,
+        tool,
+        roughing: rough.data.conditions(),
+        intermediate: inter.data.conditions(),
+        grooving: groove.data.conditions(),
+        force_model: model.model,
+        standard_force_n,
+        life_m: life.data.life_m,
+        gamma_table: life.data.gamma_table.iter().map(|g| (g.0, g.1)).collect(),
+        force_exponent: life.data.force_exponent,
+        standard_arc_length_mm: arc_mm,
+        standard_fz_mm: s.fz_mm,
+        min_feed_mm_min: feed_mm_min(s.fz_min_mm, tool.flutes, s.spindle_rpm),
+        max_feed_mm_min: (MAX_FEED_PER_STANDARD * standard_feed).min(machine_max_feed_mm_min),
+        tool_price: price.unwrap_or(default_tool_price),
+    };
+    Ok(Ok((candidate, base)))
+}
