@@ -254,8 +254,8 @@ mod tests {
         let ours_mm_min = f.feed_length_mm / f.kinematic_time_min;
         assert!((ours_mm_min / paper_mm_min - 1.0).abs() <= 0.15, "{ours_mm_min} mm/min against {paper_mm_min}");
         // Every level is in the program, labelled for its comment, with its corner loops:
-        // the four corners of rings 1 to 6 (ring 0 turns on the R8 arcs, ring 7 is 11 mm
-        // wide, under the circle's 2ρ = 11.95 mm), on every level.
+        // the four corners of rings 1 to 6 (ring 0 turns on arcs, the R8 corners offset by the
+        // tool radius; ring 7 is 11 mm wide, under the circle's 2ρ = 11.95 mm), on every level.
         assert_eq!(b.levels, 59);
         assert_eq!(b.corner_loops, 24 * 59);
         let labels = crate::core::toolpath::labels_of(&b.program.events, b.program.moves.len());
