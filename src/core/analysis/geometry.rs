@@ -180,6 +180,7 @@ mod tests {
                 plunge_feed_mm_min: 300.0,
                 spindle_rpm: 4800.0,
                 climb: true,
+                corner_loops: false,
             },
         )
         .unwrap()

@@ -84,6 +84,7 @@ pub fn base_path(pocket: &Pocket, spec: &InsertionSpec) -> Result<Toolpath, Core
                 plunge_feed_mm_min: DEFAULT_PLUNGE_FEED_RATIO * feed,
                 spindle_rpm: spec.roughing.spindle_rpm,
                 climb: matches!(spec.direction, crate::core::cycles::CutDirection::Climb),
+                corner_loops: false,
             },
         )?;
         compose::append_over(&mut moves, &level.toolpath.moves, spec.safe_z_mm);

@@ -156,6 +156,7 @@ mod tests {
             plunge_feed_mm_min: 1000.0,
             spindle_rpm: 9600.0,
             climb: true,
+            corner_loops: false,
         };
         let path = contour_parallel(&pocket, &spec).unwrap().toolpath;
         let analysis = AnalysisSpec {

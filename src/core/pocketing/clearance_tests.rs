@@ -8,6 +8,7 @@ use crate::core::engagement::straight_engagement_angle_rad;
 use crate::core::geometry::Loop;
 use crate::core::progress::NoProgress;
 use crate::core::tool::{EndMill, ToolType};
+use crate::core::toolpath::Motion;
 use std::f64::consts::PI;
 
 const R_MM: f64 = 5.0;
@@ -138,4 +139,42 @@ fn the_engagement_is_the_straight_cut_value_on_straight_parts_and_higher_in_corn
     assert!((median - straight).abs() < 2.0, "{median} vs {straight}");
     assert!(max_after > straight + 5.0);
     assert!(a.summary.alpha_deg.max <= 180.0 + 1e-6);
+}
+
+/// Corner loops (seed 004 §3.3) on a 80 × 60 rectangle at the baseline's step-over (r = 5,
+/// Rd = 3.5): the engagement where the rings turn their sharp corners, with and without them.
+#[test]
+fn corner_loops_lower_the_engagement_at_the_sharp_corners_of_the_rings() {
+    let p = pocket(Loop::rectangle(0.0, 0.0, 80.0, 60.0), vec![]);
+    let rd = 3.5;
+    let peak_near_corners = |corner_loops: bool| {
+        let out = contour_parallel(&p, &PocketingSpec { corner_loops, ..spec(R_MM, rd) }).unwrap();
+        let a = analysis(&p, &out.toolpath, 100_000);
+        let s = a.series.as_ref().unwrap();
+        // The corners of rings 0 to 5 (offsets 5 … 22.5 mm), which all get a loop (the next
+        // ring, 8 mm high, is narrower than the circle's 2ρ = 11.95 mm).
+        let corners: Vec<(f64, f64)> = (0..=5)
+            .flat_map(|k| {
+                let d = R_MM + rd * k as f64;
+                [(d, d), (80.0 - d, d), (80.0 - d, 60.0 - d), (d, 60.0 - d)]
+            })
+            .collect();
+        let near = |x: f64, y: f64| corners.iter().any(|&(cx, cy)| (x - cx).hypot(y - cy) < 0.5);
+        let peak_where = |keep: &dyn Fn(usize) -> bool| {
+            (0..s.alpha_deg.len()).filter(|&i| keep(i)).map(|i| s.alpha_deg[i]).fold(0.0, f64::max)
+        };
+        // The rectangle's rings have no arcs: the arcs are the corner loops.
+        let circle_lines: Vec<u32> =
+            out.toolpath.moves.iter().filter(|m| matches!(m.motion, Motion::Arc { .. })).map(|m| m.line).collect();
+        let at_corners = peak_where(&|i| near(s.x[i], s.y[i]));
+        let on_loops = peak_where(&|i| circle_lines.contains(&s.line[i]));
+        (at_corners, on_loops, out.corner_loops)
+    };
+    let (without, _, _) = peak_near_corners(false);
+    let (with, on_loops, loops) = peak_near_corners(true);
+    println!("corners: α {without:.1}° without loops; with {loops} loops {with:.1}° at the corners, {on_loops:.1}° on the loops");
+    // Measured: 162.6° without loops (α + 90° at a right angle, α = acos(1 − Rd/r) = 72.5°);
+    // with them 118.5° at the corners and 94.7° on the loops.
+    assert_eq!(loops, 24);
+    assert!(with < without - 30.0 && on_loops < without - 30.0, "{with}, {on_loops} against {without}");
 }

@@ -43,7 +43,18 @@
 //! every branch, the tool retracts to `safe_z_mm`, moves over at the rapid rate and plunges at
 //! the plunge feed; these entry points are listed in [`PocketPath::entries`] so that the caller
 //! can open them first (helical boring or a pre-drilled hole, MODEL.md §8 step 1).
+//!
+//! # Corner loops
+//!
+//! With [`PocketingSpec::corner_loops`], every sharp corner where a ring turns towards its
+//! region (by [`CORNER_LOOP_MIN_TURN_DEG`] or more) gets a circle before it, cut first, so
+//! that the corner, deeper than the sides, is cut in two steps of about half its depth
+//! (seed 004 §3.3, Fig. 11: what the expert's CAM did for the conventional baseline). The
+//! circle's size and place, and where it is left out, are in [`corners`]. The innermost
+//! loop of each branch is slotted and gets none.
 
+mod corners;
+pub use corners::{corner_loop_radius_mm, CornerLoop, CORNER_LOOP_MIN_TURN_DEG};
 mod emit;
 mod offsets;
 pub use offsets::unreachable_area_mm2;
@@ -82,6 +93,13 @@ pub struct PocketingSpec {
     /// Climb milling (default) or conventional milling; see the module documentation.
     #[serde(default = "climb_by_default")]
     pub climb: bool,
+    /// Cut each sharp corner of a ring in two steps, a circle to about half its depth and
+    /// then the ring (seed 004 §3.3; see the module documentation). Off by default: the
+    /// circles lengthen the path, and the proposed plan meets its corners with its
+    /// constant-force feeds instead (seed 004 §3.2: the tool load variation at the corners
+    /// "can be avoided by the feedrate optimization"). The conventional baseline uses them.
+    #[serde(default)]
+    pub corner_loops: bool,
 }
 
 fn climb_by_default() -> bool {
@@ -95,6 +113,8 @@ pub struct PocketPath {
     pub toolpath: Toolpath,
     /// Number of closed loops cut (finishing passes around the islands included).
     pub loops: usize,
+    /// Number of corner loops cut (0 unless [`PocketingSpec::corner_loops`]).
+    pub corner_loops: usize,
     /// Number of separate regions of the first offset: parts of the pocket the tool reaches
     /// only by leaving the material (a wide pocket with a narrow neck has two).
     pub regions: usize,
@@ -137,6 +157,7 @@ pub fn contour_parallel(pocket: &Pocket, spec: &PocketingSpec) -> Result<PocketP
     Ok(PocketPath {
         toolpath: cut.toolpath,
         loops: cut.loops,
+        corner_loops: cut.corner_loops,
         regions: tree.roots.len(),
         entries: cut.entries,
         warnings,

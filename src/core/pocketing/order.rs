@@ -2,6 +2,7 @@
 //! loop outwards, a region after all the branches inside it, the loops linked by straight
 //! feed moves where these stay inside the region and entered from above where not.
 
+use super::corners::{with_corner_loops, LoopedRing};
 use super::emit::{PathWriter, MIN_MOVE_MM};
 use super::offsets::{Component, OffsetTree};
 use super::seam::{advance, nearest_on_loop, starting_at, Nearest};
@@ -24,40 +25,55 @@ pub(super) struct Cut {
     pub toolpath: Toolpath,
     /// Closed loops cut.
     pub loops: usize,
+    /// Corner loops cut (see [`super::corners`]).
+    pub corner_loops: usize,
     /// XY of every plunge (mm).
     pub entries: Vec<(f64, f64)>,
+}
+
+/// What [`cut_component`] cut.
+#[derive(Debug, Clone, Copy, Default)]
+struct Counts {
+    loops: usize,
+    corner_loops: usize,
+}
+
+impl std::ops::AddAssign for Counts {
+    fn add_assign(&mut self, other: Counts) {
+        self.loops += other.loops;
+        self.corner_loops += other.corner_loops;
+    }
 }
 
 /// Cuts every region of `tree`, the nearest next, as `spec` says.
 pub(super) fn cut(tree: &OffsetTree, spec: &PocketingSpec) -> Cut {
     let mut writer = PathWriter::new(spec);
-    let mut loops = 0;
+    let mut counts = Counts::default();
     let mut roots = tree.roots.clone();
     while !roots.is_empty() {
         let root = take_nearest(&mut roots, tree, writer.position());
-        loops += cut_branch(tree, root, spec.climb, &mut writer);
+        counts += cut_branch(tree, root, spec, &mut writer);
     }
     let (toolpath, entries) = writer.finish();
-    Cut { toolpath, loops, entries }
+    Cut { toolpath, loops: counts.loops, corner_loops: counts.corner_loops, entries }
 }
 
 /// Cuts the region `root` after everything inside it (post-order, iteratively: a tree can be
 /// thousands of loops deep), choosing among sibling branches the one nearest to the tool.
-/// Returns the number of loops cut.
-fn cut_branch(tree: &OffsetTree, root: usize, climb: bool, writer: &mut PathWriter) -> usize {
-    let mut loops = 0;
+fn cut_branch(tree: &OffsetTree, root: usize, spec: &PocketingSpec, writer: &mut PathWriter) -> Counts {
+    let mut counts = Counts::default();
     let mut stack: Vec<(usize, Vec<usize>)> = vec![(root, tree.components[root].children.clone())];
     while let Some((component, remaining)) = stack.last_mut() {
         if remaining.is_empty() {
             let component = *component;
             stack.pop();
-            loops += cut_component(&tree.components[component], climb, writer);
+            counts += cut_component(&tree.components[component], spec, writer);
         } else {
             let next = take_nearest(remaining, tree, writer.position());
             stack.push((next, tree.components[next].children.clone()));
         }
     }
-    loops
+    counts
 }
 
 /// Removes from `candidates` and returns the component whose boundary is nearest to `here`
@@ -73,24 +89,38 @@ fn take_nearest(candidates: &mut Vec<usize>, tree: &OffsetTree, here: Option<Poi
 }
 
 /// Cuts the loops of one region, each from its point nearest to the tool, climb or
-/// conventional. A leaf region (nothing cut inside it yet) is entered from above; the other
-/// loops are reached by a straight link when [`link_stays_inside`] allows it. Returns the
-/// number of loops cut.
-fn cut_component(component: &Component, climb: bool, writer: &mut PathWriter) -> usize {
-    let mut remaining: Vec<Loop> =
-        component.loops.iter().map(|lp| if climb { lp.clone() } else { lp.reversed() }).collect();
+/// conventional, with corner loops when `spec` asks for them and the region has been cut
+/// inside (a leaf region is slotted: its corners are no deeper than its sides). A leaf
+/// region is entered from above; the other loops are reached by a straight link when
+/// [`link_stays_inside`] allows it. A loop never starts on a corner loop or between it and
+/// its corner (the start moves back to where the corner loop begins).
+fn cut_component(component: &Component, spec: &PocketingSpec, writer: &mut PathWriter) -> Counts {
+    let climb = spec.climb;
+    let looped = spec.corner_loops && !component.children.is_empty();
+    let mut remaining: Vec<LoopedRing> = component
+        .loops
+        .iter()
+        .map(|lp| {
+            let ring = if climb { lp.clone() } else { lp.reversed() };
+            if looped {
+                with_corner_loops(&ring, component, spec.radial_depth_mm, climb)
+            } else {
+                LoopedRing::plain(ring)
+            }
+        })
+        .collect();
     let mut may_link = !component.children.is_empty();
-    let mut count = 0;
+    let mut counts = Counts::default();
     while !remaining.is_empty() {
         let here = writer.position();
         let (index, at) = match here {
             Some(p) => remaining
                 .iter()
                 .enumerate()
-                .map(|(i, lp)| (i, nearest_on_loop(lp, p)))
+                .map(|(i, ring)| (i, nearest_on_loop(&ring.lp, p)))
                 .min_by(|a, b| a.1.distance_mm.total_cmp(&b.1.distance_mm))
-                .unwrap_or((0, first_vertex(&remaining[0]))),
-            None => (0, first_vertex(&remaining[0])),
+                .unwrap_or((0, first_vertex(&remaining[0].lp))),
+            None => (0, first_vertex(&remaining[0].lp)),
         };
         let chosen = remaining.swap_remove(index);
         let linkable = |to: Point| {
@@ -99,12 +129,16 @@ fn cut_component(component: &Component, climb: bool, writer: &mut PathWriter) ->
         // A gentle link: onto the next loop a little ahead, so the tool takes the new step-over
         // gradually instead of plunging sideways into it; the nearest point if that fails.
         let r = writer.tool_radius_mm();
-        let ahead = LINK_ADVANCE_RADII.iter().map(|k| advance(&chosen, &at, k * r)).find(|a| linkable(a.point));
+        let ahead = LINK_ADVANCE_RADII
+            .iter()
+            .map(|k| chosen.snapped(advance(&chosen.lp, &at, k * r)))
+            .find(|a| linkable(a.point));
+        let at = chosen.snapped(at);
         let (at, linked) = match ahead {
             Some(a) => (a, true),
             None => (at, linkable(at.point)),
         };
-        let lp = starting_at(&chosen, &at);
+        let lp = starting_at(&chosen.lp, &at);
         let start = lp.vertices[0].point();
         if linked {
             writer.feed_to(start);
@@ -112,10 +146,10 @@ fn cut_component(component: &Component, climb: bool, writer: &mut PathWriter) ->
             writer.enter_at(start);
         }
         writer.cut_loop(&lp);
-        count += 1;
+        counts += Counts { loops: 1, corner_loops: chosen.corner_loops };
         may_link = true;
     }
-    count
+    counts
 }
 
 /// The start of `lp` as a [`Nearest`].

@@ -83,7 +83,7 @@ pub(super) fn starting_at(lp: &Loop, at: &Nearest) -> Loop {
 
 /// The bulges of the two pieces of `seg` cut at fraction `t` of its length: an arc's sweep
 /// divides as its length does.
-fn split_bulges(seg: &Segment, t: f64) -> (f64, f64) {
+pub(super) fn split_bulges(seg: &Segment, t: f64) -> (f64, f64) {
     if !seg.is_arc() {
         return (0.0, 0.0);
     }

@@ -26,6 +26,7 @@ pub fn spec(r_mm: f64, rd_mm: f64) -> PocketingSpec {
         plunge_feed_mm_min: 300.0,
         spindle_rpm: 9600.0,
         climb: true,
+        corner_loops: false,
     }
 }
 

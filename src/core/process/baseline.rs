@@ -11,6 +11,13 @@
 //! the seeded row carries the feed inferred from Table 4 instead (MODEL.md §5: 153.9 m /
 //! 42'47" ≈ 3600 mm/min, fz 0.375), marked `inferred`.
 //!
+//! Its contour-parallel levels have corner loops, as the expert's CAM of seed 004 wrote them
+//! (§3.3, Fig. 11: "circular paths are inserted in the original path such that the
+//! machining of a sharp corner can be divided into two steps"): a circle before each sharp
+//! corner of a ring that cuts the corner to half its depth (`crate::core::pocketing`'s
+//! corner loops). They bring the case study's path from 98.5 m to 150.4 m of feed moves
+//! (seed 004 Table 4: 153.9 m) and its time from 31.2 to 45.8 min on the machine (42'47").
+//!
 //! The stock model is 2.5-D, so the ball is simulated as its cylinder: that overstates its
 //! engagement arc (at 0.6 mm deep a ball of R5 cuts with a radius of 2.4 mm), hence its wear;
 //! the comparison figures of the papers, time and cutting length, do not depend on it.
@@ -55,6 +62,8 @@ pub struct Baseline {
     pub diameter_mm: f64,
     /// Contour-parallel levels over the whole depth.
     pub levels: usize,
+    /// Corner loops cut over all the levels (seed 004 §3.3).
+    pub corner_loops: usize,
     pub axial_depth_mm: f64,
     pub radial_depth_mm: f64,
     pub feed_mm_min: f64,
@@ -83,6 +92,7 @@ pub fn plan_baseline(
     let feed = feed_mm_min(c.fz_mm, spec.tool.flutes, c.spindle_rpm);
     let (mut moves, mut labels) = (Vec::new(), Vec::new());
     let (mut worn, mut cutting, mut surface, mut removed, mut levels) = (0.0, 0.0, 0.0, 0.0, 0usize);
+    let mut corner_loops = 0;
     // Consecutive layers of one contour are one span: the thin levels run through them.
     let mut spans: Vec<CavityLayer> = Vec::new();
     for l in &cavity.layers {
@@ -109,9 +119,11 @@ pub fn plan_baseline(
                 plunge_feed_mm_min: DEFAULT_PLUNGE_FEED_RATIO * feed,
                 spindle_rpm: c.spindle_rpm,
                 climb: true,
+                corner_loops: true,
             },
-        )?
-        .toolpath;
+        )?;
+        corner_loops += level.corner_loops * zs.len();
+        let level = level.toolpath;
         // Every level of a layer is as thick as the first: simulate the first, count the rest alike.
         let analysis = AnalysisSpec {
             tool: spec.tool,
@@ -178,6 +190,7 @@ pub fn plan_baseline(
         tool: spec.name.clone(),
         diameter_mm: spec.tool.diameter_mm,
         levels,
+        corner_loops,
         axial_depth_mm: c.ad_mm,
         radial_depth_mm: c.rd_mm,
         feed_mm_min: feed,
@@ -223,25 +236,28 @@ mod tests {
     }
 
     #[test]
-    fn the_case_study_baseline_at_the_inferred_feed_runs_at_the_papers_average_speed_within_15_percent() {
+    fn the_case_study_baseline_with_its_corner_loops_takes_the_papers_42_47_within_15_percent() {
         let cavity = CavityInput::Depth { pocket: case_study_pocket(), z_top_mm: 0.0, z_bottom_mm: -35.0 }.whole();
         let b = plan_baseline(&cavity, &r5_ball(), &options(), &NoProgress).unwrap();
         // fz 0.375 × 2 flutes × 4800 min⁻¹ (MODEL.md §5).
         assert!((b.feed_mm_min - 3600.0).abs() < 1e-9, "{}", b.feed_mm_min);
-        // Seed 004 cut 153.9 m in 42'47", 3597 mm/min on average; the baseline's feed moves
-        // run about as fast on the machine. Its path is shorter than the paper's (about 98 m:
-        // this reading of the cavity, without the corner loops of the paper's CAM), so its
-        // time is too (about 31 min; the README's case-study table).
-        let paper_mm_min = SEED_004_BASELINE_M * 1000.0 / SEED_004_BASELINE_MIN;
         let f = &b.figures;
+        println!("case-study baseline: {} corner loops, {f:?}", b.corner_loops);
+        // MODEL.md §11 (seed 004 Table 4): 153.9 m in 42'47". With the corner loops of the
+        // paper's CAM (seed 004 §3.3) the path is 150.4 m of feed moves (−2.3 %) and takes
+        // 42.75 min nominal, 45.77 min on the machine (+7.0 %); without them it was 98.5 m
+        // and 31.2 min (−27 %).
+        assert!((f.kinematic_time_min / SEED_004_BASELINE_MIN - 1.0).abs() <= 0.15, "{f:?}");
+        assert!((f.feed_length_mm / (SEED_004_BASELINE_M * 1000.0) - 1.0).abs() <= 0.15, "{f:?}");
+        // Its feed moves run about as fast as the paper's average, 3597 mm/min (3285 here).
+        let paper_mm_min = SEED_004_BASELINE_M * 1000.0 / SEED_004_BASELINE_MIN;
         let ours_mm_min = f.feed_length_mm / f.kinematic_time_min;
-        assert!((ours_mm_min / paper_mm_min - 1.0).abs() <= 0.15, "{ours_mm_min} mm/min against {paper_mm_min}: {f:?}");
-        assert!(
-            f.kinematic_time_min > 0.6 * SEED_004_BASELINE_MIN && f.kinematic_time_min < SEED_004_BASELINE_MIN,
-            "{f:?}"
-        );
-        // Every level is in the program, labelled for its comment.
+        assert!((ours_mm_min / paper_mm_min - 1.0).abs() <= 0.15, "{ours_mm_min} mm/min against {paper_mm_min}");
+        // Every level is in the program, labelled for its comment, with its corner loops:
+        // the four corners of rings 1 to 6 (ring 0 turns on arcs, the R8 corners offset by the
+        // tool radius; ring 7 is 11 mm wide, under the circle's 2ρ = 11.95 mm), on every level.
         assert_eq!(b.levels, 59);
+        assert_eq!(b.corner_loops, 24 * 59);
         let labels = crate::core::toolpath::labels_of(&b.program.events, b.program.moves.len());
         assert!(labels.iter().flatten().any(|s| s.layer == 58 && s.step == Step::ConventionalBallRoughing));
     }

@@ -178,6 +178,9 @@ pub struct BaselineDto {
     pub tool: String,
     pub diameter_mm: f64,
     pub levels: usize,
+    /// Circles cut before the sharp corners of its rings, over all levels, so that each
+    /// corner is cut in two steps (seed 004 §3.3, Fig. 11).
+    pub corner_loops: usize,
     pub axial_depth_mm: f64,
     pub radial_depth_mm: f64,
     pub spindle_rpm: f64,
@@ -203,6 +206,7 @@ impl BaselineDto {
             tool: b.tool.clone(),
             diameter_mm: b.diameter_mm,
             levels: b.levels,
+            corner_loops: b.corner_loops,
             axial_depth_mm: b.axial_depth_mm,
             radial_depth_mm: b.radial_depth_mm,
             spindle_rpm: prepared.conditions.spindle_rpm,
