@@ -25,5 +25,6 @@ mod programs;
 mod recalibration;
 mod restarts;
 mod retention;
+mod schemathesis;
 mod trochoids;
 mod web;

@@ -15,12 +15,16 @@ pub struct ForceModelData {
     pub tool_id: i64,
     pub material_id: i64,
     /// Centre of the chip-thickness variable, µm.
+    #[schema(exclusive_minimum = 0)]
     pub t0_um: f64,
     /// Step of the chip-thickness variable, µm.
+    #[schema(exclusive_minimum = 0)]
     pub dt_um: f64,
     /// Centre of the arc-length variable, mm.
+    #[schema(exclusive_minimum = 0)]
     pub l0_mm: f64,
     /// Step of the arc-length variable, mm.
+    #[schema(exclusive_minimum = 0)]
     pub dl_mm: f64,
     pub b0: f64,
     pub b1: f64,
@@ -31,11 +35,13 @@ pub struct ForceModelData {
     pub b12: f64,
     /// Coefficient of determination of the fit.
     #[serde(default)]
+    #[schema(maximum = 1)]
     pub r_squared: Option<f64>,
     /// Axial depth of cut of the experiments, mm: forces scale with the tool's engaged
     /// cutting-edge length at Ad over that at Ad_ref: Ad / Ad_ref for a square end mill, the
     /// corner arc and then the flank for radius and ball end mills (whose corner radius the
     /// tool row gives).
+    #[schema(exclusive_minimum = 0)]
     pub ad_ref_mm: f64,
     #[serde(default = "Source::user")]
     pub source: Source,

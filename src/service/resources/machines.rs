@@ -13,16 +13,27 @@ use utoipa::ToSchema;
 #[serde(deny_unknown_fields)]
 #[schema(example = json!({"name": "shop VMC", "rapid_mm_min": 30000.0, "max_feed_mm_min": 20000.0, "max_spindle_rpm": 24000.0, "accel_x_mm_s2": 3000.0, "accel_y_mm_s2": 3000.0, "accel_z_mm_s2": 2500.0, "jerk_x_mm_s3": 60000.0, "jerk_y_mm_s3": 60000.0, "jerk_z_mm_s3": 50000.0, "tool_change_s": 5.0}))]
 pub struct MachineData {
+    #[schema(min_length = 1, pattern = r"\S")]
     pub name: String,
+    #[schema(exclusive_minimum = 0)]
     pub rapid_mm_min: f64,
+    #[schema(exclusive_minimum = 0)]
     pub max_feed_mm_min: f64,
+    #[schema(exclusive_minimum = 0)]
     pub max_spindle_rpm: f64,
+    #[schema(exclusive_minimum = 0)]
     pub accel_x_mm_s2: f64,
+    #[schema(exclusive_minimum = 0)]
     pub accel_y_mm_s2: f64,
+    #[schema(exclusive_minimum = 0)]
     pub accel_z_mm_s2: f64,
+    #[schema(exclusive_minimum = 0)]
     pub jerk_x_mm_s3: f64,
+    #[schema(exclusive_minimum = 0)]
     pub jerk_y_mm_s3: f64,
+    #[schema(exclusive_minimum = 0)]
     pub jerk_z_mm_s3: f64,
+    #[schema(minimum = 0)]
     pub tool_change_s: f64,
     /// Coolant the programs switch on after the spindle starts: `off` (default: dry, or an
     /// air blast the machine runs by itself), `mist` (M7) or `flood` (M8). A job's

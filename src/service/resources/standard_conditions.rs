@@ -18,20 +18,27 @@ pub struct StandardConditionsData {
     #[sqlx(try_from = "String")]
     pub operation: Operation,
     /// Spindle speed S, min⁻¹.
+    #[schema(exclusive_minimum = 0)]
     pub spindle_rpm: f64,
     /// Feed per tooth fz, mm/tooth.
+    #[schema(exclusive_minimum = 0)]
     pub fz_mm: f64,
     /// Smallest feed per tooth a feed optimisation may command, mm/tooth.
+    #[schema(exclusive_minimum = 0)]
     pub fz_min_mm: f64,
     /// Largest feed per tooth, mm/tooth (none: 2 × standard feed, MODEL.md §3).
     #[serde(default)]
+    #[schema(exclusive_minimum = 0)]
     pub fz_max_mm: Option<f64>,
     /// Radial depth of cut Rd, mm (for trochoids: the pitch).
+    #[schema(exclusive_minimum = 0)]
     pub rd_mm: f64,
     /// Axial depth of cut Ad, mm (helical boring: per turn).
+    #[schema(exclusive_minimum = 0)]
     pub ad_mm: f64,
     /// Axial depth on the last (intermediate-rough) layer, mm.
     #[serde(default)]
+    #[schema(exclusive_minimum = 0)]
     pub ad_last_layer_mm: Option<f64>,
     #[serde(default)]
     pub notes: String,
@@ -121,6 +128,7 @@ crate::record!(
 pub struct StandardConditionsFilter {
     pub tool_id: Option<i64>,
     pub material_id: Option<i64>,
+    #[param(value_type = Option<Operation>)]
     pub operation: Option<String>,
     pub source: Option<Source>,
     pub limit: Option<i64>,
@@ -142,6 +150,13 @@ impl ListFilter for StandardConditionsFilter {
 
     fn page(&self) -> PageRequest {
         PageRequest { limit: self.limit, offset: self.offset }
+    }
+
+    fn validate(&self, v: &mut Validator) {
+        if let Some(operation) = &self.operation {
+            let names: Vec<&str> = Operation::ALL.iter().map(|o| o.as_str()).collect();
+            v.check(Operation::parse(operation).is_some(), "operation", format!("must be one of {}", names.join(", ")));
+        }
     }
 }
 
