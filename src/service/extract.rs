@@ -37,18 +37,39 @@ where
 }
 
 /// Parses JSON bytes into `T`, mapping syntax errors to 400 and data errors to 422
-/// with the path of the offending field.
+/// with the path of the offending field (the reason never carries a JSON position).
 pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
-    let mut de = serde_json::Deserializer::from_slice(bytes);
-    let value = serde_path_to_error::deserialize(&mut de).map_err(path_error)?;
-    de.end().map_err(|e| ApiError::BadRequest(format!("malformed JSON: {e}")))?;
-    Ok(value)
+    let value: serde_json::Value =
+        serde_json::from_slice(bytes).map_err(|e| ApiError::BadRequest(format!("malformed JSON: {e}")))?;
+    from_value(value)
 }
 
 /// Converts an already-parsed JSON value into `T` with path-aware errors (422).
-pub fn from_value<T: DeserializeOwned>(value: serde_json::Value) -> Result<T, ApiError> {
+pub fn from_value<T: DeserializeOwned>(mut value: serde_json::Value) -> Result<T, ApiError> {
+    whole_numbers_as_integers(&mut value);
     serde_path_to_error::deserialize(value)
         .map_err(|e| ApiError::Validation(vec![field_error(e.path().to_string(), &e.inner().to_string())]))
+}
+
+/// Largest magnitude a whole number written with a fraction or exponent (`10.0`, `1e3`)
+/// is read as an integer up to: 2^53, where every whole number is exact in a double.
+const EXACT_INTEGER_LIMIT: f64 = 9_007_199_254_740_992.0;
+
+/// Whole numbers written as `10.0` or `1e3` become integers, as JSON (and JSON Schema's
+/// `integer`) counts them: a count or an id sent as `4.0` is read as 4. Fields of type
+/// number read integers as well, so nothing else changes.
+fn whole_numbers_as_integers(value: &mut serde_json::Value) {
+    use serde_json::Value;
+    match value {
+        Value::Number(n) if !n.is_i64() && !n.is_u64() => {
+            if let Some(x) = n.as_f64().filter(|x| x.fract() == 0.0 && x.abs() <= EXACT_INTEGER_LIMIT) {
+                *value = Value::from(x as i64);
+            }
+        }
+        Value::Array(items) => items.iter_mut().for_each(whole_numbers_as_integers),
+        Value::Object(map) => map.values_mut().for_each(whole_numbers_as_integers),
+        _ => {}
+    }
 }
 
 /// `message` with every stretch between backticks or double quotes (serde quotes the
@@ -91,25 +112,6 @@ fn field_of(path: String) -> String {
         "body".to_string()
     } else {
         path
-    }
-}
-
-fn path_error(e: serde_path_to_error::Error<serde_json::Error>) -> ApiError {
-    use serde_json::error::Category;
-    let inner = e.inner();
-    match inner.classify() {
-        Category::Syntax | Category::Eof | Category::Io => ApiError::BadRequest(format!("malformed JSON: {inner}")),
-        Category::Data => {
-            ApiError::Validation(vec![field_error(e.path().to_string(), &strip_position(&inner.to_string()))])
-        }
-    }
-}
-
-/// serde_json appends " at line L column C"; the field path says more.
-fn strip_position(message: &str) -> String {
-    match message.rfind(" at line ") {
-        Some(i) => message[..i].to_string(),
-        None => message.to_string(),
     }
 }
 
@@ -222,6 +224,19 @@ mod tests {
             "unknown variant `squar`, expected one of `square`, `ball`"
         );
         assert_eq!(shorten_quoted("an unpaired ` quote stays"), "an unpaired ` quote stays");
+    }
+
+    #[test]
+    fn a_whole_number_written_with_a_fraction_is_read_as_an_integer() {
+        #[derive(Debug, Deserialize)]
+        struct Count {
+            flutes: u32,
+            id: i64,
+        }
+        let read = parse_json::<Count>(br#"{"flutes": 4.0, "id": 1e3}"#).unwrap();
+        assert_eq!((read.flutes, read.id), (4, 1000));
+        let e = only_error(parse_json::<Count>(br#"{"flutes": 4.5, "id": 1}"#).unwrap_err());
+        assert_eq!(e.reason, "must be a whole number from 0 to 4294967295, got 4.5");
     }
 
     #[test]
