@@ -277,7 +277,7 @@ const SCIENTIFIC_BELOW: f64 = 1e-6;
 
 /// A number as an error message shows it: as written when short, else in scientific
 /// notation (`1e308` and `1e-300`, not 300 digits).
-fn shown(value: f64) -> String {
+pub fn shown(value: f64) -> String {
     let magnitude = value.abs();
     if value.is_finite() && (magnitude >= SCIENTIFIC_FROM || (magnitude > 0.0 && magnitude < SCIENTIFIC_BELOW)) {
         format!("{value:e}")

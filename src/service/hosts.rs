@@ -9,7 +9,7 @@ use axum::response::{IntoResponse, Response};
 use std::sync::Arc;
 
 /// Paths a health probe calls by address, whatever the allowed names.
-const PROBES: &[&str] = &["/healthz", "/readyz"];
+pub const PROBES: &[&str] = &["/healthz", "/readyz"];
 
 /// The host names (or `name:port`) allowed in `Host`; empty: any.
 #[derive(Debug, Clone, Default)]

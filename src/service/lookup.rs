@@ -3,7 +3,7 @@
 
 use crate::core::operation::Operation;
 use crate::core::tool::ToolType;
-use crate::service::error::{excerpt, ApiError};
+use crate::service::error::{excerpt, shown, ApiError};
 use crate::service::resources::cost_rates::CostRates;
 use crate::service::resources::force_models::ForceModelRecord;
 use crate::service::resources::materials::Material;
@@ -88,7 +88,7 @@ pub async fn tool(
 /// such tool) or `tool_id` (tools, but none of them the default).
 pub async fn default_tool(pool: &SqlitePool, tool_type: ToolType, d: f64) -> Result<Tool, ApiError> {
     if !(d.is_finite() && d > 0.0) {
-        return Err(ApiError::field("diameter_mm", format!("must be a finite number > 0, got {d}")));
+        return Err(ApiError::field("diameter_mm", format!("must be a finite number > 0, got {}", shown(d))));
     }
     let tools = sqlx::query_as::<_, Tool>(
         "SELECT * FROM tools WHERE tool_type = ? AND abs(diameter_mm - ?) <= ?
@@ -103,7 +103,7 @@ pub async fn default_tool(pool: &SqlitePool, tool_type: ToolType, d: f64) -> Res
     match tools.first() {
         None => Err(ApiError::field(
             "diameter_mm",
-            format!("no {} end mill of diameter {d} mm in the database", tool_type.as_str()),
+            format!("no {} end mill of diameter {} mm in the database", tool_type.as_str(), shown(d)),
         )),
         Some(t) if t.data.default == Some(true) => Ok(t.clone()),
         Some(_) => Err(ApiError::field(

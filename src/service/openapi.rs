@@ -24,7 +24,7 @@ use utoipa_axum::router::OpenApiRouter;
         (name = "keys", description = "API keys and their roles (admin)"),
         (name = "health", description = "Liveness and readiness")
     ),
-    components(schemas(Problem, FieldError, ConditionsResult, AnalysisResult, FeedsResult, CostingResult, TrochoidsResult, PlanResult))
+    components(schemas(Problem, FieldError, crate::service::jobs::model::ProgramPart, ConditionsResult, AnalysisResult, FeedsResult, CostingResult, TrochoidsResult, PlanResult))
 )]
 pub struct ApiDoc;
 
@@ -51,6 +51,10 @@ pub fn api_router() -> OpenApiRouter<AppState> {
 pub fn api_parts() -> (axum::Router<AppState>, utoipa::openapi::OpenApi) {
     let (router, mut doc) = api_router().split_for_parts();
     crate::service::security_docs::describe(&mut doc);
+    crate::service::status_docs::describe(&mut doc);
+    crate::service::parameter_docs::describe(&mut doc);
+    crate::service::resources::record_schema::describe_patches(&mut doc);
+    crate::service::job_schema::describe(&mut doc);
     (router, doc)
 }
 

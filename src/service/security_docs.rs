@@ -60,10 +60,15 @@ fn secure(op: &mut Operation, role: Role) {
         _ => note,
     });
     let responses = &mut op.responses.responses;
-    responses.insert(
-        "401".into(),
-        problem("No key, or an unknown or revoked one (`WWW-Authenticate: Bearer`)", None).into(),
+    let mut unauthorized = problem("No key, or an unknown or revoked one", None);
+    unauthorized.headers.insert(
+        "WWW-Authenticate".into(),
+        HeaderBuilder::new()
+            .schema(ObjectBuilder::new().schema_type(Type::String))
+            .description(Some("`Bearer`: send a key as `Authorization: Bearer <key>`"))
+            .build(),
     );
+    responses.insert("401".into(), unauthorized.into());
     if role > Role::Reader {
         responses.insert("403".into(), problem("The key's role may not do this", None).into());
     }

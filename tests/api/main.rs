@@ -26,6 +26,7 @@ mod programs;
 mod recalibration;
 mod restarts;
 mod retention;
+mod schemathesis;
 mod tool_defaults;
 mod trochoids;
 mod web;

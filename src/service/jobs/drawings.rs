@@ -74,9 +74,12 @@ pub struct JobViews {
 #[serde(deny_unknown_fields)]
 #[into_params(parameter_in = Query)]
 pub struct DrawingQuery {
-    /// The path to draw (default: the last one, e.g. `planned`).
+    /// The path to draw (default: the last one, e.g. `planned`); `getJobViews` lists a
+    /// job's paths.
+    #[param(pattern = "^(input|optimised|base|planned|program)$")]
     pub path: Option<String>,
     /// Colour the path by `alpha`, `feed`, `force` or `wear` (default: alpha where known).
+    #[param(pattern = "^(alpha|feed|force|wear)$")]
     pub color: Option<String>,
     /// One layer by index (default: all).
     pub layer: Option<usize>,
@@ -89,6 +92,7 @@ pub struct DrawingQuery {
     /// Mark the trochoids (default true).
     pub trochoids: Option<bool>,
     /// Width of the drawing, px (200 to 4000, default 1000).
+    #[param(minimum = 200, maximum = 4000)]
     pub width: Option<u32>,
 }
 
@@ -98,8 +102,10 @@ pub struct DrawingQuery {
 #[into_params(parameter_in = Query)]
 pub struct ChartQuery {
     /// Width, px (200 to 4000, default 900).
+    #[param(minimum = 200, maximum = 4000)]
     pub width: Option<u32>,
     /// Height, px (200 to 4000, default 360).
+    #[param(minimum = 200, maximum = 4000)]
     pub height: Option<u32>,
 }
 

@@ -17,6 +17,7 @@ use utoipa::ToSchema;
 
 /// Lengths, times and tool consumption of a part of the job.
 #[derive(Debug, Clone, Copy, Serialize, ToSchema)]
+#[schema(as = PlanFigures)]
 pub struct FiguresDto {
     pub feed_length_mm: f64,
     /// Feed moves that cut material, mm.

@@ -68,6 +68,7 @@ impl KeyOrigin {
 pub struct NewKey {
     pub role: Role,
     /// Who or what uses it (1 to 100 characters), e.g. the CAM station or the MES.
+    #[schema(min_length = 1, max_length = 100, pattern = r"\S")]
     pub name: String,
     /// Requests a minute this key may make (0: unlimited); the service's
     /// `--rate-limit-per-minute` when left out.

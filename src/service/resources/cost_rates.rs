@@ -11,12 +11,16 @@ use utoipa::ToSchema;
 #[serde(deny_unknown_fields)]
 #[schema(example = json!({"name": "night shift", "currency": "EUR", "machine_rate_per_hour": 45.0, "default_tool_price": 70.0}))]
 pub struct CostRatesData {
+    #[schema(min_length = 1, pattern = r"\S")]
     pub name: String,
     /// Currency code, e.g. USD, EUR, JPY.
+    #[schema(min_length = 1, pattern = r"\S")]
     pub currency: String,
     /// Machine cost per hour `c_m`.
+    #[schema(minimum = 0, maximum = 10000000)]
     pub machine_rate_per_hour: f64,
     /// Price of a tool `c_t` for tools that have no price of their own.
+    #[schema(minimum = 0, maximum = 10000000)]
     pub default_tool_price: f64,
     #[serde(default = "Source::user")]
     pub source: Source,

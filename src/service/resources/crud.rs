@@ -126,7 +126,8 @@ pub async fn create<R: Record>(pool: &SqlitePool, data: R::Data) -> Result<R, Ap
 }
 
 /// Replaces a row's data; marks it edited so later migrations leave it alone. With
-/// `if_match`, refuses (412) unless the row still has that entity tag.
+/// `if_match`, refuses (412) unless the row still has that entity tag; refused data is
+/// told first (422), as it would be refused whatever the tag.
 pub async fn replace<R: Record>(
     pool: &SqlitePool,
     id: i64,
@@ -135,6 +136,7 @@ pub async fn replace<R: Record>(
 ) -> Result<R, ApiError> {
     let mut tx = pool.begin_with(WRITE_TRANSACTION).await?;
     let current = fetch::<R>(&mut tx, id).await?;
+    check(&mut tx, &data).await?;
     etag::check(if_match, &current)?;
     let record = write::<R>(&mut tx, id, current.data(), data, Edit::Data).await?;
     tx.commit().await?;
@@ -148,8 +150,8 @@ enum Edit {
     FlagsOnly,
 }
 
-/// Writes a row's data inside the caller's write transaction and reads it back; a write of
-/// its data marks it edited, so later migrations leave it alone.
+/// Writes a row's checked data inside the caller's write transaction and reads it back; a
+/// write of its data marks it edited, so later migrations leave it alone.
 async fn write<R: Record>(
     conn: &mut SqliteConnection,
     id: i64,
@@ -157,7 +159,6 @@ async fn write<R: Record>(
     data: R::Data,
     edit: Edit,
 ) -> Result<R, ApiError> {
-    check(conn, &data).await?;
     let sets: Vec<String> = R::Data::COLUMNS.iter().map(|c| format!("{c} = ?")).collect();
     let edited = if edit == Edit::Data { "edited = 1, " } else { "" };
     let sql = format!(
@@ -182,7 +183,6 @@ pub async fn patch<R: Record>(pool: &SqlitePool, id: i64, patch: Value, if_match
     }
     let mut tx = pool.begin_with(WRITE_TRANSACTION).await?;
     let current = fetch::<R>(&mut tx, id).await?;
-    etag::check(if_match, &current)?;
     let mut merged = serde_json::to_value(current.data()).map_err(|e| ApiError::Internal(e.to_string()))?;
     let named = |key: &str| patch.get(key).is_some();
     let edit = match patch.as_object() {
@@ -203,6 +203,8 @@ pub async fn patch<R: Record>(pool: &SqlitePool, id: i64, patch: Value, if_match
         patch.as_object().into_iter().flatten().filter(|(_, v)| v.is_null()).map(|(k, _)| k.clone()).collect();
     merge(&mut merged, patch);
     let data: R::Data = from_value(merged).map_err(|e| required_not_removable(e, &removed))?;
+    check(&mut tx, &data).await?;
+    etag::check(if_match, &current)?;
     let record = write::<R>(&mut tx, id, current.data(), data, edit).await?;
     tx.commit().await?;
     Ok(record)

@@ -6,6 +6,14 @@ use crate::service::error::Validator;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
+/// The range of the coding centres and steps of chip thickness, µm (assumed: 1 nm to 1 cm).
+const CHIP_THICKNESS_RANGE_UM: (f64, f64) = (1e-3, 1e4);
+/// The range of the coding centres and steps of contact length, and of the reference
+/// axial depth, mm (assumed: 0.1 µm to 1 m).
+const LENGTH_RANGE_MM: (f64, f64) = (1e-4, 1e3);
+/// The largest magnitude of a coefficient, N (assumed: a thousand times the papers').
+const MAX_COEFFICIENT_N: f64 = 1e6;
+
 /// A second-order response-surface model of the XY cutting force (seed 002 Eq. 1) in
 /// coded variables `X1 = (t_m − t0)/δt`, `X2 = (L − L0)/δL`.
 #[derive(Debug, Clone, Serialize, Deserialize, sqlx::FromRow, ToSchema)]
@@ -15,27 +23,39 @@ pub struct ForceModelData {
     pub tool_id: i64,
     pub material_id: i64,
     /// Centre of the chip-thickness variable, µm.
+    #[schema(minimum = 0.001, maximum = 10000)]
     pub t0_um: f64,
     /// Step of the chip-thickness variable, µm.
+    #[schema(minimum = 0.001, maximum = 10000)]
     pub dt_um: f64,
     /// Centre of the arc-length variable, mm.
+    #[schema(minimum = 0.0001, maximum = 1000)]
     pub l0_mm: f64,
     /// Step of the arc-length variable, mm.
+    #[schema(minimum = 0.0001, maximum = 1000)]
     pub dl_mm: f64,
+    #[schema(minimum = -1000000, maximum = 1000000)]
     pub b0: f64,
+    #[schema(minimum = -1000000, maximum = 1000000)]
     pub b1: f64,
+    #[schema(minimum = -1000000, maximum = 1000000)]
     pub b2: f64,
     #[serde(default)]
+    #[schema(minimum = -1000000, maximum = 1000000)]
     pub b11: f64,
+    #[schema(minimum = -1000000, maximum = 1000000)]
     pub b22: f64,
+    #[schema(minimum = -1000000, maximum = 1000000)]
     pub b12: f64,
     /// Coefficient of determination of the fit.
     #[serde(default)]
+    #[schema(maximum = 1)]
     pub r_squared: Option<f64>,
     /// Axial depth of cut of the experiments, mm: forces scale with the tool's engaged
     /// cutting-edge length at Ad over that at Ad_ref: Ad / Ad_ref for a square end mill, the
     /// corner arc and then the flank for radius and ball end mills (whose corner radius the
     /// tool row gives).
+    #[schema(minimum = 0.0001, maximum = 1000)]
     pub ad_ref_mm: f64,
     #[serde(default = "Source::user")]
     pub source: Source,
@@ -110,19 +130,16 @@ impl Resource for ForceModelData {
     }
 
     fn validate(&self, v: &mut Validator) {
-        for (field, value) in [
-            ("t0_um", self.t0_um),
-            ("dt_um", self.dt_um),
-            ("l0_mm", self.l0_mm),
-            ("dl_mm", self.dl_mm),
-            ("ad_ref_mm", self.ad_ref_mm),
-        ] {
-            v.positive(field, value);
+        let (t, l) = (CHIP_THICKNESS_RANGE_UM, LENGTH_RANGE_MM);
+        v.within("t0_um", self.t0_um, t.0, t.1);
+        v.within("dt_um", self.dt_um, t.0, t.1);
+        for (field, value) in [("l0_mm", self.l0_mm), ("dl_mm", self.dl_mm), ("ad_ref_mm", self.ad_ref_mm)] {
+            v.within(field, value, l.0, l.1);
         }
         for (field, value) in
             [("b0", self.b0), ("b1", self.b1), ("b2", self.b2), ("b11", self.b11), ("b22", self.b22), ("b12", self.b12)]
         {
-            v.finite(field, value);
+            v.within(field, value, -MAX_COEFFICIENT_N, MAX_COEFFICIENT_N);
         }
         if let Some(r2) = self.r_squared {
             v.within("r_squared", r2, f64::NEG_INFINITY, 1.0);

@@ -6,6 +6,12 @@ use crate::service::error::Validator;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
+/// The range of every machine limit (speeds in mm/min or min⁻¹, accelerations in mm/s²,
+/// jerks in mm/s³; assumed: from 0.001 to 10⁹, so no time computed from them overflows).
+const LIMIT_RANGE: (f64, f64) = (1e-3, 1e9);
+/// The longest tool change, s (assumed: an hour).
+const MAX_TOOL_CHANGE_S: f64 = 3600.0;
+
 /// A machining centre: rapid rate, feed and spindle limits, per-axis acceleration and
 /// jerk (for the kinematic time estimate, MODEL.md §10), tool-change time, and the coolant
 /// the programs written for it switch on.
@@ -13,16 +19,27 @@ use utoipa::ToSchema;
 #[serde(deny_unknown_fields)]
 #[schema(example = json!({"name": "shop VMC", "rapid_mm_min": 30000.0, "max_feed_mm_min": 20000.0, "max_spindle_rpm": 24000.0, "accel_x_mm_s2": 3000.0, "accel_y_mm_s2": 3000.0, "accel_z_mm_s2": 2500.0, "jerk_x_mm_s3": 60000.0, "jerk_y_mm_s3": 60000.0, "jerk_z_mm_s3": 50000.0, "tool_change_s": 5.0}))]
 pub struct MachineData {
+    #[schema(min_length = 1, pattern = r"\S")]
     pub name: String,
+    #[schema(minimum = 0.001, maximum = 1000000000)]
     pub rapid_mm_min: f64,
+    #[schema(minimum = 0.001, maximum = 1000000000)]
     pub max_feed_mm_min: f64,
+    #[schema(minimum = 0.001, maximum = 1000000000)]
     pub max_spindle_rpm: f64,
+    #[schema(minimum = 0.001, maximum = 1000000000)]
     pub accel_x_mm_s2: f64,
+    #[schema(minimum = 0.001, maximum = 1000000000)]
     pub accel_y_mm_s2: f64,
+    #[schema(minimum = 0.001, maximum = 1000000000)]
     pub accel_z_mm_s2: f64,
+    #[schema(minimum = 0.001, maximum = 1000000000)]
     pub jerk_x_mm_s3: f64,
+    #[schema(minimum = 0.001, maximum = 1000000000)]
     pub jerk_y_mm_s3: f64,
+    #[schema(minimum = 0.001, maximum = 1000000000)]
     pub jerk_z_mm_s3: f64,
+    #[schema(minimum = 0, maximum = 3600)]
     pub tool_change_s: f64,
     /// Coolant the programs switch on after the spindle starts: `off` (default: dry, or an
     /// air blast the machine runs by itself), `mist` (M7) or `flood` (M8). A job's
@@ -87,9 +104,9 @@ impl Resource for MachineData {
     fn validate(&self, v: &mut Validator) {
         v.not_blank("name", &self.name);
         for (field, value) in self.limits() {
-            v.positive(field, value);
+            v.within(field, value, LIMIT_RANGE.0, LIMIT_RANGE.1);
         }
-        v.non_negative("tool_change_s", self.tool_change_s);
+        v.within("tool_change_s", self.tool_change_s, 0.0, MAX_TOOL_CHANGE_S);
     }
 }
 

@@ -14,12 +14,14 @@ const HRC_RANGE: (f64, f64) = (0.0, 80.0);
 #[schema(example = json!({"name": "NAK80", "designation": "Daido NAK80", "hardness_hrc": 40.0, "description": "pre-hardened mould steel"}))]
 pub struct MaterialData {
     /// Unique short name, e.g. SKD61.
+    #[schema(min_length = 1, pattern = r"\S")]
     pub name: String,
     /// Standard designation, e.g. JIS G 4404 SKD61.
     #[serde(default)]
     pub designation: String,
     /// Hardness, HRC.
     #[serde(default)]
+    #[schema(minimum = 0, maximum = 80)]
     pub hardness_hrc: Option<f64>,
     #[serde(default)]
     pub description: String,

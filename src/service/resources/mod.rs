@@ -6,6 +6,7 @@ pub mod crud;
 pub mod force_models;
 pub mod machines;
 pub mod materials;
+pub mod record_schema;
 pub mod routes;
 pub mod standard_conditions;
 pub mod tool_life;
@@ -187,12 +188,13 @@ pub struct Page<T> {
     pub offset: i64,
 }
 
-/// Declares the full-row type of a resource: its data plus id, provenance and timestamps.
+/// Declares the full-row type of a resource: its data plus id, provenance and timestamps,
+/// with one flat OpenAPI schema ([`record_schema`]) that every row validates against.
 #[macro_export]
 macro_rules! record {
-    ($(#[$meta:meta])* $record:ident, $data:ident) => {
-        $(#[$meta])*
-        #[derive(Debug, Clone, serde::Serialize, sqlx::FromRow, utoipa::ToSchema)]
+    ($(#[doc = $doc:literal])* $record:ident, $data:ident) => {
+        $(#[doc = $doc])*
+        #[derive(Debug, Clone, serde::Serialize, sqlx::FromRow)]
         pub struct $record {
             pub id: i64,
             #[serde(flatten)]
@@ -204,6 +206,25 @@ macro_rules! record {
             pub edited: bool,
             pub created_at: String,
             pub updated_at: String,
+        }
+
+        impl utoipa::PartialSchema for $record {
+            fn schema() -> utoipa::openapi::RefOr<utoipa::openapi::schema::Schema> {
+                $crate::service::resources::record_schema::record_schema(
+                    <$data as utoipa::PartialSchema>::schema(),
+                    concat!($($doc),*).trim(),
+                )
+            }
+        }
+
+        impl utoipa::ToSchema for $record {
+            fn name() -> std::borrow::Cow<'static, str> {
+                std::borrow::Cow::Borrowed(stringify!($record))
+            }
+
+            fn schemas(schemas: &mut Vec<(String, utoipa::openapi::RefOr<utoipa::openapi::schema::Schema>)>) {
+                <$data as utoipa::ToSchema>::schemas(schemas);
+            }
         }
 
         impl $crate::service::resources::Record for $record {

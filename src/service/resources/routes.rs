@@ -111,6 +111,7 @@ macro_rules! crud_api {
                     (status = 200, description = "The updated row", body = $rec,
                         headers(("ETag" = String, description = "The row's new entity tag"))),
                     (status = 404, description = "No such row", body = Problem, content_type = "application/problem+json"),
+                    (status = 409, description = "A row with the same unique key exists", body = Problem, content_type = "application/problem+json"),
                     (status = 412, description = "The row changed since it was read (If-Match)", body = Problem, content_type = "application/problem+json"),
                     (status = 422, description = "A refused field", body = Problem, content_type = "application/problem+json")))]
             pub async fn patch(

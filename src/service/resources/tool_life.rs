@@ -25,9 +25,19 @@ pub struct GammaPoint(
 
 impl utoipa::PartialSchema for GammaPoint {
     fn schema() -> utoipa::openapi::RefOr<utoipa::openapi::schema::Schema> {
-        use utoipa::openapi::schema::{ArrayBuilder, ObjectBuilder, Type};
+        use utoipa::openapi::schema::{ArrayBuilder, ArrayItems, ObjectBuilder, Type};
+        let angle = ObjectBuilder::new()
+            .schema_type(Type::Number)
+            .minimum(Some(0.0))
+            .maximum(Some(MAX_ENGAGEMENT_DEG))
+            .description(Some("Engagement angle α, deg"));
+        let factor = ObjectBuilder::new()
+            .schema_type(Type::Number)
+            .exclusive_minimum(Some(0.0))
+            .description(Some("Wear factor γ (1 = as the standard cut)"));
         ArrayBuilder::new()
-            .items(ObjectBuilder::new().schema_type(Type::Number))
+            .prefix_items([angle, factor])
+            .items(ArrayItems::False)
             .min_items(Some(2))
             .max_items(Some(2))
             .description(Some("[engagement angle α in deg, wear factor γ]"))
@@ -50,12 +60,15 @@ pub struct ToolLifeData {
     pub tool_id: i64,
     pub material_id: i64,
     /// Life as machined length at the standard straight conditions, m.
+    #[schema(minimum = 0.001, maximum = 10000000)]
     pub life_m: f64,
     /// γ(α) as `[angle_deg, factor]` pairs, angles increasing from 0 to at most 180;
     /// linear in between.
     #[sqlx(json)]
+    #[schema(min_items = 1)]
     pub gamma_table: Vec<GammaPoint>,
     /// Exponent k of the force factor φ = (F/F*)^k above the target force.
+    #[schema(minimum = 0, maximum = 20)]
     pub force_exponent: f64,
     #[serde(default = "Source::user")]
     pub source: Source,

@@ -26,20 +26,25 @@ pub const MAX_PRICE: f64 = 1e7;
 #[schema(example = json!({"name": "square D10 z4 shop", "tool_type": "square", "diameter_mm": 10.0, "flutes": 4, "corner_radius_mm": 0.0, "coating": "(Al,Ti)N", "substrate": "micro-grain carbide", "price": 95.0}))]
 pub struct ToolData {
     /// Unique name.
+    #[schema(min_length = 1, pattern = r"\S")]
     pub name: String,
     #[sqlx(try_from = "String")]
     pub tool_type: ToolType,
     /// Diameter D, mm.
+    #[schema(minimum = 0.1, maximum = 100)]
     pub diameter_mm: f64,
     /// Number of flutes z.
+    #[schema(minimum = 1, maximum = 16)]
     pub flutes: u32,
     /// Corner radius, mm. Square end mill: 0 (the default when left out). Radius end mill:
     /// required, between 0 and D/2. Ball end mill: D/2, which it takes when left out (when
     /// given it must be D/2). A stored tool always has it.
     #[serde(default)]
+    #[schema(minimum = 0)]
     pub corner_radius_mm: Option<f64>,
     /// Length of cut, mm.
     #[serde(default)]
+    #[schema(exclusive_minimum = 0, maximum = 1000)]
     pub flute_length_mm: Option<f64>,
     #[serde(default)]
     pub coating: String,
@@ -47,6 +52,7 @@ pub struct ToolData {
     pub substrate: String,
     /// Price of one tool in the cost rates' currency; the cost rates' default when null.
     #[serde(default)]
+    #[schema(minimum = 0, maximum = 10000000)]
     pub price: Option<f64>,
     #[serde(default = "Source::user")]
     pub source: Source,
@@ -282,8 +288,10 @@ crate::record!(
 #[into_params(parameter_in = Query)]
 pub struct ToolFilter {
     /// Only tools of this shape.
+    #[param(value_type = Option<ToolType>)]
     pub tool_type: Option<String>,
     /// Only tools of this diameter, mm.
+    #[param(exclusive_minimum = 0)]
     pub diameter_mm: Option<f64>,
     /// Only tools with standard conditions for this material id.
     pub material_id: Option<i64>,
