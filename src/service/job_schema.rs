@@ -17,7 +17,7 @@ use crate::service::jobs::trochoids::TrochoidsRequest;
 use crate::service::jobs::trochoids_result::TrochoidsResult;
 use std::borrow::Cow;
 use std::collections::BTreeMap;
-use utoipa::openapi::schema::{Discriminator, ObjectBuilder, OneOfBuilder, Schema, Type};
+use utoipa::openapi::schema::{AnyOfBuilder, Discriminator, ObjectBuilder, OneOfBuilder, Schema, Type};
 use utoipa::openapi::{OpenApi, Ref, RefOr};
 use utoipa::ToSchema;
 
@@ -64,6 +64,7 @@ pub fn describe(doc: &mut OpenApi) {
         return;
     };
     describe_requests(&mut components.schemas);
+    describe_inputs(&mut components.schemas);
     let Some(RefOr::T(Schema::Object(job))) = components.schemas.get("Job").cloned() else {
         return;
     };
@@ -116,6 +117,19 @@ fn describe_requests(schemas: &mut BTreeMap<String, RefOr<Schema>>) {
     let mut schema = one_of.discriminator(Some(discriminator)).build();
     schema.example = request.example.clone();
     schemas.insert("JobRequest".to_string(), Schema::OneOf(schema).into());
+}
+
+/// `JobInput` (`GET /v1/jobs/{id}/input`): one kind's input, as an `anyOf`, since a small
+/// input can satisfy more than one kind's schema (the job's `kind` says which it is).
+fn describe_inputs(schemas: &mut BTreeMap<String, RefOr<Schema>>) {
+    let Some(RefOr::T(Schema::OneOf(one_of))) = schemas.get("JobInput").cloned() else {
+        return;
+    };
+    let mut any_of = AnyOfBuilder::new().description(one_of.description.clone());
+    for item in one_of.items {
+        any_of = any_of.item(item);
+    }
+    schemas.insert("JobInput".to_string(), any_of.into());
 }
 
 #[cfg(test)]

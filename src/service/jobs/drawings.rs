@@ -82,6 +82,7 @@ pub struct DrawingQuery {
     #[param(pattern = "^(alpha|feed|force|wear)$")]
     pub color: Option<String>,
     /// One layer by index (default: all).
+    #[param(minimum = 0, maximum = 4294967295_u64)]
     pub layer: Option<usize>,
     /// Draw the rapids, dashed (default true).
     pub rapids: Option<bool>,
