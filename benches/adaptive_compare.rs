@@ -42,15 +42,9 @@ const SPACING_MM: f64 = 0.05;
 /// A move whose height changes by more than this is a ramp or a plunge, mm.
 const LEVEL_TOLERANCE_MM: f64 = 1e-6;
 
-/// The seeded OKK VM-4 row (migrations/0002_seed.sql).
+/// The seeded OKK VM-4 row.
 fn vm4() -> MachineLimits {
-    MachineLimits {
-        rapid_mm_min: 20000.0,
-        max_feed_mm_min: 15000.0,
-        accel_mm_s2: [2000.0, 2000.0, 1500.0],
-        jerk_mm_s3: [50000.0, 50000.0, 40000.0],
-        tool_change_s: 8.0,
-    }
+    MachineLimits::SEEDED_OKK_VM4
 }
 
 fn number(v: &Value, key: &str) -> f64 {

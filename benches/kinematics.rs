@@ -17,13 +17,7 @@ fn data(name: &str) -> Toolpath {
 
 /// The seeded OKK VM-4 row.
 fn vm4() -> MachineLimits {
-    MachineLimits {
-        rapid_mm_min: 20000.0,
-        max_feed_mm_min: 15000.0,
-        accel_mm_s2: [2000.0, 2000.0, 1500.0],
-        jerk_mm_s3: [50000.0, 50000.0, 40000.0],
-        tool_change_s: 8.0,
-    }
+    MachineLimits::SEEDED_OKK_VM4
 }
 
 fn fastest(path: &Toolpath, options: &TimeOptions) -> (MachiningTime, f64) {

@@ -30,6 +30,16 @@ pub struct MachineLimits {
 }
 
 impl MachineLimits {
+    /// The seeded OKK VM-4 row (`migrations/0002_seed.sql`, `assumed` values): the machine
+    /// the tests and benchmarks time programs on without a database.
+    pub const SEEDED_OKK_VM4: MachineLimits = MachineLimits {
+        rapid_mm_min: 20000.0,
+        max_feed_mm_min: 15000.0,
+        accel_mm_s2: [2000.0, 2000.0, 1500.0],
+        jerk_mm_s3: [50000.0, 50000.0, 40000.0],
+        tool_change_s: 8.0,
+    };
+
     /// Checks that every limit is finite and positive (the tool-change time may be 0). Field
     /// names are those of the machine row (`accel_x_mm_s2`…), so the service can point at them.
     pub fn validate(&self) -> Result<(), CoreError> {

@@ -4,16 +4,9 @@ use super::*;
 use crate::core::toolpath::{Event, EventKind, Motion, Move, Plane, Toolpath, Units, P3};
 use std::f64::consts::PI;
 
-/// The seeded OKK VM-4 row (migrations): rapid 20000, max feed 15000, accel 2000/2000/1500,
-/// jerk 50000/50000/40000, tool change 8 s.
+/// The seeded OKK VM-4 row.
 pub(super) fn vm4() -> MachineLimits {
-    MachineLimits {
-        rapid_mm_min: 20000.0,
-        max_feed_mm_min: 15000.0,
-        accel_mm_s2: [2000.0, 2000.0, 1500.0],
-        jerk_mm_s3: [50000.0, 50000.0, 40000.0],
-        tool_change_s: 8.0,
-    }
+    MachineLimits::SEEDED_OKK_VM4
 }
 
 const A: f64 = 2000.0;
