@@ -8,7 +8,7 @@
 
 use super::cleared::{trim_path, ClearedZone, Relink, TrimReport, SAME_LEVEL_MM};
 use super::opening::OpeningStretch;
-use super::pitch::loop_engagement_deg;
+use super::pitch::loop_exceeds;
 use super::spec::{InsertionSpec, PITCH_DESIGN_MARGIN_DEG};
 use super::treatments::{Stretch, TrochoidStretch, ZCutStretch};
 use crate::core::analysis::sampling::move_length;
@@ -80,7 +80,7 @@ impl Swept {
         let (start, c, rho) = (t.plan.start(), t.plan.centres[0], t.plan.rho_mm[0]);
         let limit = spec.alpha_limit_deg - PITCH_DESIGN_MARGIN_DEG;
         self.discs.iter().any(|&(d, rho_d)| {
-            start.distance_mm(d) <= rho_d && loop_engagement_deg(rho_d, rho, c.distance_mm(d), spec.r_mm()) <= limit
+            start.distance_mm(d) <= rho_d && !loop_exceeds(rho_d, rho, c.distance_mm(d), spec.r_mm(), limit)
         })
     }
 }

@@ -185,7 +185,7 @@ pub fn analysis_spec(pocket: &Pocket, spec: &InsertionSpec) -> AnalysisSpec {
         default_spindle_rpm: Some(spec.roughing.spindle_rpm),
         rapid_mm_min: spec.rapid_mm_min,
         sample_spacing_mm: spec.sample_spacing_mm,
-        cell_mm: None,
+        cell_mm: spec.cell_mm,
         alpha_limit_deg: spec.alpha_limit_deg,
         series_points: 0,
     }

@@ -89,6 +89,8 @@ pub struct InsertionSpec {
     pub rapid_mm_min: f64,
     /// Spacing of the simulation samples, mm (default the analysis's).
     pub sample_spacing_mm: Option<f64>,
+    /// Raster cell of the simulation, mm (default the analysis's).
+    pub cell_mm: Option<f64>,
     /// Gap between the trochoids' reach and the wall beyond the allowance, mm.
     pub wall_gap_mm: f64,
     /// The step the contour-parallel path makes, for the program's section labels: rough
@@ -123,6 +125,7 @@ impl InsertionSpec {
             direction: CutDirection::Climb,
             rapid_mm_min: crate::core::cycles::setup::DEFAULT_RAPID_MM_MIN,
             sample_spacing_mm: None,
+            cell_mm: None,
             wall_gap_mm: DEFAULT_WALL_GAP_MM,
             base_step: Step::RoughSideCutting,
         }
@@ -267,6 +270,9 @@ impl InsertionSpec {
         require_positive("rapid_mm_min", self.rapid_mm_min)?;
         if let Some(s) = self.sample_spacing_mm {
             require_positive("sample_spacing_mm", s)?;
+        }
+        if let Some(c) = self.cell_mm {
+            require_positive("cell_mm", c)?;
         }
         let gap = require_finite("wall_gap_mm", self.wall_gap_mm)?;
         if gap < 0.0 {

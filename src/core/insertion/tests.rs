@@ -221,3 +221,54 @@ fn a_pocket_of_more_segments_than_the_planners_take_is_refused_naming_the_field(
     let e = check_pocket_size(&polygon(MAX_PLANNED_SEGMENTS + 1), "layers[2].contour").unwrap_err().to_string();
     assert!(e.starts_with("layers[2].contour") && e.contains("10001 segments"), "{e}");
 }
+
+/// The gouge check measuring every test point (what [`verify::check_gouges`] must equal).
+fn gouges_measured_everywhere(
+    path: &Toolpath,
+    pocket: &Pocket,
+    r_mm: f64,
+    z_top_mm: f64,
+) -> (usize, f64, Option<Spot>) {
+    let boundary = Boundary::of_pocket(pocket);
+    let (mut count, mut min_margin, mut first) = (0, f64::INFINITY, None);
+    for m in path.moves.iter().filter(|m| m.start.z < z_top_mm || m.end.z < z_top_mm) {
+        let n = (crate::core::analysis::sampling::move_length(m) / verify::GOUGE_STEP_MM).ceil().max(1.0) as usize;
+        for k in 0..=n {
+            let (p, _) = crate::core::analysis::sampling::point_on(m, k as f64 / n as f64);
+            if p.z >= z_top_mm {
+                continue;
+            }
+            let c = boundary.clearance_mm(crate::core::geometry::Point::new(p.x, p.y));
+            let margin = if pocket.contains(p.x, p.y) { c } else { -c } - r_mm;
+            min_margin = min_margin.min(margin);
+            if margin < -verify::GOUGE_TOLERANCE_MM {
+                count += 1;
+                first.get_or_insert(Spot { x_mm: p.x, y_mm: p.y, z_mm: p.z, line: m.line, value: margin });
+            }
+        }
+    }
+    (count, min_margin, first)
+}
+
+#[test]
+fn the_gouge_check_passing_over_points_far_from_the_walls_finds_what_measuring_every_point_finds() {
+    let pocket = box_with_slot(12.0);
+    let plan = plan_insertion(&pocket, &spec(-10.0), None, &NoProgress).unwrap();
+    let mut shifted = plan.toolpath.clone();
+    for m in &mut shifted.moves {
+        m.start.x += 3.0;
+        m.end.x += 3.0;
+        if let crate::core::toolpath::Motion::Arc { center, .. } = &mut m.motion {
+            center.x += 3.0;
+        }
+    }
+    for path in [&plan.toolpath, &shifted] {
+        let (count, margin, first) = verify::check_gouges(path, &pocket, &Boundary::of_pocket(&pocket), 5.0, 0.0, 0.0);
+        let (all_count, all_margin, all_first) = gouges_measured_everywhere(path, &pocket, 5.0, 0.0);
+        assert_eq!(count, all_count);
+        assert!(crate::core::tolerance::approx_eq(margin, all_margin, 1e-12), "{margin} {all_margin}");
+        assert_eq!(first.map(|s| s.line), all_first.map(|s| s.line));
+    }
+    let (gouges, margin, _) = verify::check_gouges(&shifted, &pocket, &Boundary::of_pocket(&pocket), 5.0, 0.0, 0.0);
+    assert!(gouges > 100 && margin < -2.9, "{gouges} {margin}");
+}

@@ -260,14 +260,28 @@ pub fn check_gouges(
     let mut count = 0;
     let mut min_margin = f64::INFINITY;
     let mut first = None;
+    // The margin is a signed distance to the walls less a constant, so it changes no faster
+    // than the tool moves: a test point less far along the path from the last one measured
+    // than that one's margin exceeds both the smallest margin so far and the gouge
+    // tolerance can change neither, and is passed over.
+    let mut measured: Option<f64> = None;
+    let mut travelled_mm = 0.0;
     for m in &path.moves {
         if m.start.z >= z_top_mm && m.end.z >= z_top_mm {
+            travelled_mm += move_length(m);
             continue;
         }
-        let n = (move_length(m) / GOUGE_STEP_MM).ceil().max(1.0) as usize;
+        let length = move_length(m);
+        let n = (length / GOUGE_STEP_MM).ceil().max(1.0) as usize;
         for k in 0..=n {
+            if k > 0 {
+                travelled_mm += length / n as f64;
+            }
             let (p, _) = point_on(m, k as f64 / n as f64);
             if p.z >= z_top_mm {
+                continue;
+            }
+            if measured.is_some_and(|last| last - travelled_mm > min_margin.max(-GOUGE_TOLERANCE_MM)) {
                 continue;
             }
             let c = if pocket.contains(p.x, p.y) {
@@ -276,6 +290,8 @@ pub fn check_gouges(
                 -boundary.clearance_mm(Point::new(p.x, p.y))
             };
             let margin = c - r_mm - allowance_mm;
+            measured = Some(margin);
+            travelled_mm = 0.0;
             min_margin = min_margin.min(margin);
             if margin < -GOUGE_TOLERANCE_MM {
                 count += 1;

@@ -71,6 +71,21 @@ pub fn plan_layers(
     options: &ProcessOptions,
     progress: &dyn Progress,
 ) -> Result<Vec<LayerPlan>, CoreError> {
+    plan_layers_on_cells(cavity, candidate, options, None, progress)
+}
+
+/// [`plan_layers`] with the simulations' raster cell `cell_mm` (`None`: the analysis's
+/// default), for the screening's coarse plans.
+pub fn plan_layers_on_cells(
+    cavity: &Cavity,
+    candidate: &ToolCandidate,
+    options: &ProcessOptions,
+    cell_mm: Option<f64>,
+    progress: &dyn Progress,
+) -> Result<Vec<LayerPlan>, CoreError> {
+    let layer_spec = |cavity: &Cavity, index: usize, candidate: &ToolCandidate, options: &ProcessOptions| {
+        InsertionSpec { cell_mm, ..layer_spec(cavity, index, candidate, options) }
+    };
     let n = cavity.layers.len();
     let alike = |a: usize, b: usize| {
         let (la, lb) = (&cavity.layers[a], &cavity.layers[b]);

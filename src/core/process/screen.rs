@@ -5,9 +5,9 @@
 //! the full spacing; a candidate screened out is reported with its estimate.
 
 use super::evaluate::evaluate;
-use super::layer::plan_layers;
+use super::layer::plan_layers_on_cells;
 use super::spec::{ProcessOptions, ToolCandidate};
-use crate::core::analysis::{DEFAULT_MAX_SPACING_MM, SPACING_PER_DIAMETER};
+use crate::core::analysis::{CELL_PER_DIAMETER, DEFAULT_MAX_SPACING_MM, MAX_CELL_MM, SPACING_PER_DIAMETER};
 use crate::core::progress::Progress;
 use crate::core::CoreError;
 
@@ -15,6 +15,11 @@ use crate::core::CoreError;
 /// the default 0.05 mm, still finer than a tenth of the smallest candidate's radius; how far
 /// its estimates stray from the full plans is not yet measured).
 pub const SCREEN_SPACING_FACTOR: f64 = 4.0;
+
+/// The screening's simulations take raster cells this many times the default
+/// ([`CELL_PER_DIAMETER`] of the diameter) (**assumed**: the raster work of a plan goes with
+/// the number of rows a tool sweeps, not with the sample spacing).
+pub const SCREEN_CELL_FACTOR: f64 = 4.0;
 
 /// A candidate can still win while its estimate, less this share, is below the cost of the
 /// best complete plan (**assumed**: a fifth; in the case study the next-cheapest candidate,
@@ -46,9 +51,16 @@ pub fn estimate(
     progress: &dyn Progress,
 ) -> Result<Result<Estimate, String>, CoreError> {
     let spacing_mm = SCREEN_SPACING_FACTOR * plan_spacing_mm(candidate, options);
+    let cell_mm = (SCREEN_CELL_FACTOR * CELL_PER_DIAMETER * candidate.tool.diameter_mm).min(MAX_CELL_MM);
     let coarse = ProcessOptions { sample_spacing_mm: Some(spacing_mm), ..options.clone() };
     let stage = crate::core::progress::Stage { inner: progress, from: 0.0, span: 0.9 };
-    let layers = match super::unplannable_unless_cancelled(plan_layers(cavity, candidate, &coarse, &stage))? {
+    let layers = match super::unplannable_unless_cancelled(plan_layers_on_cells(
+        cavity,
+        candidate,
+        &coarse,
+        Some(cell_mm),
+        &stage,
+    ))? {
         Ok(l) => l,
         Err(reason) => return Ok(Err(reason)),
     };
