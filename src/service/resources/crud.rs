@@ -104,9 +104,10 @@ async fn check<D: Resource>(conn: &mut Conn, data: &D) -> Result<(), ApiError> {
     v.finish()
 }
 
-/// Write transactions take SQLite's write lock when they begin: a deferred transaction that
-/// reads first cannot upgrade its lock once another connection (a worker claiming a job) has
-/// written, and would fail at once with SQLITE_BUSY instead of waiting.
+// Write transactions are exclusive from their start (`store::begin_exclusive`): SQLite's
+// write lock (a deferred transaction that reads first cannot upgrade its lock once another
+// connection has written, and would fail at once with SQLITE_BUSY instead of waiting), and
+// on PostgreSQL an advisory lock, so that no two replicas interleave a read-modify-write.
 
 /// Inserts a validated row and returns it.
 pub async fn create<R: Record>(pool: &Pool, data: R::Data) -> Result<R, ApiError> {
