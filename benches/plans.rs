@@ -170,7 +170,8 @@ fn main() {
 
     let dir = tempfile::tempdir().expect("a temporary directory");
     let runtime = tokio::runtime::Runtime::new().expect("a tokio runtime");
-    let pool = runtime.block_on(dieplan::service::store::open(&dir.path().join("bench.sqlite"))).expect("database");
+    let pool =
+        runtime.block_on(dieplan::service::store::open(&dir.path().join("bench.sqlite").into())).expect("database");
     let prepare = |case: Case| -> Prepared {
         let prepared = runtime
             .block_on(kinds::prepare(&pool, case.kind, case.input.clone(), ""))

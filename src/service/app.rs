@@ -205,11 +205,11 @@ impl RunningServer {
 pub async fn start(config: Config) -> Result<RunningServer, StartError> {
     let pool = crate::service::store::open(&config.database)
         .await
-        .map_err(|source| StartError::Database { path: config.database.display().to_string(), source })?;
+        .map_err(|source| StartError::Database { path: config.database.to_string(), source })?;
     keys::install_environment_key(&pool, config.admin_key.as_ref().map(|s| s.0.as_str())).await?;
     let protected = keys::any_active(&pool)
         .await
-        .map_err(|source| StartError::Database { path: config.database.display().to_string(), source })?;
+        .map_err(|source| StartError::Database { path: config.database.to_string(), source })?;
     if !protected {
         if config.addr.ip().is_loopback() {
             tracing::warn!("no API key exists: the service is open to every user of this machine until one is made (`dieplan keys create --role admin --name NAME`, or POST /v1/keys)");
@@ -221,9 +221,9 @@ pub async fn start(config: Config) -> Result<RunningServer, StartError> {
     }
     let retention = crate::service::retention::start(pool.clone(), config.job_retention_days);
     let workers = config.worker_count();
-    let jobs = JobQueue::start(pool.clone(), workers, config.job_time_limit())
+    let jobs = JobQueue::start(pool.clone(), workers, config.job_time_limit(), config.job_lease())
         .await
-        .map_err(|source| StartError::Database { path: config.database.display().to_string(), source })?;
+        .map_err(|source| StartError::Database { path: config.database.to_string(), source })?;
     let listener =
         TcpListener::bind(config.addr).await.map_err(|source| StartError::Bind { addr: config.addr, source })?;
     let addr = listener.local_addr().map_err(|source| StartError::Bind { addr: config.addr, source })?;

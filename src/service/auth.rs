@@ -196,7 +196,7 @@ async fn identify(auth: &AuthState, header: Option<&HeaderValue>) -> Result<Call
 
 /// Refreshes a key's `last_used_at` in the background when it is older than
 /// [`LAST_USED_RESOLUTION`].
-fn note_use(pool: &sqlx::SqlitePool, key: &KeyRow) {
+fn note_use(pool: &crate::service::store::Pool, key: &KeyRow) {
     let stale = key
         .last_used_at
         .as_deref()

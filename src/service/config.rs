@@ -1,9 +1,9 @@
 //! Configuration from flags and environment variables, with defaults that work out of
 //! the box.
 
+use crate::service::store::Location;
 use clap::{Args, ValueEnum};
 use std::net::SocketAddr;
-use std::path::PathBuf;
 
 /// Log output format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -18,9 +18,10 @@ pub struct Config {
     /// Address to listen on.
     #[arg(long, env = "DIEPLAN_ADDR", default_value = "127.0.0.1:8080")]
     pub addr: SocketAddr,
-    /// SQLite database file; created and migrated at start.
-    #[arg(long, env = "DIEPLAN_DATABASE", default_value = "data/dieplan.sqlite")]
-    pub database: PathBuf,
+    /// The database: a SQLite file, or a `postgres://user:password@host/name` URL for
+    /// several replicas on one PostgreSQL; created (SQLite) and migrated at start.
+    #[arg(long, env = "DIEPLAN_DATABASE", default_value = "data/dieplan.sqlite", value_parser = Location::parse)]
+    pub database: Location,
     /// Log format.
     #[arg(long, env = "DIEPLAN_LOG_FORMAT", value_enum, default_value_t = LogFormat::Text)]
     pub log_format: LogFormat,
@@ -66,6 +67,11 @@ pub struct Config {
     /// Requests a minute each key may make, unless the key says otherwise; 0: unlimited.
     #[arg(long, env = "DIEPLAN_RATE_LIMIT", default_value_t = DEFAULT_RATE_LIMIT_PER_MINUTE)]
     pub rate_limit_per_minute: i64,
+    /// Seconds a replica's lease on a running job lasts unless renewed: another replica
+    /// on the same database takes the job this long after the replica died. The replica
+    /// renews it every third of that.
+    #[arg(long, env = "DIEPLAN_JOB_LEASE_SECONDS", default_value_t = DEFAULT_JOB_LEASE_SECONDS, value_parser = clap::value_parser!(u64).range(1..=86_400))]
+    pub job_lease_seconds: u64,
     /// Finished jobs older than this many days are removed with their results; 0: kept.
     #[arg(long, env = "DIEPLAN_JOB_RETENTION_DAYS", default_value_t = DEFAULT_JOB_RETENTION_DAYS)]
     pub job_retention_days: u64,
@@ -74,6 +80,10 @@ pub struct Config {
 /// Default for [`Config::rate_limit_per_minute`]: 20 requests a second per key, far more
 /// than the page's polling or a CAM plugin needs, and a brake on a runaway script.
 pub const DEFAULT_RATE_LIMIT_PER_MINUTE: i64 = 1200;
+/// Default for [`Config::job_lease_seconds`]: long enough that a database hiccup of a few
+/// seconds never costs a running job, short enough that a dead replica's jobs resume
+/// within half a minute.
+pub const DEFAULT_JOB_LEASE_SECONDS: u64 = 30;
 /// Default for [`Config::job_retention_days`].
 pub const DEFAULT_JOB_RETENTION_DAYS: u64 = 30;
 
@@ -98,10 +108,10 @@ pub const DEFAULT_JOB_TIME_LIMIT_S: u64 = 3600;
 
 impl Config {
     /// A configuration with every default, for `database` (tests, embedding).
-    pub fn with_database(database: PathBuf) -> Config {
+    pub fn with_database(database: impl Into<Location>) -> Config {
         Config {
             addr: SocketAddr::from(([127, 0, 0, 1], 0)),
-            database,
+            database: database.into(),
             log_format: LogFormat::Text,
             log: "info".to_string(),
             workers: None,
@@ -116,12 +126,18 @@ impl Config {
             allowed_hosts: Vec::new(),
             rate_limit_per_minute: DEFAULT_RATE_LIMIT_PER_MINUTE,
             job_retention_days: DEFAULT_JOB_RETENTION_DAYS,
+            job_lease_seconds: DEFAULT_JOB_LEASE_SECONDS,
         }
     }
 
     /// The longest a job may run, if limited.
     pub fn job_time_limit(&self) -> Option<std::time::Duration> {
         (self.job_time_limit_s > 0).then(|| std::time::Duration::from_secs(self.job_time_limit_s))
+    }
+
+    /// How long a replica's lease on a running job lasts.
+    pub fn job_lease(&self) -> std::time::Duration {
+        std::time::Duration::from_secs(self.job_lease_seconds.max(1))
     }
 
     /// The number of workers to start.

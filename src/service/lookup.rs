@@ -11,7 +11,7 @@ use crate::service::resources::standard_conditions::StandardConditions;
 use crate::service::resources::tool_life::ToolLife;
 use crate::service::resources::tools::Tool;
 use crate::service::resources::DIAMETER_FILTER_TOLERANCE_MM;
-use sqlx::SqlitePool;
+use crate::service::store::Pool;
 
 /// The material used when a request names none (MODEL.md §5).
 pub const DEFAULT_MATERIAL_NAME: &str = "SKD61";
@@ -21,20 +21,20 @@ pub const DEFAULT_MATERIAL_SEED_KEY: &str = "material:skd61";
 
 /// The material with `id`, or named `name`, or the default material: the one named
 /// [`DEFAULT_MATERIAL_NAME`], else the seeded row, renamed.
-pub async fn material(pool: &SqlitePool, id: Option<i64>, name: Option<&str>) -> Result<Material, ApiError> {
+pub async fn material(pool: &Pool, id: Option<i64>, name: Option<&str>) -> Result<Material, ApiError> {
     let found = match (id, name) {
-        (Some(id), _) => sqlx::query_as::<_, Material>("SELECT * FROM materials WHERE id = ?")
+        (Some(id), _) => sqlx::query_as::<_, Material>("SELECT * FROM materials WHERE id = $1")
             .bind(id)
             .fetch_optional(pool)
             .await?
             .ok_or_else(|| ApiError::field("material_id", format!("no material with id {id}")))?,
-        (None, Some(name)) => sqlx::query_as::<_, Material>("SELECT * FROM materials WHERE name = ?")
+        (None, Some(name)) => sqlx::query_as::<_, Material>("SELECT * FROM materials WHERE name = $1")
             .bind(name)
             .fetch_optional(pool)
             .await?
             .ok_or_else(|| ApiError::field("material", format!("no material named '{}'", excerpt(name))))?,
         (None, None) => sqlx::query_as::<_, Material>(
-            "SELECT * FROM materials WHERE name = ? OR seed_key = ? ORDER BY name = ? DESC LIMIT 1",
+            "SELECT * FROM materials WHERE name = $1 OR seed_key = $2 ORDER BY name = $3 DESC LIMIT 1",
         )
         .bind(DEFAULT_MATERIAL_NAME)
         .bind(DEFAULT_MATERIAL_SEED_KEY)
@@ -57,13 +57,13 @@ pub async fn material(pool: &SqlitePool, id: Option<i64>, name: Option<&str>) ->
 /// The tool with `id`, or the default tool of `tool_type` and `diameter_mm` (the `default`
 /// flag of `/v1/tools`).
 pub async fn tool(
-    pool: &SqlitePool,
+    pool: &Pool,
     id: Option<i64>,
     tool_type: Option<ToolType>,
     diameter_mm: Option<f64>,
 ) -> Result<Tool, ApiError> {
     if let Some(id) = id {
-        let tool = sqlx::query_as::<_, Tool>("SELECT * FROM tools WHERE id = ?")
+        let tool = sqlx::query_as::<_, Tool>("SELECT * FROM tools WHERE id = $1")
             .bind(id)
             .fetch_optional(pool)
             .await?
@@ -86,13 +86,13 @@ pub async fn tool(
 
 /// The default tool of `tool_type` and diameter `d`; the errors name `diameter_mm` (no
 /// such tool) or `tool_id` (tools, but none of them the default).
-pub async fn default_tool(pool: &SqlitePool, tool_type: ToolType, d: f64) -> Result<Tool, ApiError> {
+pub async fn default_tool(pool: &Pool, tool_type: ToolType, d: f64) -> Result<Tool, ApiError> {
     if !(d.is_finite() && d > 0.0) {
         return Err(ApiError::field("diameter_mm", format!("must be a finite number > 0, got {}", shown(d))));
     }
     let tools = sqlx::query_as::<_, Tool>(
-        "SELECT * FROM tools WHERE tool_type = ? AND abs(diameter_mm - ?) <= ?
-         ORDER BY is_default DESC, abs(diameter_mm - ?), id",
+        "SELECT * FROM tools WHERE tool_type = $1 AND abs(diameter_mm - $2) <= $3
+         ORDER BY is_default DESC, abs(diameter_mm - $4), id",
     )
     .bind(tool_type.as_str())
     .bind(d)
@@ -119,13 +119,13 @@ pub async fn default_tool(pool: &SqlitePool, tool_type: ToolType, d: f64) -> Res
 
 /// The standard conditions of `operation` for a tool in a material, if any.
 pub async fn standard_conditions(
-    pool: &SqlitePool,
+    pool: &Pool,
     tool_id: i64,
     material_id: i64,
     operation: Operation,
 ) -> Result<Option<StandardConditions>, ApiError> {
     Ok(sqlx::query_as::<_, StandardConditions>(
-        "SELECT * FROM standard_conditions WHERE tool_id = ? AND material_id = ? AND operation = ?",
+        "SELECT * FROM standard_conditions WHERE tool_id = $1 AND material_id = $2 AND operation = $3",
     )
     .bind(tool_id)
     .bind(material_id)
@@ -135,13 +135,9 @@ pub async fn standard_conditions(
 }
 
 /// The force model in use for a tool in a material: the newest one.
-pub async fn force_model(
-    pool: &SqlitePool,
-    tool_id: i64,
-    material_id: i64,
-) -> Result<Option<ForceModelRecord>, ApiError> {
+pub async fn force_model(pool: &Pool, tool_id: i64, material_id: i64) -> Result<Option<ForceModelRecord>, ApiError> {
     Ok(sqlx::query_as::<_, ForceModelRecord>(
-        "SELECT * FROM force_models WHERE tool_id = ? AND material_id = ? ORDER BY id DESC LIMIT 1",
+        "SELECT * FROM force_models WHERE tool_id = $1 AND material_id = $2 ORDER BY id DESC LIMIT 1",
     )
     .bind(tool_id)
     .bind(material_id)
@@ -150,8 +146,8 @@ pub async fn force_model(
 }
 
 /// The tool-life data of a tool in a material, if any.
-pub async fn tool_life(pool: &SqlitePool, tool_id: i64, material_id: i64) -> Result<Option<ToolLife>, ApiError> {
-    Ok(sqlx::query_as::<_, ToolLife>("SELECT * FROM tool_life WHERE tool_id = ? AND material_id = ?")
+pub async fn tool_life(pool: &Pool, tool_id: i64, material_id: i64) -> Result<Option<ToolLife>, ApiError> {
+    Ok(sqlx::query_as::<_, ToolLife>("SELECT * FROM tool_life WHERE tool_id = $1 AND material_id = $2")
         .bind(tool_id)
         .bind(material_id)
         .fetch_optional(pool)
@@ -159,10 +155,10 @@ pub async fn tool_life(pool: &SqlitePool, tool_id: i64, material_id: i64) -> Res
 }
 
 /// The cost rates with `id`, or the first ones.
-pub async fn cost_rates(pool: &SqlitePool, id: Option<i64>) -> Result<CostRates, ApiError> {
+pub async fn cost_rates(pool: &Pool, id: Option<i64>) -> Result<CostRates, ApiError> {
     let found = match id {
         Some(id) => {
-            sqlx::query_as::<_, CostRates>("SELECT * FROM cost_rates WHERE id = ?")
+            sqlx::query_as::<_, CostRates>("SELECT * FROM cost_rates WHERE id = $1")
                 .bind(id)
                 .fetch_optional(pool)
                 .await?

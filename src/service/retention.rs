@@ -3,7 +3,7 @@
 //! (SQLite's incremental vacuum, then a WAL checkpoint that truncates the log).
 
 use crate::service::jobs::store as jobs;
-use sqlx::SqlitePool;
+use crate::service::store::Pool;
 use std::sync::OnceLock;
 use std::time::Duration;
 use tokio::task::JoinHandle;
@@ -13,7 +13,7 @@ const RETENTION_INTERVAL: Duration = Duration::from_secs(3600);
 
 /// Removes the finished jobs older than `days` now and every [`RETENTION_INTERVAL`];
 /// `days = 0` keeps every job (no task).
-pub fn start(pool: SqlitePool, days: u64) -> Option<JoinHandle<()>> {
+pub fn start(pool: Pool, days: u64) -> Option<JoinHandle<()>> {
     (days > 0).then(|| {
         tokio::spawn(async move {
             let mut tick = tokio::time::interval(RETENTION_INTERVAL);
@@ -33,14 +33,17 @@ pub fn start(pool: SqlitePool, days: u64) -> Option<JoinHandle<()>> {
 }
 
 /// Gives the pages freed by a purge back to the disk, in the background.
-pub fn vacuum_later(pool: &SqlitePool) {
+pub fn vacuum_later(pool: &Pool) {
     let pool = pool.clone();
     tokio::spawn(async move { vacuum(&pool).await });
 }
 
 /// Gives free pages back to the disk: `PRAGMA incremental_vacuum`, then a checkpoint that
 /// moves the log into the file and truncates both. One at a time.
-pub async fn vacuum(pool: &SqlitePool) {
+pub async fn vacuum(pool: &Pool) {
+    if crate::service::store::Backend::of(pool) != crate::service::store::Backend::Sqlite {
+        return; // PostgreSQL's autovacuum frees the space of deleted rows by itself.
+    }
     static ONE_AT_A_TIME: OnceLock<tokio::sync::Mutex<()>> = OnceLock::new();
     let _turn = ONE_AT_A_TIME.get_or_init(Default::default).lock().await;
     let result = async {

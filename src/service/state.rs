@@ -2,13 +2,13 @@
 
 use crate::service::config::Config;
 use crate::service::jobs::queue::JobQueue;
-use sqlx::SqlitePool;
+use crate::service::store::Pool;
 use std::sync::Arc;
 
 /// Shared application state.
 #[derive(Clone)]
 pub struct AppState {
-    pub pool: SqlitePool,
+    pub pool: Pool,
     pub jobs: JobQueue,
     pub config: Arc<Config>,
 }

@@ -347,7 +347,7 @@ async fn the_ball_and_radius_defaults_leave_a_shops_own_rows_and_edits_alone() {
     }
     pool.close().await;
 
-    let app = TestApp::start_in(dir, |c| c.database = path).await;
+    let app = TestApp::start_in(dir, |c| c.database = path.into()).await;
     let ball = tool(&app, "ball", 10.0).await["id"].as_i64().unwrap();
     let own = standard(&app, ball).await;
     assert_eq!((own["source"].as_str(), f(&own["spindle_rpm"])), (Some("user"), 9000.0), "{own}");

@@ -2,6 +2,7 @@
 
 use dieplan::service::app::{start, RunningServer};
 use dieplan::service::config::Config;
+use dieplan::service::store::Location;
 use reqwest::{header::HeaderMap, Method, StatusCode};
 use serde_json::Value;
 use std::path::PathBuf;
@@ -45,7 +46,7 @@ impl TestApp {
     }
 
     pub async fn start_in(dir: Arc<TempDir>, configure: impl FnOnce(&mut Config)) -> TestApp {
-        let mut config = Config::with_database(db_path(&dir));
+        let mut config = Config::with_database(database_of(&dir).await);
         config.workers = Some(1);
         configure(&mut config);
         let server = start(config).await.expect("app starts");
@@ -142,6 +143,25 @@ impl TestApp {
 
 fn db_path(dir: &TempDir) -> PathBuf {
     dir.path().join("dieplan.sqlite")
+}
+
+/// The database of a test directory: its SQLite file, or under `DIEPLAN_TEST_BACKEND=postgres`
+/// a database of the test PostgreSQL made for it (named in the directory, so that a
+/// restart finds the same).
+async fn database_of(dir: &TempDir) -> Location {
+    if !super::postgres::selected() {
+        return Location::Sqlite(db_path(dir));
+    }
+    let named = dir.path().join("postgres-url");
+    let url = match std::fs::read_to_string(&named) {
+        Ok(url) => url,
+        Err(_) => {
+            let url = super::postgres::fresh_database().await;
+            std::fs::write(&named, &url).expect("test dir writable");
+            url
+        }
+    };
+    Location::Postgres(url)
 }
 
 /// Asserts a problem document with `status` naming `field`.

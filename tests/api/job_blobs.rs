@@ -162,7 +162,7 @@ async fn jobs_stored_before_the_blobs_moved_out_are_read_as_before() {
 
     // Kept whatever their age (their finish dates are fixed).
     let app = TestApp::start_in(dir, |c| {
-        c.database = path;
+        c.database = path.into();
         c.job_retention_days = 0;
     })
     .await;

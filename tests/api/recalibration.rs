@@ -69,7 +69,7 @@ async fn the_recalibration_leaves_a_shops_own_rows_edits_and_jobs_alone() {
     let tools_before: i64 = sqlx::query_scalar("SELECT count(*) FROM tools").fetch_one(&pool).await.unwrap();
     pool.close().await;
 
-    let app = TestApp::start_in(dir, |c| c.database = path).await;
+    let app = TestApp::start_in(dir, |c| c.database = path.into()).await;
     let eight = app.tool_id("square", 8.0).await;
     let life = one_row(&app, "/v1/tool-life?", eight).await;
     assert_eq!((life["source"].as_str(), life["life_m"].as_f64()), (Some("user"), Some(250.0)), "{life}");

@@ -22,8 +22,8 @@ use crate::service::error::{ApiError, Validator};
 use crate::service::lookup;
 use crate::service::resources::machines::Machine;
 use crate::service::resources::standard_conditions::StandardConditions;
+use crate::service::store::Pool;
 use serde::{Deserialize, Serialize};
-use sqlx::SqlitePool;
 use utoipa::ToSchema;
 
 /// A tool path to analyse in a layer of stock.
@@ -97,7 +97,7 @@ impl AnalysisPrepared {
 }
 
 /// Checks the request (parsing the program and the stock) and resolves it.
-pub async fn prepare(pool: &SqlitePool, request: AnalysisRequest) -> Result<AnalysisPrepared, ApiError> {
+pub async fn prepare(pool: &Pool, request: AnalysisRequest) -> Result<AnalysisPrepared, ApiError> {
     let mut v = Validator::new();
     if let Some(a) = request.alpha_limit_deg {
         v.above_and_at_most("alpha_limit_deg", a, 0.0, MAX_ALPHA_LIMIT_DEG);
@@ -172,13 +172,13 @@ pub struct Resolved {
 
 /// Resolves the material, tool, force model, machine and standard conditions of a path
 /// job (analysis, feeds).
-pub async fn resolve(pool: &SqlitePool, refs: &PathJobRefs<'_>) -> Result<Resolved, ApiError> {
+pub async fn resolve(pool: &Pool, refs: &PathJobRefs<'_>) -> Result<Resolved, ApiError> {
     let material = lookup::material(pool, refs.material_id, refs.material).await?;
     let tool = lookup::tool(pool, refs.tool_id, refs.tool_type, refs.diameter_mm).await?;
     let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(|m| ForceModelRef::of_tool(m, &tool));
     let machine = match refs.machine_id {
         Some(id) => {
-            sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = ?").bind(id).fetch_optional(pool).await?
+            sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = $1").bind(id).fetch_optional(pool).await?
         }
         None => sqlx::query_as::<_, Machine>("SELECT * FROM machines ORDER BY id LIMIT 1").fetch_optional(pool).await?,
     }

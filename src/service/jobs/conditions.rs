@@ -12,8 +12,8 @@ use crate::service::lookup;
 use crate::service::resources::force_models::ForceModelRecord;
 use crate::service::resources::tools::Tool;
 use crate::service::resources::Source;
+use crate::service::store::Pool;
 use serde::{Deserialize, Serialize};
-use sqlx::SqlitePool;
 use utoipa::ToSchema;
 
 /// The operation used when a request names none.
@@ -150,7 +150,7 @@ impl ForceModelRef {
 }
 
 /// Checks the request and resolves it against the database.
-pub async fn prepare(pool: &SqlitePool, request: ConditionsRequest) -> Result<ConditionsPrepared, ApiError> {
+pub async fn prepare(pool: &Pool, request: ConditionsRequest) -> Result<ConditionsPrepared, ApiError> {
     let mut v = Validator::new();
     for (field, value) in [
         ("spindle_rpm", request.spindle_rpm),

@@ -23,8 +23,8 @@ use crate::service::error::{excerpt, ApiError, Validator};
 use crate::service::lookup;
 use crate::service::resources::machines::Machine;
 use crate::service::resources::standard_conditions::StandardConditions;
+use crate::service::store::Pool;
 use serde::{Deserialize, Serialize};
-use sqlx::SqlitePool;
 use utoipa::ToSchema;
 
 /// What to cost: a program (or a finished job's program) cut with a tool in a stock.
@@ -125,7 +125,7 @@ impl CostingRequest {
 }
 
 /// Checks the request and resolves it against the database.
-pub async fn prepare(pool: &SqlitePool, request: CostingRequest) -> Result<CostingPrepared, ApiError> {
+pub async fn prepare(pool: &Pool, request: CostingRequest) -> Result<CostingPrepared, ApiError> {
     let mut v = Validator::new();
     v.check(request.program.is_some() != request.job_id.is_some(), "program", "give exactly one of program and job_id");
     if let Some(p) = request.tool_price {
@@ -185,7 +185,7 @@ pub async fn prepare(pool: &SqlitePool, request: CostingRequest) -> Result<Costi
 /// The tool life, standard force, rates, tool price and machine limits a program cut by
 /// the tool of `base` is costed with; errors name the field to change.
 pub async fn resolve_cost(
-    pool: &SqlitePool,
+    pool: &Pool,
     base: &AnalysisPrepared,
     standard: Option<&StandardConditions>,
     cost_rates_id: Option<i64>,
@@ -206,7 +206,7 @@ pub async fn resolve_cost(
     let (t_um, arc_mm) = standard_centres(base.tool.geometry.diameter_mm / 2.0, standard.data.conditions())?;
     let standard_force_n = base.force_model.as_ref().map(|m| m.model.force_n(t_um, arc_mm, m.model.ad_ref_mm));
     let rates = lookup::cost_rates(pool, cost_rates_id).await?;
-    let price = sqlx::query_scalar::<_, Option<f64>>("SELECT price FROM tools WHERE id = ?")
+    let price = sqlx::query_scalar::<_, Option<f64>>("SELECT price FROM tools WHERE id = $1")
         .bind(base.tool.id)
         .fetch_one(pool)
         .await?;
@@ -229,9 +229,9 @@ pub async fn resolve_cost(
 }
 
 /// The kinematic limits of machine `id` (which must exist); errors name `machine_id`.
-pub async fn machine_limits(pool: &SqlitePool, id: i64) -> Result<MachineLimits, ApiError> {
+pub async fn machine_limits(pool: &Pool, id: i64) -> Result<MachineLimits, ApiError> {
     let machine =
-        sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = ?").bind(id).fetch_one(pool).await?.data;
+        sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = $1").bind(id).fetch_one(pool).await?.data;
     let limits = MachineLimits {
         rapid_mm_min: machine.rapid_mm_min,
         max_feed_mm_min: machine.max_feed_mm_min,

@@ -29,8 +29,8 @@ use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
 use crate::service::lookup;
+use crate::service::store::Pool;
 use serde::{Deserialize, Serialize};
-use sqlx::SqlitePool;
 use utoipa::ToSchema;
 
 /// The default maximum feed as a multiple of the standard feed (MODEL.md §3: seed 003
@@ -239,7 +239,7 @@ fn validate(request: &FeedsRequest) -> Result<(), ApiError> {
 }
 
 /// Checks the request (parsing the program and the stock) and resolves it.
-pub async fn prepare(pool: &SqlitePool, request: FeedsRequest) -> Result<FeedsPrepared, ApiError> {
+pub async fn prepare(pool: &Pool, request: FeedsRequest) -> Result<FeedsPrepared, ApiError> {
     validate(&request)?;
     let refs = PathJobRefs {
         tool_id: request.tool_id,

@@ -13,8 +13,8 @@ use crate::core::progress::Progress;
 use crate::core::CoreError;
 use crate::service::error::{ApiError, FieldError};
 use crate::service::extract::from_value;
+use crate::service::store::Pool;
 use serde::Serialize;
-use sqlx::SqlitePool;
 use utoipa::ToSchema;
 
 /// The input of a job, by kind (the `input` of `POST /v1/jobs`).
@@ -62,7 +62,7 @@ fn prefixed(err: ApiError, prefix: &str) -> ApiError {
 /// Checks a submission and resolves it against the database; the answer is stored
 /// with the job and is all a worker needs. Field paths in errors start with `prefix`.
 pub async fn prepare(
-    pool: &SqlitePool,
+    pool: &Pool,
     kind: JobKind,
     input: serde_json::Value,
     prefix: &str,

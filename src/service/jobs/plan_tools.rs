@@ -10,7 +10,7 @@ use crate::service::error::{ApiError, Validator};
 use crate::service::jobs::feeds::MAX_FEED_PER_STANDARD;
 use crate::service::lookup;
 use crate::service::resources::tools::Tool;
-use sqlx::SqlitePool;
+use crate::service::store::Pool;
 
 /// A candidate tool and the request field that named it (none: the default range, whose
 /// tools without the data to plan with are skipped rather than refused).
@@ -24,10 +24,10 @@ pub struct Pick {
 /// `diameters_mm`, then the tools of `tool_ids` (a tool named twice is one candidate); or,
 /// when neither is given, the default tool of every diameter of the range. Every unknown
 /// diameter or id, and every ball end mill among the ids, is reported at once.
-pub async fn pick(pool: &SqlitePool, request: &PlanRequest, tool_type: ToolType) -> Result<Vec<Pick>, ApiError> {
+pub async fn pick(pool: &Pool, request: &PlanRequest, tool_type: ToolType) -> Result<Vec<Pick>, ApiError> {
     if request.diameters_mm.is_none() && request.tool_ids.is_none() {
         let ids = sqlx::query_scalar::<_, i64>(
-            "SELECT id FROM tools WHERE tool_type = ? AND is_default = 1 AND diameter_mm BETWEEN ? AND ?
+            "SELECT id FROM tools WHERE tool_type = $1 AND is_default = 1 AND diameter_mm BETWEEN $2 AND $3
              ORDER BY diameter_mm, id",
         )
         .bind(tool_type.as_str())
@@ -54,7 +54,7 @@ pub async fn pick(pool: &SqlitePool, request: &PlanRequest, tool_type: ToolType)
     }
     for (i, id) in request.tool_ids.iter().flatten().enumerate() {
         let field = format!("tool_ids[{i}]");
-        let tool = sqlx::query_as::<_, Tool>("SELECT * FROM tools WHERE id = ?").bind(id).fetch_optional(pool).await?;
+        let tool = sqlx::query_as::<_, Tool>("SELECT * FROM tools WHERE id = $1").bind(id).fetch_optional(pool).await?;
         match tool {
             None => v.fail(field, format!("no tool with id {id}")),
             Some(t) if t.data.tool_type == ToolType::Ball => v.fail(
@@ -70,7 +70,7 @@ pub async fn pick(pool: &SqlitePool, request: &PlanRequest, tool_type: ToolType)
 
 /// Resolves one candidate tool; `Err(reason)` when the database lacks what it needs.
 pub async fn resolve(
-    pool: &SqlitePool,
+    pool: &Pool,
     tool_id: i64,
     material_id: i64,
     machine_id: i64,
@@ -109,7 +109,7 @@ pub async fn resolve(
     let (t_um, arc_mm) = standard_centres(tool.radius_mm(), s.conditions())?;
     let standard_force_n = model.model.force_n(t_um, arc_mm, model.model.ad_ref_mm);
     let standard_feed = feed_mm_min(s.fz_mm, tool.flutes, s.spindle_rpm);
-    let price = sqlx::query_scalar::<_, Option<f64>>("SELECT price FROM tools WHERE id = ?")
+    let price = sqlx::query_scalar::<_, Option<f64>>("SELECT price FROM tools WHERE id = $1")
         .bind(tool_id)
         .fetch_one(pool)
         .await?;

@@ -28,8 +28,8 @@ use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
 use crate::service::lookup;
 use crate::service::resources::Source;
+use crate::service::store::Pool;
 use serde::{Deserialize, Serialize};
-use sqlx::SqlitePool;
 use utoipa::ToSchema;
 
 /// The candidate diameters of seed 002 §2.6 (a), mm.
@@ -266,7 +266,7 @@ fn read_cavity(r: &PlanRequest) -> Result<CavityInput, ApiError> {
 }
 
 /// Checks the request and resolves the candidates, the baseline, the machine and the rates.
-pub async fn prepare(pool: &SqlitePool, request: PlanRequest) -> Result<PlanPrepared, ApiError> {
+pub async fn prepare(pool: &Pool, request: PlanRequest) -> Result<PlanPrepared, ApiError> {
     validate(&request)?;
     let material = lookup::material(pool, request.material_id, request.material.as_deref()).await?;
     let tool_type = request.tool_type.unwrap_or(ToolType::Square);
@@ -334,7 +334,7 @@ pub async fn prepare(pool: &SqlitePool, request: PlanRequest) -> Result<PlanPrep
 }
 
 async fn resolve_baseline(
-    pool: &SqlitePool,
+    pool: &Pool,
     material_id: i64,
     material: &str,
     rates: &crate::service::resources::cost_rates::CostRatesData,

@@ -1,13 +1,17 @@
 //! The worker pool: takes queued jobs from the table, runs them on blocking threads,
-//! reports progress, honours cancellation and leaves interrupted jobs resumable.
+//! reports progress, honours cancellation and leaves interrupted jobs resumable. Several
+//! replicas may share the table: each holds a lease on the jobs it runs
+//! ([`super::lease`]), renewed by its lease keeper, which also notices cancellations
+//! asked for on other replicas and queues again the jobs of replicas that died.
 
 use super::kinds;
+use super::lease::{self as store, Lease};
 use super::model::{JobKind, ProgramPart};
-use super::store;
+use super::notify::{self, Event};
 use crate::core::progress::Progress;
 use crate::core::CoreError;
 use crate::service::error::ApiError;
-use sqlx::SqlitePool;
+use crate::service::store::Pool;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
@@ -22,6 +26,8 @@ const PROGRESS_FLUSH: Duration = Duration::from_millis(250);
 /// A job started this many times without finishing is failed instead of run again
 /// (it may be what brought the service down).
 pub const MAX_ATTEMPTS: i64 = 3;
+/// How often the lease keeper looks for cancellations of this replica's running jobs.
+const CANCEL_POLL: Duration = Duration::from_secs(1);
 /// Capacity of the channel that announces finished jobs.
 const FINISHED_CHANNEL: usize = 256;
 /// Largest result, program or scene one job stores, bytes: SQLite refuses a text of 1 GB
@@ -91,7 +97,7 @@ enum StopReason {
 }
 
 struct Inner {
-    pool: SqlitePool,
+    pool: Pool,
     /// Wakes a worker of either kind.
     wake: Notify,
     /// Wakes the interactive worker.
@@ -104,6 +110,10 @@ struct Inner {
     workers: Mutex<Vec<JoinHandle<()>>>,
     /// Longest a job may run (none: no limit).
     time_limit: Option<Duration>,
+    /// This replica's lease on the jobs it runs.
+    lease: Lease,
+    /// The lease keeper and the notification listener, stopped at shutdown.
+    helpers: Mutex<Vec<JoinHandle<()>>>,
 }
 
 /// Handle to the worker pool.
@@ -115,11 +125,13 @@ pub struct JobQueue {
 impl JobQueue {
     /// Recovers jobs a previous run left behind and starts `workers` workers, and with
     /// them one more that runs only the interactive lane (see [`super::lane`]); a job
-    /// that runs longer than `time_limit` is stopped and fails.
+    /// that runs longer than `time_limit` is stopped and fails. The replica's leases last
+    /// `lease_duration`; another replica takes its jobs that long after it died.
     pub async fn start(
-        pool: SqlitePool,
+        pool: Pool,
         workers: usize,
         time_limit: Option<Duration>,
+        lease_duration: Duration,
     ) -> Result<JobQueue, sqlx::Error> {
         let requeued = store::recover_interrupted(&pool).await?;
         if requeued > 0 {
@@ -137,8 +149,19 @@ impl JobQueue {
                 shutdown: Arc::new(AtomicBool::new(false)),
                 workers: Mutex::new(Vec::new()),
                 time_limit,
+                lease: Lease::new(lease_duration),
+                helpers: Mutex::new(Vec::new()),
             }),
         };
+        tracing::info!(replica = %queue.inner.lease.owner, lease_s = lease_duration.as_secs_f64(), "job queue started");
+        let mut helpers = vec![tokio::spawn(keep_leases(queue.inner.clone()))];
+        let inner = Arc::downgrade(&queue.inner);
+        helpers.extend(notify::listen(&queue.inner.pool, move |event, id| {
+            if let Some(inner) = inner.upgrade() {
+                on_event(&inner, event, id);
+            }
+        }));
+        *queue.inner.helpers.lock().unwrap_or_else(|p| p.into_inner()) = helpers;
         let interactive = usize::from(workers > 0);
         let handles: Vec<_> = (0..workers + interactive)
             .map(|n| {
@@ -150,10 +173,12 @@ impl JobQueue {
         Ok(queue)
     }
 
-    /// Tells the workers a job was queued.
+    /// Tells the workers, of this replica and of the others, that a job was queued.
     pub fn wake(&self) {
         self.inner.wake.notify_one();
         self.inner.wake_interactive.notify_one();
+        let pool = self.inner.pool.clone();
+        tokio::spawn(async move { notify::send(&pool, Event::Queued, "").await });
     }
 
     /// Watches whether the service is stopping (`true` from then on).
@@ -171,10 +196,11 @@ impl JobQueue {
         self.inner.finished.subscribe()
     }
 
-    /// Asks a running job to stop.
+    /// Asks a running job to stop, on whichever replica runs it.
     pub fn cancel_running(&self, id: &str) {
-        if let Some(control) = self.inner.running.lock().unwrap_or_else(|p| p.into_inner()).get(id) {
-            control.cancel.store(true, Ordering::Relaxed);
+        if !self.inner.cancel_local(id) {
+            let (pool, id) = (self.inner.pool.clone(), id.to_string());
+            tokio::spawn(async move { notify::send(&pool, Event::CancelRequested, &id).await });
         }
     }
 
@@ -184,6 +210,9 @@ impl JobQueue {
     pub async fn shutdown(&self, grace: Duration) {
         self.begin_stop();
         self.inner.shutdown.store(true, Ordering::SeqCst);
+        for helper in std::mem::take(&mut *self.inner.helpers.lock().unwrap_or_else(|p| p.into_inner())) {
+            helper.abort();
+        }
         self.inner.wake.notify_waiters();
         self.inner.wake_interactive.notify_waiters();
         let handles = std::mem::take(&mut *self.inner.workers.lock().unwrap_or_else(|p| p.into_inner()));
@@ -192,9 +221,79 @@ impl JobQueue {
             let ids: Vec<String> =
                 self.inner.running.lock().unwrap_or_else(|p| p.into_inner()).keys().cloned().collect();
             tracing::warn!(jobs = ids.len(), "workers did not stop in time; their jobs resume at the next start");
-            if let Err(e) = store::requeue(&self.inner.pool, &ids).await {
+            if let Err(e) = store::requeue(&self.inner.pool, &self.inner.lease, &ids).await {
                 tracing::error!(error = %e, "could not queue the interrupted jobs again; the next start will");
             }
+        }
+    }
+}
+
+impl Inner {
+    /// Stops job `id` if this replica runs it; `false` when it does not.
+    fn cancel_local(&self, id: &str) -> bool {
+        match self.running.lock().unwrap_or_else(|p| p.into_inner()).get(id) {
+            Some(control) => {
+                control.cancel.store(true, Ordering::Relaxed);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// The ids of the jobs this replica runs.
+    fn running_ids(&self) -> Vec<String> {
+        self.running.lock().unwrap_or_else(|p| p.into_inner()).keys().cloned().collect()
+    }
+}
+
+/// What another replica (or this one) told every replica about a job.
+fn on_event(inner: &Inner, event: Event, id: &str) {
+    match event {
+        Event::Queued => {
+            inner.wake.notify_one();
+            inner.wake_interactive.notify_one();
+        }
+        Event::CancelRequested => {
+            inner.cancel_local(id);
+        }
+        Event::Finished => {
+            let _ = inner.finished.send(id.to_string());
+        }
+    }
+}
+
+/// The lease keeper: every [`CANCEL_POLL`], stops the running jobs whose cancellation was
+/// asked for on any replica; every third of the lease, renews this replica's leases and
+/// queues again the jobs of replicas whose leases expired.
+async fn keep_leases(inner: Arc<Inner>) {
+    let renew_every = (inner.lease.duration / 3).max(CANCEL_POLL);
+    let mut tick = tokio::time::interval(CANCEL_POLL);
+    let mut last_renewal = Instant::now();
+    loop {
+        tick.tick().await;
+        if !inner.running_ids().is_empty() {
+            match store::cancels_requested(&inner.pool, &inner.lease).await {
+                Ok(ids) => ids.iter().for_each(|id| {
+                    inner.cancel_local(id);
+                }),
+                Err(e) => tracing::warn!(error = %e, "could not read the cancellations of running jobs"),
+            }
+        }
+        if last_renewal.elapsed() < renew_every {
+            continue;
+        }
+        last_renewal = Instant::now();
+        if let Err(e) = store::renew(&inner.pool, &inner.lease).await {
+            tracing::error!(error = %e, "could not renew the leases of running jobs; another replica may take them");
+        }
+        match store::requeue_expired(&inner.pool).await {
+            Ok(0) => {}
+            Ok(requeued) => {
+                tracing::warn!(requeued, "queued again the jobs of a replica whose leases expired");
+                inner.wake.notify_waiters();
+                inner.wake_interactive.notify_waiters();
+            }
+            Err(e) => tracing::warn!(error = %e, "could not look for jobs with expired leases"),
         }
     }
 }
@@ -208,7 +307,7 @@ async fn futures_join(handles: Vec<JoinHandle<()>>) {
 async fn worker_loop(inner: Arc<Inner>, n: usize, interactive_only: bool) {
     tracing::debug!(worker = n, interactive_only, "worker started");
     while !inner.shutdown.load(Ordering::SeqCst) {
-        match store::claim_next(&inner.pool, interactive_only).await {
+        match store::claim_next(&inner.pool, &inner.lease, interactive_only).await {
             Ok(Some(row)) => run_one(&inner, row).await,
             Ok(None) => {
                 let wake = if interactive_only { &inner.wake_interactive } else { &inner.wake };
@@ -225,11 +324,17 @@ async fn worker_loop(inner: Arc<Inner>, n: usize, interactive_only: bool) {
 
 async fn run_one(inner: &Arc<Inner>, row: store::Claimed) {
     let id = row.id.clone();
-    let outcome = execute(inner, &row).await;
-    if let Err(e) = outcome {
-        tracing::error!(job = %id, error = %e, "could not record the outcome of a job");
-    }
+    let recorded = match execute(inner, &row).await {
+        Ok(recorded) => recorded,
+        Err(e) => {
+            tracing::error!(job = %id, error = %e, "could not record the outcome of a job");
+            false
+        }
+    };
     inner.running.lock().unwrap_or_else(|p| p.into_inner()).remove(&id);
+    if recorded {
+        notify::send(&inner.pool, Event::Finished, &id).await;
+    }
     let _ = inner.finished.send(id);
 }
 
@@ -266,8 +371,11 @@ struct Serialized {
     scene: Option<String>,
 }
 
-async fn execute(inner: &Arc<Inner>, row: &store::Claimed) -> Result<(), sqlx::Error> {
-    let pool = &inner.pool;
+/// Runs a claimed job and records its outcome; `Ok(false)` when the outcome was not
+/// recorded because this replica no longer holds the job's lease (another replica runs
+/// it), or the job went back to the queue.
+async fn execute(inner: &Arc<Inner>, row: &store::Claimed) -> Result<bool, sqlx::Error> {
+    let (pool, lease) = (&inner.pool, &inner.lease);
     let id = row.id.as_str();
     if row.attempts > MAX_ATTEMPTS {
         let problem = ApiError::Internal(String::new()).problem();
@@ -278,21 +386,21 @@ async fn execute(inner: &Arc<Inner>, row: &store::Claimed) -> Result<(), sqlx::E
             ),
             ..problem
         };
-        return store::fail(pool, id, &problem).await;
+        return store::fail(pool, lease, id, &problem).await;
     }
     let kind = match JobKind::parse(&row.kind) {
         Some(kind) => kind,
         None => {
             let problem = ApiError::Internal(format!("unknown job kind {}", row.kind)).problem();
-            return store::fail(pool, id, &problem).await;
+            return store::fail(pool, lease, id, &problem).await;
         }
     };
     let control = Arc::new(JobControl::new(row.cancel_requested, inner.shutdown.clone(), inner.time_limit));
     inner.running.lock().unwrap_or_else(|p| p.into_inner()).insert(id.to_string(), control.clone());
 
-    let Some((input, prepared)) = store::work(pool, id).await? else {
+    let Some((input, prepared)) = super::store::work(pool, id).await? else {
         let problem = ApiError::Internal(format!("job {id} has no stored input")).problem();
-        return store::fail(pool, id, &problem).await;
+        return store::fail(pool, lease, id, &problem).await;
     };
     let worker_control = control.clone();
     let mut task = tokio::task::spawn_blocking(move || {
@@ -311,7 +419,7 @@ async fn execute(inner: &Arc<Inner>, row: &store::Claimed) -> Result<(), sqlx::E
                 let p = control.progress();
                 if (p - last).abs() > f64::EPSILON {
                     last = p;
-                    store::set_progress(pool, id, p).await?;
+                    store::set_progress(pool, lease, id, p).await?;
                 }
             }
         }
@@ -328,38 +436,42 @@ async fn execute(inner: &Arc<Inner>, row: &store::Claimed) -> Result<(), sqlx::E
                 ("scene", scene.map_or(0, str::len)),
             ];
             if let Some(problem) = oversized(&sizes) {
-                return store::fail(pool, id, &problem).await;
+                return store::fail(pool, lease, id, &problem).await;
             }
             let programs = [(ProgramPart::Main, program), (ProgramPart::Baseline, baseline)]
                 .into_iter()
                 .filter_map(|(part, text)| Some((part, text?)))
                 .collect();
             let outcome = store::Outcome { result, summary: Some(summary), programs, scene };
-            match store::succeed(pool, id, &outcome).await {
-                Ok(()) => Ok(()),
+            match store::succeed(pool, lease, id, &outcome).await {
+                Ok(true) => Ok(true),
+                Ok(false) => {
+                    tracing::warn!(job = %id, "the job's lease had expired and another replica took it: its result is dropped here");
+                    Ok(false)
+                }
                 Err(e) => {
                     // The job must not stay `running` with its outcome lost.
                     tracing::error!(job = %id, error = %e, "could not store the result of a job");
-                    store::fail(pool, id, &ApiError::Internal(e.to_string()).problem()).await
+                    store::fail(pool, lease, id, &ApiError::Internal(e.to_string()).problem()).await
                 }
             }
         }
         Ok(Err(CoreError::Cancelled)) => match control.stop_reason() {
-            StopReason::Cancelled => store::cancelled(pool, id).await,
+            StopReason::Cancelled => store::cancelled(pool, lease, id).await,
             StopReason::Shutdown => {
                 tracing::info!(job = %id, "job interrupted by shutdown; it resumes at the next start");
-                store::requeue(pool, &[id.to_string()]).await
+                store::requeue(pool, lease, &[id.to_string()]).await.map(|()| false)
             }
             StopReason::TimedOut => {
                 let limit = inner.time_limit.unwrap_or_default();
                 tracing::warn!(job = %id, limit_s = limit.as_secs_f64(), "job stopped at its time limit");
-                store::fail(pool, id, &timed_out(limit, control.progress())).await
+                store::fail(pool, lease, id, &timed_out(limit, control.progress())).await
             }
         },
-        Ok(Err(err)) => store::fail(pool, id, &ApiError::from(err).problem()).await,
+        Ok(Err(err)) => store::fail(pool, lease, id, &ApiError::from(err).problem()).await,
         Err(join_error) => {
             tracing::error!(job = %id, error = %join_error, "job panicked");
-            store::fail(pool, id, &ApiError::Internal(join_error.to_string()).problem()).await
+            store::fail(pool, lease, id, &ApiError::Internal(join_error.to_string()).problem()).await
         }
     }
 }

@@ -116,7 +116,11 @@ async fn submit(
 
 /// A job as JSON with `status`: its row, and its result spliced in as stored, never parsed
 /// (a result may be tens of megabytes).
-async fn job_response(pool: &sqlx::SqlitePool, status: StatusCode, row: &store::JobRow) -> Result<Response, ApiError> {
+async fn job_response(
+    pool: &crate::service::store::Pool,
+    status: StatusCode,
+    row: &store::JobRow,
+) -> Result<Response, ApiError> {
     let job = row.to_job()?;
     let mut body = serde_json::to_vec(&job).map_err(|e| ApiError::Internal(format!("serializing a job: {e}")))?;
     let result = match row.status()? {

@@ -7,7 +7,7 @@ use super::lane::Lane;
 use super::model::{Job, JobKind, JobLinks, JobStatus, JobSummary, ProgramPart};
 use crate::service::auth::Caller;
 use crate::service::error::{excerpt, ApiError, Problem};
-use sqlx::SqlitePool;
+use crate::service::store::{Pool, Text};
 
 /// The columns of a [`JobRow`]: the row's own, and whether the job left a main program.
 const ROW_COLUMNS: &str = "id, kind, status, progress, error, error_title, attempts, cancel_requested, created_at,
@@ -25,6 +25,7 @@ pub struct JobRow {
     pub error: Option<String>,
     pub error_title: Option<String>,
     pub attempts: i64,
+    #[sqlx(try_from = "crate::service::store::Flag")]
     pub cancel_requested: bool,
     pub created_at: String,
     pub started_at: Option<String>,
@@ -39,6 +40,7 @@ pub struct JobRow {
     /// Headline figures of the result (a small JSON object).
     pub summary: Option<String>,
     /// The job left a main NC program.
+    #[sqlx(try_from = "crate::service::store::Flag")]
     pub has_program: bool,
 }
 
@@ -125,9 +127,9 @@ pub struct NewJob<'a> {
 }
 
 /// Inserts a queued job with its input and prepared form, in one transaction.
-pub async fn insert(pool: &SqlitePool, job: NewJob<'_>) -> Result<(), ApiError> {
-    let mut tx = pool.begin_with("BEGIN IMMEDIATE").await?;
-    sqlx::query("INSERT INTO jobs (id, kind, status, key_id, lane, input_bytes) VALUES (?, ?, 'queued', ?, ?, ?)")
+pub async fn insert(pool: &Pool, job: NewJob<'_>) -> Result<(), ApiError> {
+    let mut tx = crate::service::store::begin(pool).await?;
+    sqlx::query("INSERT INTO jobs (id, kind, status, key_id, lane, input_bytes) VALUES ($1, $2, 'queued', $3, $4, $5)")
         .bind(job.id)
         .bind(job.kind.as_str())
         .bind(job.key_id)
@@ -136,10 +138,10 @@ pub async fn insert(pool: &SqlitePool, job: NewJob<'_>) -> Result<(), ApiError> 
         .execute(&mut *tx)
         .await?;
     for (part, body) in [("input", job.input), ("prepared", job.prepared)] {
-        sqlx::query("INSERT INTO job_blobs (job_id, part, body) VALUES (?, ?, ?)")
+        sqlx::query("INSERT INTO job_blobs (job_id, part, body) VALUES ($1, $2, $3)")
             .bind(job.id)
             .bind(part)
-            .bind(body)
+            .bind(body.as_bytes())
             .execute(&mut *tx)
             .await?;
     }
@@ -148,8 +150,8 @@ pub async fn insert(pool: &SqlitePool, job: NewJob<'_>) -> Result<(), ApiError> 
 }
 
 /// Reads one job's row, or 404.
-pub async fn get(pool: &SqlitePool, id: &str) -> Result<JobRow, ApiError> {
-    sqlx::query_as::<_, JobRow>(sqlx::AssertSqlSafe(format!("SELECT {ROW_COLUMNS} FROM jobs WHERE id = ?")))
+pub async fn get(pool: &Pool, id: &str) -> Result<JobRow, ApiError> {
+    sqlx::query_as::<_, JobRow>(sqlx::AssertSqlSafe(format!("SELECT {ROW_COLUMNS} FROM jobs WHERE id = $1")))
         .bind(id)
         .fetch_optional(pool)
         .await?
@@ -158,7 +160,7 @@ pub async fn get(pool: &SqlitePool, id: &str) -> Result<JobRow, ApiError> {
 
 /// Reads one job the caller may see, or 404 (a planner is not told that another key's
 /// job exists).
-pub async fn get_visible(pool: &SqlitePool, caller: &Caller, id: &str) -> Result<JobRow, ApiError> {
+pub async fn get_visible(pool: &Pool, caller: &Caller, id: &str) -> Result<JobRow, ApiError> {
     let row = get(pool, id).await?;
     if caller.may_see_job(row.key_id) {
         Ok(row)
@@ -168,32 +170,33 @@ pub async fn get_visible(pool: &SqlitePool, caller: &Caller, id: &str) -> Result
 }
 
 /// A blob of a job (`input`, `prepared` or `result`) as stored, if it has one.
-async fn blob(pool: &SqlitePool, id: &str, part: &str) -> Result<Option<String>, sqlx::Error> {
-    sqlx::query_scalar("SELECT body FROM job_blobs WHERE job_id = ? AND part = ?")
+async fn blob(pool: &Pool, id: &str, part: &str) -> Result<Option<String>, sqlx::Error> {
+    Ok(sqlx::query_scalar::<_, Text>("SELECT body FROM job_blobs WHERE job_id = $1 AND part = $2")
         .bind(id)
         .bind(part)
         .fetch_optional(pool)
-        .await
+        .await?
+        .map(String::from))
 }
 
 /// The input of a job as submitted (JSON text).
-pub async fn input(pool: &SqlitePool, id: &str) -> Result<Option<String>, ApiError> {
+pub async fn input(pool: &Pool, id: &str) -> Result<Option<String>, ApiError> {
     Ok(blob(pool, id, "input").await?)
 }
 
 /// The result of a succeeded job (JSON text).
-pub async fn result(pool: &SqlitePool, id: &str) -> Result<Option<String>, ApiError> {
+pub async fn result(pool: &Pool, id: &str) -> Result<Option<String>, ApiError> {
     Ok(blob(pool, id, "result").await?)
 }
 
 /// What a worker runs a job from: its input as submitted and its prepared form.
-pub async fn work(pool: &SqlitePool, id: &str) -> Result<Option<(String, String)>, sqlx::Error> {
+pub async fn work(pool: &Pool, id: &str) -> Result<Option<(String, String)>, sqlx::Error> {
     Ok(blob(pool, id, "input").await?.zip(blob(pool, id, "prepared").await?))
 }
 
 /// Lists jobs, newest first.
 pub async fn list(
-    pool: &SqlitePool,
+    pool: &Pool,
     status: Option<JobStatus>,
     kind: Option<JobKind>,
     owner: Option<i64>,
@@ -203,7 +206,7 @@ pub async fn list(
     let status = status.map(JobStatus::as_str);
     let kind = kind.map(JobKind::as_str);
     let total: i64 = sqlx::query_scalar(
-        "SELECT COUNT(*) FROM jobs WHERE (?1 IS NULL OR status = ?1) AND (?2 IS NULL OR kind = ?2) AND (?3 IS NULL OR key_id = ?3)",
+        "SELECT COUNT(*) FROM jobs WHERE ($1 IS NULL OR status = $1) AND ($2 IS NULL OR kind = $2) AND ($3 IS NULL OR key_id = $3)",
     )
     .bind(status)
     .bind(kind)
@@ -211,8 +214,8 @@ pub async fn list(
     .fetch_one(pool)
     .await?;
     let sql = format!(
-        "SELECT {ROW_COLUMNS} FROM jobs WHERE (?1 IS NULL OR status = ?1) AND (?2 IS NULL OR kind = ?2) AND (?5 IS NULL OR key_id = ?5)
-         ORDER BY created_at DESC, rowid DESC LIMIT ?3 OFFSET ?4"
+        "SELECT {ROW_COLUMNS} FROM jobs WHERE ($1 IS NULL OR status = $1) AND ($2 IS NULL OR kind = $2) AND ($5 IS NULL OR key_id = $5)
+         ORDER BY created_at DESC, rowid DESC LIMIT $3 OFFSET $4"
     );
     let rows = sqlx::query_as::<_, JobRow>(sqlx::AssertSqlSafe(sql))
         .bind(status)
@@ -225,145 +228,28 @@ pub async fn list(
     Ok((rows, total))
 }
 
-/// A job a worker has claimed: what it needs to know before it reads the job's blobs.
-#[derive(Debug, Clone, sqlx::FromRow)]
-pub struct Claimed {
-    pub id: String,
-    pub kind: String,
-    /// Times a worker has started it, this time included.
-    pub attempts: i64,
-    /// A cancellation asked for before an interruption.
-    pub cancel_requested: bool,
-}
-
-/// Takes the oldest queued job of the interactive lane, else (unless `interactive_only`)
-/// the oldest of the batch lane, and marks it running; returns its id, kind and counters,
-/// never its blobs.
-pub async fn claim_next(pool: &SqlitePool, interactive_only: bool) -> Result<Option<Claimed>, sqlx::Error> {
-    sqlx::query_as::<_, Claimed>("UPDATE jobs SET status = 'running', started_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), attempts = attempts + 1, progress = 0
-         WHERE id = (SELECT id FROM jobs WHERE status = 'queued' AND (lane = 'interactive' OR NOT ?1)
-                     ORDER BY lane = 'batch', created_at, rowid LIMIT 1) AND status = 'queued'
-         RETURNING id, kind, attempts, cancel_requested")
-    .bind(interactive_only)
-    .fetch_optional(pool)
-    .await
-}
-
-/// After a restart: jobs left running whose cancellation was asked for are cancelled,
-/// the others are queued again. Returns how many were re-queued.
-pub async fn recover_interrupted(pool: &SqlitePool) -> Result<u64, sqlx::Error> {
-    sqlx::query("UPDATE jobs SET status = 'cancelled', finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now')
-         WHERE status = 'running' AND cancel_requested = 1")
-    .execute(pool)
-    .await?;
-    let requeued = sqlx::query("UPDATE jobs SET status = 'queued', progress = 0, updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE status = 'running'")
-    .execute(pool)
-    .await?;
-    Ok(requeued.rows_affected())
-}
-
-/// Records progress of a running job.
-pub async fn set_progress(pool: &SqlitePool, id: &str, progress: f64) -> Result<(), sqlx::Error> {
-    sqlx::query("UPDATE jobs SET progress = ?, updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ? AND status = 'running'")
-        .bind(progress)
-        .bind(id)
-        .execute(pool)
-        .await?;
-    Ok(())
-}
-
-/// What a succeeded job leaves: its result (JSON text) and headline figures, its NC
-/// programs and its drawing scene.
-pub struct Outcome<'a> {
-    pub result: &'a str,
-    pub summary: Option<&'a str>,
-    pub programs: Vec<(ProgramPart, &'a str)>,
-    pub scene: Option<&'a str>,
-}
-
-/// Marks a running job succeeded with its outcome, in one transaction.
-pub async fn succeed(pool: &SqlitePool, id: &str, outcome: &Outcome<'_>) -> Result<(), sqlx::Error> {
-    let mut tx = pool.begin_with("BEGIN IMMEDIATE").await?;
-    sqlx::query("UPDATE jobs SET status = 'succeeded', progress = 1, result_bytes = ?, summary = ?, finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now')
-         WHERE id = ?")
-    .bind(i64::try_from(outcome.result.len()).unwrap_or(i64::MAX))
-    .bind(outcome.summary)
-    .bind(id)
-    .execute(&mut *tx)
-    .await?;
-    sqlx::query("INSERT OR REPLACE INTO job_blobs (job_id, part, body) VALUES (?, 'result', ?)")
-        .bind(id)
-        .bind(outcome.result)
-        .execute(&mut *tx)
-        .await?;
-    for (part, text) in &outcome.programs {
-        sqlx::query("INSERT OR REPLACE INTO job_programs (job_id, part, program) VALUES (?, ?, ?)")
-            .bind(id)
-            .bind(part.as_str())
-            .bind(text)
-            .execute(&mut *tx)
-            .await?;
-    }
-    if let Some(scene) = outcome.scene {
-        sqlx::query("INSERT OR REPLACE INTO job_scenes (job_id, scene) VALUES (?, ?)")
-            .bind(id)
-            .bind(scene)
-            .execute(&mut *tx)
-            .await?;
-    }
-    tx.commit().await
-}
-
 /// A program of a job (`job_programs`), if it left one.
-pub async fn program_part(pool: &SqlitePool, id: &str, part: ProgramPart) -> Result<Option<String>, ApiError> {
-    Ok(sqlx::query_scalar("SELECT program FROM job_programs WHERE job_id = ? AND part = ?")
+pub async fn program_part(pool: &Pool, id: &str, part: ProgramPart) -> Result<Option<String>, ApiError> {
+    Ok(sqlx::query_scalar::<_, Text>("SELECT program FROM job_programs WHERE job_id = $1 AND part = $2")
         .bind(id)
         .bind(part.as_str())
         .fetch_optional(pool)
-        .await?)
+        .await?
+        .map(String::from))
 }
 
 /// The drawing scene of a job (JSON), if it left one.
-pub async fn scene(pool: &SqlitePool, id: &str) -> Result<Option<String>, ApiError> {
-    Ok(sqlx::query_scalar("SELECT scene FROM job_scenes WHERE job_id = ?").bind(id).fetch_optional(pool).await?)
-}
-
-/// Marks a job failed with a problem document.
-pub async fn fail(pool: &SqlitePool, id: &str, problem: &Problem) -> Result<(), sqlx::Error> {
-    let text = serde_json::to_string(problem).unwrap_or_default();
-    sqlx::query("UPDATE jobs SET status = 'failed', error = ?, error_title = ?, finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ?")
-    .bind(text)
-    .bind(&problem.title)
-    .bind(id)
-    .execute(pool)
-    .await?;
-    Ok(())
-}
-
-/// Marks a job cancelled.
-pub async fn cancelled(pool: &SqlitePool, id: &str) -> Result<(), sqlx::Error> {
-    sqlx::query("UPDATE jobs SET status = 'cancelled', finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ?")
-    .bind(id)
-    .execute(pool)
-    .await?;
-    Ok(())
-}
-
-/// Puts running jobs back in the queue at a graceful shutdown, without counting the
-/// attempt it interrupted: only a crash (a job found running at start) counts.
-pub async fn requeue(pool: &SqlitePool, ids: &[String]) -> Result<(), sqlx::Error> {
-    for id in ids {
-        sqlx::query("UPDATE jobs SET status = 'queued', progress = 0, attempts = MAX(attempts - 1, 0), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ? AND status = 'running'")
+pub async fn scene(pool: &Pool, id: &str) -> Result<Option<String>, ApiError> {
+    Ok(sqlx::query_scalar::<_, Text>("SELECT scene FROM job_scenes WHERE job_id = $1")
         .bind(id)
-        .execute(pool)
-        .await?;
-    }
-    Ok(())
+        .fetch_optional(pool)
+        .await?
+        .map(String::from))
 }
 
 /// Cancels a queued job at once; returns `false` if it was not queued.
-pub async fn cancel_queued(pool: &SqlitePool, id: &str) -> Result<bool, sqlx::Error> {
-    let done = sqlx::query("UPDATE jobs SET status = 'cancelled', finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ? AND status = 'queued'")
+pub async fn cancel_queued(pool: &Pool, id: &str) -> Result<bool, sqlx::Error> {
+    let done = sqlx::query("UPDATE jobs SET status = 'cancelled', finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now'), updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = $1 AND status = 'queued'")
     .bind(id)
     .execute(pool)
     .await?;
@@ -371,8 +257,8 @@ pub async fn cancel_queued(pool: &SqlitePool, id: &str) -> Result<bool, sqlx::Er
 }
 
 /// Asks a running job to stop; returns `false` if it was not running.
-pub async fn request_cancel(pool: &SqlitePool, id: &str) -> Result<bool, sqlx::Error> {
-    let done = sqlx::query("UPDATE jobs SET cancel_requested = 1, updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ? AND status = 'running'")
+pub async fn request_cancel(pool: &Pool, id: &str) -> Result<bool, sqlx::Error> {
+    let done = sqlx::query("UPDATE jobs SET cancel_requested = 1, updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = $1 AND status = 'running'")
     .bind(id)
     .execute(pool)
     .await?;
@@ -382,8 +268,8 @@ pub async fn request_cancel(pool: &SqlitePool, id: &str) -> Result<bool, sqlx::E
 /// Removes a finished job with its blobs, programs and scene (the foreign keys cascade);
 /// `false` when the job is
 /// still queued or running (cancel it first).
-pub async fn purge(pool: &SqlitePool, id: &str) -> Result<bool, sqlx::Error> {
-    let done = sqlx::query("DELETE FROM jobs WHERE id = ? AND status IN ('succeeded', 'failed', 'cancelled')")
+pub async fn purge(pool: &Pool, id: &str) -> Result<bool, sqlx::Error> {
+    let done = sqlx::query("DELETE FROM jobs WHERE id = $1 AND status IN ('succeeded', 'failed', 'cancelled')")
         .bind(id)
         .execute(pool)
         .await?;
@@ -391,10 +277,10 @@ pub async fn purge(pool: &SqlitePool, id: &str) -> Result<bool, sqlx::Error> {
 }
 
 /// Removes the jobs that finished more than `days` days ago; returns how many.
-pub async fn purge_finished_before(pool: &SqlitePool, days: u64) -> Result<u64, sqlx::Error> {
+pub async fn purge_finished_before(pool: &Pool, days: u64) -> Result<u64, sqlx::Error> {
     let done = sqlx::query(
         "DELETE FROM jobs WHERE status IN ('succeeded', 'failed', 'cancelled')
-         AND finished_at < strftime('%Y-%m-%dT%H:%M:%fZ', 'now', '-' || ? || ' days')",
+         AND finished_at < strftime('%Y-%m-%dT%H:%M:%fZ', 'now', '-' || $1 || ' days')",
     )
     .bind(i64::try_from(days).unwrap_or(i64::MAX))
     .execute(pool)

@@ -22,8 +22,8 @@ use crate::core::progress::Progress;
 use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
 use crate::service::lookup;
+use crate::service::store::Pool;
 use serde::{Deserialize, Serialize};
-use sqlx::SqlitePool;
 use utoipa::ToSchema;
 
 /// Height of the safe plane above the top of the layer when none is given, mm (**assumed**).
@@ -192,7 +192,7 @@ fn read_pocket(request: &TrochoidsRequest) -> Result<Pocket, ApiError> {
 }
 
 /// Checks the request and resolves the tool, material, machine and conditions.
-pub async fn prepare(pool: &SqlitePool, request: TrochoidsRequest) -> Result<TrochoidsPrepared, ApiError> {
+pub async fn prepare(pool: &Pool, request: TrochoidsRequest) -> Result<TrochoidsPrepared, ApiError> {
     validate(&request)?;
     let refs = PathJobRefs {
         tool_id: request.tool_id,

@@ -3,8 +3,8 @@
 
 use super::model::{KeyOrigin, NewKey, Role};
 use super::store;
+use crate::service::store::Location;
 use clap::{Args, Subcommand};
-use std::path::PathBuf;
 
 /// The `keys` subcommands.
 #[derive(Debug, Subcommand)]
@@ -20,9 +20,10 @@ pub enum KeysCommand {
 /// The database the command works on.
 #[derive(Debug, Args)]
 pub struct DatabaseArg {
-    /// SQLite database file of the service (created and migrated if missing).
-    #[arg(long, env = "DIEPLAN_DATABASE", default_value = "data/dieplan.sqlite")]
-    pub database: PathBuf,
+    /// The service's database: a SQLite file or a `postgres://` URL (created and migrated
+    /// if missing).
+    #[arg(long, env = "DIEPLAN_DATABASE", default_value = "data/dieplan.sqlite", value_parser = Location::parse)]
+    pub database: Location,
 }
 
 #[derive(Debug, Args)]
@@ -54,8 +55,7 @@ pub async fn run(command: KeysCommand) -> Result<String, String> {
         KeysCommand::List(a) => &a.database,
         KeysCommand::Revoke(a) => &a.database.database,
     };
-    let pool =
-        crate::service::store::open(database).await.map_err(|e| format!("database {}: {e}", database.display()))?;
+    let pool = crate::service::store::open(database).await.map_err(|e| format!("database {}: {e}", database))?;
     let problem = |e: crate::service::error::ApiError| e.problem().detail;
     let out = match command {
         KeysCommand::Create(args) => {

@@ -3,7 +3,7 @@
 use super::model::{ApiKey, CreatedKey, KeyOrigin, NewKey, Role};
 use super::secret;
 use crate::service::error::{ApiError, Validator};
-use sqlx::SqlitePool;
+use crate::service::store::Pool;
 
 /// Longest key name, characters.
 const MAX_NAME_CHARS: usize = 100;
@@ -71,16 +71,16 @@ pub fn validate(new: &NewKey) -> Result<(), ApiError> {
 }
 
 /// Makes a key with a new secret and returns it with the secret (shown this once).
-pub async fn create(pool: &SqlitePool, new: &NewKey, origin: KeyOrigin) -> Result<CreatedKey, ApiError> {
+pub async fn create(pool: &Pool, new: &NewKey, origin: KeyOrigin) -> Result<CreatedKey, ApiError> {
     validate(new)?;
     let secret = secret::generate().map_err(|e| ApiError::Internal(format!("no random bytes for a key: {e}")))?;
     let id = insert(pool, new, origin, &secret).await?;
     Ok(CreatedKey { key: get(pool, id).await?.to_key()?, secret })
 }
 
-async fn insert(pool: &SqlitePool, new: &NewKey, origin: KeyOrigin, secret: &str) -> Result<i64, ApiError> {
+async fn insert(pool: &Pool, new: &NewKey, origin: KeyOrigin, secret: &str) -> Result<i64, ApiError> {
     Ok(sqlx::query_scalar(
-        "INSERT INTO api_keys (name, role, prefix, secret_sha256, origin, rate_limit_per_minute) VALUES (?, ?, ?, ?, ?, ?) RETURNING id",
+        "INSERT INTO api_keys (name, role, prefix, secret_sha256, origin, rate_limit_per_minute) VALUES ($1, $2, $3, $4, $5, $6) RETURNING id",
     )
     .bind(new.name.trim())
     .bind(new.role.as_str())
@@ -93,8 +93,8 @@ async fn insert(pool: &SqlitePool, new: &NewKey, origin: KeyOrigin, secret: &str
 }
 
 /// Reads one key (revoked or not), or 404.
-pub async fn get(pool: &SqlitePool, id: i64) -> Result<KeyRow, ApiError> {
-    sqlx::query_as::<_, KeyRow>(concat!("SELECT ", columns!(), " FROM api_keys WHERE id = ?"))
+pub async fn get(pool: &Pool, id: i64) -> Result<KeyRow, ApiError> {
+    sqlx::query_as::<_, KeyRow>(concat!("SELECT ", columns!(), " FROM api_keys WHERE id = $1"))
         .bind(id)
         .fetch_optional(pool)
         .await?
@@ -102,18 +102,18 @@ pub async fn get(pool: &SqlitePool, id: i64) -> Result<KeyRow, ApiError> {
 }
 
 /// Every key, oldest first, revoked ones too (they still name the jobs they made).
-pub async fn list(pool: &SqlitePool) -> Result<Vec<KeyRow>, ApiError> {
+pub async fn list(pool: &Pool) -> Result<Vec<KeyRow>, ApiError> {
     Ok(sqlx::query_as::<_, KeyRow>(concat!("SELECT ", columns!(), " FROM api_keys ORDER BY id"))
         .fetch_all(pool)
         .await?)
 }
 
 /// The active key whose secret this is, if any.
-pub async fn find_active(pool: &SqlitePool, secret: &str) -> Result<Option<KeyRow>, sqlx::Error> {
+pub async fn find_active(pool: &Pool, secret: &str) -> Result<Option<KeyRow>, sqlx::Error> {
     sqlx::query_as::<_, KeyRow>(concat!(
         "SELECT ",
         columns!(),
-        " FROM api_keys WHERE secret_sha256 = ? AND revoked_at IS NULL"
+        " FROM api_keys WHERE secret_sha256 = $1 AND revoked_at IS NULL"
     ))
     .bind(secret::digest(secret))
     .fetch_optional(pool)
@@ -121,13 +121,15 @@ pub async fn find_active(pool: &SqlitePool, secret: &str) -> Result<Option<KeyRo
 }
 
 /// `true` once any key is active: from then on every `/v1` route needs one.
-pub async fn any_active(pool: &SqlitePool) -> Result<bool, sqlx::Error> {
-    sqlx::query_scalar("SELECT EXISTS (SELECT 1 FROM api_keys WHERE revoked_at IS NULL)").fetch_one(pool).await
+pub async fn any_active(pool: &Pool) -> Result<bool, sqlx::Error> {
+    let active: crate::service::store::Flag =
+        sqlx::query_scalar("SELECT EXISTS (SELECT 1 FROM api_keys WHERE revoked_at IS NULL)").fetch_one(pool).await?;
+    Ok(active.0)
 }
 
 /// Notes that a key was used now.
-pub async fn touch(pool: &SqlitePool, id: i64) -> Result<(), sqlx::Error> {
-    sqlx::query("UPDATE api_keys SET last_used_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ?")
+pub async fn touch(pool: &Pool, id: i64) -> Result<(), sqlx::Error> {
+    sqlx::query("UPDATE api_keys SET last_used_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = $1")
         .bind(id)
         .execute(pool)
         .await?;
@@ -136,7 +138,7 @@ pub async fn touch(pool: &SqlitePool, id: i64) -> Result<(), sqlx::Error> {
 
 /// Revokes a key: it is refused from now on. The key of `DIEPLAN_ADMIN_KEY` is refused
 /// here (409): it would come back at the next start; change the variable instead.
-pub async fn revoke(pool: &SqlitePool, id: i64) -> Result<KeyRow, ApiError> {
+pub async fn revoke(pool: &Pool, id: i64) -> Result<KeyRow, ApiError> {
     let row = get(pool, id).await?;
     if row.origin == KeyOrigin::Environment.as_str() {
         return Err(ApiError::Conflict(format!(
@@ -144,7 +146,7 @@ pub async fn revoke(pool: &SqlitePool, id: i64) -> Result<KeyRow, ApiError> {
         )));
     }
     sqlx::query(
-        "UPDATE api_keys SET revoked_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ? AND revoked_at IS NULL",
+        "UPDATE api_keys SET revoked_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = $1 AND revoked_at IS NULL",
     )
     .bind(id)
     .execute(pool)
@@ -156,31 +158,31 @@ pub async fn revoke(pool: &SqlitePool, id: i64) -> Result<KeyRow, ApiError> {
 /// active, and a key of an earlier value of the variable is revoked. With no variable,
 /// its earlier key is revoked too. Refuses a secret shorter than
 /// [`secret::MIN_ENVIRONMENT_SECRET_CHARS`].
-pub async fn install_environment_key(pool: &SqlitePool, secret: Option<&str>) -> Result<(), EnvironmentKeyError> {
+pub async fn install_environment_key(pool: &Pool, secret: Option<&str>) -> Result<(), EnvironmentKeyError> {
     let digest = secret.map(secret::digest);
     if let Some(secret) = secret {
         if secret.chars().count() < secret::MIN_ENVIRONMENT_SECRET_CHARS {
             return Err(EnvironmentKeyError::TooShort);
         }
     }
-    let mut tx = pool.begin_with("BEGIN IMMEDIATE").await?;
+    let mut tx = crate::service::store::begin_exclusive(pool).await?;
     sqlx::query(
         "UPDATE api_keys SET revoked_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now')
-         WHERE origin = 'environment' AND revoked_at IS NULL AND secret_sha256 IS NOT ?",
+         WHERE origin = 'environment' AND revoked_at IS NULL AND secret_sha256 IS DISTINCT FROM $1",
     )
     .bind(digest.as_deref())
     .execute(&mut *tx)
     .await?;
     if let (Some(secret), Some(digest)) = (secret, digest.as_deref()) {
         let existing: Option<(String, Option<String>)> =
-            sqlx::query_as("SELECT origin, revoked_at FROM api_keys WHERE secret_sha256 = ?")
+            sqlx::query_as("SELECT origin, revoked_at FROM api_keys WHERE secret_sha256 = $1")
                 .bind(digest)
                 .fetch_optional(&mut *tx)
                 .await?;
         match existing {
             None => {
                 sqlx::query(
-                    "INSERT INTO api_keys (name, role, prefix, secret_sha256, origin) VALUES (?, 'admin', ?, ?, 'environment')",
+                    "INSERT INTO api_keys (name, role, prefix, secret_sha256, origin) VALUES ($1, 'admin', $2, $3, 'environment')",
                 )
                 .bind(ENVIRONMENT_KEY_NAME)
                 .bind(secret::shown_prefix(secret))
@@ -193,7 +195,7 @@ pub async fn install_environment_key(pool: &SqlitePool, secret: Option<&str>) ->
             }
             Some((_, revoked)) => {
                 if revoked.is_some() {
-                    sqlx::query("UPDATE api_keys SET revoked_at = NULL WHERE secret_sha256 = ?")
+                    sqlx::query("UPDATE api_keys SET revoked_at = NULL WHERE secret_sha256 = $1")
                         .bind(digest)
                         .execute(&mut *tx)
                         .await?;

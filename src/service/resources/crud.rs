@@ -4,9 +4,9 @@ use super::{ListFilter, Page, Record, Resource, SqlValue, DEFAULT_PAGE_LIMIT, MA
 use crate::service::error::{ApiError, Validator};
 use crate::service::etag;
 use crate::service::extract::from_value;
+use crate::service::store::Row;
+use crate::service::store::{numbered, Conn, Pool};
 use serde_json::Value;
-use sqlx::sqlite::SqliteRow;
-use sqlx::{AssertSqlSafe, SqliteConnection, SqlitePool};
 
 // Table and column names in generated SQL come from the `Resource` constants and the
 // filters' fixed conditions, never from a client; every client value is bound.
@@ -28,7 +28,7 @@ macro_rules! bind_values {
 }
 
 /// Lists the rows matching `filter`, one page.
-pub async fn list<R: Record, F: ListFilter>(pool: &SqlitePool, filter: &F) -> Result<Page<R>, ApiError> {
+pub async fn list<R: Record, F: ListFilter>(pool: &Pool, filter: &F) -> Result<Page<R>, ApiError> {
     let page = filter.page();
     let limit = page.limit.unwrap_or(DEFAULT_PAGE_LIMIT);
     let offset = page.offset.unwrap_or(0);
@@ -50,13 +50,13 @@ pub async fn list<R: Record, F: ListFilter>(pool: &SqlitePool, filter: &F) -> Re
     let table = R::Data::TABLE;
 
     let count_sql = format!("SELECT COUNT(*) FROM {table}{where_sql}");
-    let total = bind_values!(sqlx::query_scalar::<_, i64>(AssertSqlSafe(count_sql)), &values).fetch_one(pool).await?;
+    let total = bind_values!(sqlx::query_scalar::<_, i64>(numbered(&count_sql)), &values).fetch_one(pool).await?;
 
     let sql = format!("SELECT * FROM {table}{where_sql} ORDER BY id LIMIT ? OFFSET ?");
     let mut all = values.clone();
     all.push(SqlValue::Int(limit));
     all.push(SqlValue::Int(offset));
-    let items = bind_values!(sqlx::query_as::<_, R>(AssertSqlSafe(sql)), &all).fetch_all(pool).await?;
+    let items = bind_values!(sqlx::query_as::<_, R>(numbered(&sql)), &all).fetch_all(pool).await?;
     Ok(Page { items, total, limit, offset })
 }
 
@@ -75,13 +75,13 @@ fn to_bad_query(v: Validator) -> ApiError {
 }
 
 /// Reads one row, or 404.
-pub async fn get<R: Record>(pool: &SqlitePool, id: i64) -> Result<R, ApiError> {
+pub async fn get<R: Record>(pool: &Pool, id: i64) -> Result<R, ApiError> {
     fetch::<R>(&mut *pool.acquire().await?, id).await
 }
 
-async fn fetch<R: Record>(conn: &mut SqliteConnection, id: i64) -> Result<R, ApiError> {
+async fn fetch<R: Record>(conn: &mut Conn, id: i64) -> Result<R, ApiError> {
     let sql = format!("SELECT * FROM {} WHERE id = ?", R::Data::TABLE);
-    sqlx::query_as::<_, R>(AssertSqlSafe(sql))
+    sqlx::query_as::<_, R>(numbered(&sql))
         .bind(id)
         .fetch_optional(conn)
         .await?
@@ -89,11 +89,11 @@ async fn fetch<R: Record>(conn: &mut SqliteConnection, id: i64) -> Result<R, Api
 }
 
 /// Validates `data` and the rows it references.
-async fn check<D: Resource>(conn: &mut SqliteConnection, data: &D) -> Result<(), ApiError> {
+async fn check<D: Resource>(conn: &mut Conn, data: &D) -> Result<(), ApiError> {
     let mut v = Validator::new();
     data.validate(&mut v);
     for r in data.references() {
-        let exists: Option<i64> = sqlx::query_scalar(AssertSqlSafe(format!("SELECT id FROM {} WHERE id = ?", r.table)))
+        let exists: Option<i64> = sqlx::query_scalar(numbered(&format!("SELECT id FROM {} WHERE id = ?", r.table)))
             .bind(r.id)
             .fetch_optional(&mut *conn)
             .await?;
@@ -104,20 +104,20 @@ async fn check<D: Resource>(conn: &mut SqliteConnection, data: &D) -> Result<(),
     v.finish()
 }
 
-/// Write transactions take SQLite's write lock when they begin: a deferred transaction that
-/// reads first cannot upgrade its lock once another connection (a worker claiming a job) has
-/// written, and would fail at once with SQLITE_BUSY instead of waiting.
-const WRITE_TRANSACTION: &str = "BEGIN IMMEDIATE";
+// Write transactions are exclusive from their start (`store::begin_exclusive`): SQLite's
+// write lock (a deferred transaction that reads first cannot upgrade its lock once another
+// connection has written, and would fail at once with SQLITE_BUSY instead of waiting), and
+// on PostgreSQL an advisory lock, so that no two replicas interleave a read-modify-write.
 
 /// Inserts a validated row and returns it.
-pub async fn create<R: Record>(pool: &SqlitePool, data: R::Data) -> Result<R, ApiError> {
-    let mut tx = pool.begin_with(WRITE_TRANSACTION).await?;
+pub async fn create<R: Record>(pool: &Pool, data: R::Data) -> Result<R, ApiError> {
+    let mut tx = crate::service::store::begin_exclusive(pool).await?;
     check(&mut tx, &data).await?;
     let columns = R::Data::COLUMNS;
     let placeholders = vec!["?"; columns.len()].join(", ");
     let sql = format!("INSERT INTO {} ({}) VALUES ({placeholders}) RETURNING id", R::Data::TABLE, columns.join(", "));
     let values = data.values();
-    let row: SqliteRow = bind_values!(sqlx::query(AssertSqlSafe(sql)), &values).fetch_one(&mut *tx).await?;
+    let row: Row = bind_values!(sqlx::query(numbered(&sql)), &values).fetch_one(&mut *tx).await?;
     let id: i64 = sqlx::Row::try_get(&row, "id")?;
     R::Data::after_write(&mut tx, id, None, &data).await?;
     let record = fetch::<R>(&mut tx, id).await?;
@@ -128,13 +128,8 @@ pub async fn create<R: Record>(pool: &SqlitePool, data: R::Data) -> Result<R, Ap
 /// Replaces a row's data; marks it edited so later migrations leave it alone. With
 /// `if_match`, refuses (412) unless the row still has that entity tag; refused data is
 /// told first (422), as it would be refused whatever the tag.
-pub async fn replace<R: Record>(
-    pool: &SqlitePool,
-    id: i64,
-    data: R::Data,
-    if_match: Option<&str>,
-) -> Result<R, ApiError> {
-    let mut tx = pool.begin_with(WRITE_TRANSACTION).await?;
+pub async fn replace<R: Record>(pool: &Pool, id: i64, data: R::Data, if_match: Option<&str>) -> Result<R, ApiError> {
+    let mut tx = crate::service::store::begin_exclusive(pool).await?;
     let current = fetch::<R>(&mut tx, id).await?;
     check(&mut tx, &data).await?;
     etag::check(if_match, &current)?;
@@ -153,7 +148,7 @@ enum Edit {
 /// Writes a row's checked data inside the caller's write transaction and reads it back; a
 /// write of its data marks it edited, so later migrations leave it alone.
 async fn write<R: Record>(
-    conn: &mut SqliteConnection,
+    conn: &mut Conn,
     id: i64,
     before: &R::Data,
     data: R::Data,
@@ -168,7 +163,7 @@ async fn write<R: Record>(
     );
     let mut values = data.values();
     values.push(SqlValue::Int(id));
-    bind_values!(sqlx::query(AssertSqlSafe(sql)), &values).execute(&mut *conn).await?;
+    bind_values!(sqlx::query(numbered(&sql)), &values).execute(&mut *conn).await?;
     R::Data::after_write(conn, id, Some(before), &data).await?;
     fetch::<R>(conn, id).await
 }
@@ -177,11 +172,11 @@ async fn write<R: Record>(
 /// `source` marks the row as the shop's (`source = user`). The row is read, merged and
 /// written in one write transaction, so two patches of different fields both land.
 /// With `if_match`, refuses (412) unless the row still has that entity tag.
-pub async fn patch<R: Record>(pool: &SqlitePool, id: i64, patch: Value, if_match: Option<&str>) -> Result<R, ApiError> {
+pub async fn patch<R: Record>(pool: &Pool, id: i64, patch: Value, if_match: Option<&str>) -> Result<R, ApiError> {
     if !patch.is_object() {
         return Err(ApiError::field("body", "a merge patch must be a JSON object"));
     }
-    let mut tx = pool.begin_with(WRITE_TRANSACTION).await?;
+    let mut tx = crate::service::store::begin_exclusive(pool).await?;
     let current = fetch::<R>(&mut tx, id).await?;
     let mut merged = serde_json::to_value(current.data()).map_err(|e| ApiError::Internal(e.to_string()))?;
     let named = |key: &str| patch.get(key).is_some();
@@ -251,13 +246,13 @@ fn merge(target: &mut Value, patch: Value) {
 
 /// Deletes a row, refusing with 409 while other rows still reference it. With
 /// `if_match`, refuses (412) unless the row still has that entity tag.
-pub async fn delete<R: Record>(pool: &SqlitePool, id: i64, if_match: Option<&str>) -> Result<(), ApiError> {
-    let mut tx = pool.begin_with(WRITE_TRANSACTION).await?;
+pub async fn delete<R: Record>(pool: &Pool, id: i64, if_match: Option<&str>) -> Result<(), ApiError> {
+    let mut tx = crate::service::store::begin_exclusive(pool).await?;
     let current = fetch::<R>(&mut tx, id).await?;
     etag::check(if_match, &current)?;
     let mut users = Vec::new();
     for (table, column, what) in R::Data::REFERENCED_BY {
-        let n: i64 = sqlx::query_scalar(AssertSqlSafe(format!("SELECT COUNT(*) FROM {table} WHERE {column} = ?")))
+        let n: i64 = sqlx::query_scalar(numbered(&format!("SELECT COUNT(*) FROM {table} WHERE {column} = ?")))
             .bind(id)
             .fetch_one(&mut *tx)
             .await?;
@@ -272,10 +267,7 @@ pub async fn delete<R: Record>(pool: &SqlitePool, id: i64, if_match: Option<&str
             users.join(", ")
         )));
     }
-    sqlx::query(AssertSqlSafe(format!("DELETE FROM {} WHERE id = ?", R::Data::TABLE)))
-        .bind(id)
-        .execute(&mut *tx)
-        .await?;
+    sqlx::query(numbered(&format!("DELETE FROM {} WHERE id = ?", R::Data::TABLE))).bind(id).execute(&mut *tx).await?;
     R::Data::after_delete(&mut tx, id, current.data()).await?;
     tx.commit().await?;
     Ok(())

@@ -13,9 +13,10 @@ pub mod tool_life;
 pub mod tools;
 
 use crate::service::error::{ApiError, Validator};
+use crate::service::store::Conn;
+use crate::service::store::Row;
 use serde::{Deserialize, Serialize};
-use sqlx::sqlite::SqliteRow;
-use sqlx::{FromRow, SqliteConnection};
+use sqlx::FromRow;
 use std::future::Future;
 use std::pin::Pin;
 use utoipa::{IntoParams, ToSchema};
@@ -56,9 +57,8 @@ impl<T: Into<SqlValue>> From<Option<T>> for SqlValue {
 }
 
 /// Where the values of a row come from.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema, sqlx::Type)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
 #[serde(rename_all = "snake_case")]
-#[sqlx(rename_all = "snake_case")]
 pub enum Source {
     /// Taken from one of the papers; `reference` names the file and table.
     Paper,
@@ -93,6 +93,20 @@ impl Source {
     }
 }
 
+/// A `source` column, read as text from either backend.
+impl sqlx::Type<sqlx::Any> for Source {
+    fn type_info() -> sqlx::any::AnyTypeInfo {
+        <String as sqlx::Type<sqlx::Any>>::type_info()
+    }
+}
+
+impl<'r> sqlx::Decode<'r, sqlx::Any> for Source {
+    fn decode(value: sqlx::any::AnyValueRef<'r>) -> Result<Source, sqlx::error::BoxDynError> {
+        let text = <&str as sqlx::Decode<sqlx::Any>>::decode(value)?;
+        Ok(serde_json::from_value(serde_json::Value::String(text.to_string()))?)
+    }
+}
+
 /// A row another row points at, checked before a write so that a dangling id is a 422
 /// naming the field rather than a constraint failure.
 pub struct Reference {
@@ -106,7 +120,7 @@ pub type Hook<'a> = Pin<Box<dyn Future<Output = Result<(), ApiError>> + Send + '
 
 /// The writable part of a table's row.
 pub trait Resource:
-    Serialize + serde::de::DeserializeOwned + Clone + Send + Sync + Unpin + 'static + for<'r> FromRow<'r, SqliteRow>
+    Serialize + serde::de::DeserializeOwned + Clone + Send + Sync + Unpin + 'static + for<'r> FromRow<'r, Row>
 {
     /// SQL table name.
     const TABLE: &'static str;
@@ -132,23 +146,18 @@ pub trait Resource:
     const FLAGS: &'static [&'static str] = &[];
     /// Keeps what spans rows after the row `id` was inserted (`before`: none) or updated,
     /// inside the same write transaction (e.g. one default tool per type and diameter).
-    fn after_write<'a>(
-        _conn: &'a mut SqliteConnection,
-        _id: i64,
-        _before: Option<&'a Self>,
-        _data: &'a Self,
-    ) -> Hook<'a> {
+    fn after_write<'a>(_conn: &'a mut Conn, _id: i64, _before: Option<&'a Self>, _data: &'a Self) -> Hook<'a> {
         Box::pin(async { Ok(()) })
     }
     /// Keeps what spans rows after the row `id` (whose data was `deleted`) was deleted,
     /// inside the same write transaction.
-    fn after_delete<'a>(_conn: &'a mut SqliteConnection, _id: i64, _deleted: &'a Self) -> Hook<'a> {
+    fn after_delete<'a>(_conn: &'a mut Conn, _id: i64, _deleted: &'a Self) -> Hook<'a> {
         Box::pin(async { Ok(()) })
     }
 }
 
 /// A full row as the API shows it: id, data, provenance and timestamps.
-pub trait Record: Serialize + Send + Unpin + 'static + for<'r> FromRow<'r, SqliteRow> {
+pub trait Record: Serialize + Send + Unpin + 'static + for<'r> FromRow<'r, Row> {
     type Data: Resource;
     fn data(&self) -> &Self::Data;
 }
@@ -203,6 +212,7 @@ macro_rules! record {
             /// Stable key of a row seeded by a migration; null for the shop's own rows.
             pub seed_key: Option<String>,
             /// True once the shop changed the row: later migrations leave it alone.
+            #[sqlx(try_from = "crate::service::store::Flag")]
             pub edited: bool,
             pub created_at: String,
             pub updated_at: String,

@@ -64,7 +64,7 @@ pub struct ToolLifeData {
     pub life_m: f64,
     /// γ(α) as `[angle_deg, factor]` pairs, angles increasing from 0 to at most 180;
     /// linear in between.
-    #[sqlx(json)]
+    #[sqlx(try_from = "crate::service::store::JsonText<Vec<GammaPoint>>")]
     #[schema(min_items = 1)]
     pub gamma_table: Vec<GammaPoint>,
     /// Exponent k of the force factor φ = (F/F*)^k above the target force.
@@ -131,3 +131,9 @@ crate::crud_api!(
     tag: "database",
     ids: ["listToolLife", "getToolLife", "createToolLife", "replaceToolLife", "updateToolLife", "deleteToolLife"],
 );
+
+impl From<crate::service::store::JsonText<Vec<GammaPoint>>> for Vec<GammaPoint> {
+    fn from(json: crate::service::store::JsonText<Vec<GammaPoint>>) -> Vec<GammaPoint> {
+        json.0
+    }
+}

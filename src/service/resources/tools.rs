@@ -4,8 +4,8 @@ use super::routes::eq;
 use super::{Hook, ListFilter, PageRequest, Reference, Resource, Source, SqlValue, DIAMETER_FILTER_TOLERANCE_MM};
 use crate::core::tool::{EndMill, ToolType};
 use crate::service::error::{ApiError, Validator};
+use crate::service::store::{numbered, Conn};
 use serde::{Deserialize, Serialize};
-use sqlx::{AssertSqlSafe, SqliteConnection};
 use utoipa::{IntoParams, ToSchema};
 
 /// How far a ball end mill's corner radius may differ from D/2, mm.
@@ -35,6 +35,7 @@ pub struct ToolData {
     pub diameter_mm: f64,
     /// Number of flutes z.
     #[schema(minimum = 1, maximum = 16)]
+    #[sqlx(try_from = "i64")]
     pub flutes: u32,
     /// Corner radius, mm. Square end mill: 0 (the default when left out). Radius end mill:
     /// required, between 0 and D/2. Ball end mill: D/2, which it takes when left out (when
@@ -69,7 +70,7 @@ pub struct ToolData {
     /// the default there when that one had none). When the default is deleted or moved
     /// away, the oldest remaining tool of its type and diameter becomes the default.
     #[serde(default)]
-    #[sqlx(rename = "is_default")]
+    #[sqlx(rename = "is_default", try_from = "crate::service::store::Flag")]
     pub default: Option<bool>,
 }
 
@@ -189,7 +190,7 @@ impl Resource for ToolData {
 
     const FLAGS: &'static [&'static str] = &["default"];
 
-    fn after_write<'a>(conn: &'a mut SqliteConnection, id: i64, before: Option<&'a Self>, data: &'a Self) -> Hook<'a> {
+    fn after_write<'a>(conn: &'a mut Conn, id: i64, before: Option<&'a Self>, data: &'a Self) -> Hook<'a> {
         Box::pin(async move {
             let moved = before.is_some_and(|b| !b.same_combination(data));
             let was_default = before.is_some_and(|b| b.default == Some(true));
@@ -208,7 +209,7 @@ impl Resource for ToolData {
         })
     }
 
-    fn after_delete<'a>(conn: &'a mut SqliteConnection, _id: i64, deleted: &'a Self) -> Hook<'a> {
+    fn after_delete<'a>(conn: &'a mut Conn, _id: i64, deleted: &'a Self) -> Hook<'a> {
         Box::pin(async move {
             if deleted.default == Some(true) {
                 promote_oldest(conn, deleted).await?;
@@ -234,39 +235,40 @@ impl ToolData {
 }
 
 /// `true` when another tool of `data`'s type and diameter is the default.
-async fn has_default(conn: &mut SqliteConnection, data: &ToolData) -> Result<bool, ApiError> {
+async fn has_default(conn: &mut Conn, data: &ToolData) -> Result<bool, ApiError> {
     let sql = format!("SELECT EXISTS (SELECT 1 FROM tools WHERE {SAME_TYPE_AND_DIAMETER_SQL} AND is_default = 1)");
-    Ok(sqlx::query_scalar::<_, bool>(AssertSqlSafe(sql))
+    Ok(sqlx::query_scalar::<_, crate::service::store::Flag>(numbered(&sql))
         .bind(data.tool_type.as_str())
         .bind(data.diameter_mm)
         .fetch_one(&mut *conn)
-        .await?)
+        .await?
+        .0)
 }
 
 /// Makes the tool `id` the default of its type and diameter, clearing the previous one.
-async fn make_default(conn: &mut SqliteConnection, id: i64, data: &ToolData) -> Result<(), ApiError> {
+async fn make_default(conn: &mut Conn, id: i64, data: &ToolData) -> Result<(), ApiError> {
     let clear = format!(
         "UPDATE tools SET is_default = 0, updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now')
          WHERE {SAME_TYPE_AND_DIAMETER_SQL} AND is_default = 1 AND id <> ?"
     );
-    sqlx::query(AssertSqlSafe(clear))
+    sqlx::query(numbered(&clear))
         .bind(data.tool_type.as_str())
         .bind(data.diameter_mm)
         .bind(id)
         .execute(&mut *conn)
         .await?;
-    sqlx::query("UPDATE tools SET is_default = 1 WHERE id = ?").bind(id).execute(&mut *conn).await?;
+    sqlx::query("UPDATE tools SET is_default = 1 WHERE id = $1").bind(id).execute(&mut *conn).await?;
     Ok(())
 }
 
 /// Makes the oldest tool of `data`'s type and diameter the default, when none is.
-async fn promote_oldest(conn: &mut SqliteConnection, data: &ToolData) -> Result<(), ApiError> {
+async fn promote_oldest(conn: &mut Conn, data: &ToolData) -> Result<(), ApiError> {
     let sql = format!(
         "UPDATE tools SET is_default = 1, updated_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now')
          WHERE id = (SELECT id FROM tools WHERE {SAME_TYPE_AND_DIAMETER_SQL} ORDER BY created_at, id LIMIT 1)
            AND NOT EXISTS (SELECT 1 FROM tools WHERE {SAME_TYPE_AND_DIAMETER_SQL} AND is_default = 1)"
     );
-    sqlx::query(AssertSqlSafe(sql))
+    sqlx::query(numbered(&sql))
         .bind(data.tool_type.as_str())
         .bind(data.diameter_mm)
         .bind(data.tool_type.as_str())
