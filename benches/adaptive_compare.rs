@@ -19,7 +19,6 @@
 //! `ADAPTIVE_COMPARE_FULL_LOOPS=1` also plans dieplan's loops in full, for reference: their
 //! returns and the links at the cutting feed, the pitch at most the grooving Rd.
 
-use dieplan::core::analysis::sampling::move_length;
 use dieplan::core::analysis::{analyze_with, AnalysisSpec, StockRegion};
 use dieplan::core::conditions::CuttingConditions;
 use dieplan::core::geometry::{Loop, Pocket, Vertex};
@@ -28,6 +27,7 @@ use dieplan::core::kinematics::{machining_time, MachineLimits, TimeOptions};
 use dieplan::core::nc::{parse_gcode, write_program, ParseOptions, WriterOptions};
 use dieplan::core::progress::NoProgress;
 use dieplan::core::tool::{EndMill, ToolType};
+use dieplan::core::toolpath::move_length;
 use dieplan::core::toolpath::{Motion, Toolpath};
 use serde_json::Value;
 use std::path::{Path, PathBuf};

@@ -4,13 +4,14 @@
 //! case cuts the same path into ~1 million 0.05 mm linear moves with a value per move (CAM
 //! output of tiny segments). With `DRAWING_BENCH_SVG=DIR` the drawings are written there.
 
-use dieplan::core::analysis::sampling::{move_length, point_on};
+use dieplan::core::analysis::sampling::point_on;
 use dieplan::core::drawing::chart::render_chart;
 use dieplan::core::drawing::downsample::min_max_per_bucket;
 use dieplan::core::drawing::plan_view::{render_drawing, DrawOptions};
 use dieplan::core::drawing::scene::{ChartBody, ChartData, LineChart, LineSeries, Quantity, Scene};
 use dieplan::core::drawing::synthetic::{alpha_at, alpha_samples, long_loops};
 use dieplan::core::drawing::trace::{trace_path, TraceOptions, TraceValues};
+use dieplan::core::toolpath::move_length;
 use dieplan::core::toolpath::{Motion, Move, Toolpath};
 use std::time::Instant;
 

@@ -2,7 +2,7 @@
 //! `../shared/data/tiger.nc` measured in the same run (BENCHMARKS.md, "Plans").
 //!
 //! Every case is a job as the API runs it: the request is checked and resolved against a
-//! freshly migrated and seeded database (`kinds::prepare`, not timed), then the worker's
+//! freshly migrated and seeded database (`kinds::accept`, not timed), then the worker's
 //! part is timed (`kinds::run`: the computation, the result, the program and the scene).
 //! The cases:
 //! - `tiger`: tiger.nc analysed with the 6 mm square end mill at 0.05 mm in its stock of
@@ -20,6 +20,8 @@
 //! leave the yardstick out (for profiling one case; no ratios then).
 
 use dieplan::core::progress::NoProgress;
+use dieplan::service::auth::Caller;
+use dieplan::service::jobs::kind::Submission;
 use dieplan::service::jobs::kinds;
 use dieplan::service::jobs::model::JobKind;
 use serde_json::{json, Value};
@@ -173,10 +175,11 @@ fn main() {
     let pool =
         runtime.block_on(dieplan::service::store::open(&dir.path().join("bench.sqlite").into())).expect("database");
     let prepare = |case: Case| -> Prepared {
-        let prepared = runtime
-            .block_on(kinds::prepare(&pool, case.kind, case.input.clone(), ""))
+        let submission = Submission { pool: &pool, caller: &Caller::Open };
+        let accepted = runtime
+            .block_on(kinds::accept(&submission, case.kind, case.input.clone(), ""))
             .unwrap_or_else(|e| panic!("{}: {e:?}", case.label));
-        Prepared { label: case.label, kind: case.kind, input: case.input.to_string(), prepared: prepared.to_string() }
+        Prepared { label: case.label, kind: case.kind, input: accepted.input, prepared: accepted.prepared }
     };
     let tiger = prepare(yardstick());
     let chosen: Vec<Prepared> = cases().into_iter().filter(|c| wanted(c.label)).map(prepare).collect();

@@ -3,13 +3,13 @@
 //! grooving conditions). Prints the time of each stage and the figures of the plan.
 //! `cargo bench --bench trochoids -- border` runs the cases whose label contains a word.
 
-use dieplan::core::analysis::sampling::move_length;
 use dieplan::core::conditions::CuttingConditions;
 use dieplan::core::geometry::{loops_from_dxf, pocket_from_loops, Loop, Pocket, Vertex};
 use dieplan::core::insertion::{base_path, plan_insertion, InsertionSpec, TreatmentKind};
 use dieplan::core::medial::{medial_axis, MedialOptions};
 use dieplan::core::progress::NoProgress;
 use dieplan::core::tool::{EndMill, ToolType};
+use dieplan::core::toolpath::move_length;
 use std::time::Instant;
 
 fn border() -> Pocket {

@@ -2,8 +2,10 @@
 //! their source line numbers, and the events between them. Paths that dieplan generates
 //! also label their parts with [`Section`] events (see `toolpath/section.rs`).
 
+mod length;
 mod section;
 
+pub use length::{arc_sweep, in_plane, move_length, PlanePoint};
 pub use section::{labels_of, section_events, Section, Step};
 
 use serde::{Deserialize, Serialize};

@@ -220,6 +220,7 @@ pub async fn start(config: Config) -> Result<RunningServer, StartError> {
         }
     }
     let retention = crate::service::retention::start(pool.clone(), config.job_retention_days);
+    crate::service::jobs::summaries::start(pool.clone());
     let workers = config.worker_count();
     let jobs = JobQueue::start(pool.clone(), workers, config.job_time_limit(), config.job_lease())
         .await

@@ -18,6 +18,19 @@ where
     type Rejection = ApiError;
 
     async fn from_request(req: Request, state: &S) -> Result<Self, Self::Rejection> {
+        let JsonBytes(bytes) = JsonBytes::from_request(req, state).await?;
+        parse_json(&bytes).map(ApiJson)
+    }
+}
+
+/// A JSON body, not yet parsed: for bodies that may be large, which are parsed off the
+/// async runtime ([`parse_json`] on a blocking thread). A body that is not JSON is a 415.
+pub struct JsonBytes(pub axum::body::Bytes);
+
+impl<S: Send + Sync> FromRequest<S> for JsonBytes {
+    type Rejection = ApiError;
+
+    async fn from_request(req: Request, state: &S) -> Result<Self, Self::Rejection> {
         let content_type =
             req.headers().get(header::CONTENT_TYPE).and_then(|v| v.to_str().ok()).unwrap_or("").to_string();
         let is_json = content_type
@@ -29,10 +42,10 @@ where
                 "the body must be JSON (Content-Type: application/json), got '{content_type}'"
             )));
         }
-        let bytes = axum::body::Bytes::from_request(req, state)
+        axum::body::Bytes::from_request(req, state)
             .await
-            .map_err(|rejection| ApiError::Status { status: rejection.status(), detail: rejection.body_text() })?;
-        parse_json(&bytes).map(ApiJson)
+            .map(JsonBytes)
+            .map_err(|rejection| ApiError::Status { status: rejection.status(), detail: rejection.body_text() })
     }
 }
 
@@ -44,11 +57,59 @@ pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
     from_value(value)
 }
 
-/// Converts an already-parsed JSON value into `T` with path-aware errors (422).
+/// Most field errors one problem lists.
+pub const MAX_FIELD_ERRORS: usize = 50;
+
+/// Converts an already-parsed JSON value into `T` with path-aware errors (422), listing
+/// every refused field at once: after each refusal the field is set aside and the rest read
+/// again, until the value reads, a required field is missing, a refusal repeats or is
+/// inside a list (whose later items would be misnamed), or [`MAX_FIELD_ERRORS`] are found.
 pub fn from_value<T: DeserializeOwned>(mut value: serde_json::Value) -> Result<T, ApiError> {
     whole_numbers_as_integers(&mut value);
-    serde_path_to_error::deserialize(value)
-        .map_err(|e| ApiError::Validation(vec![field_error(e.path().to_string(), &e.inner().to_string())]))
+    let mut errors: Vec<FieldError> = Vec::new();
+    loop {
+        let refusal = match serde_path_to_error::deserialize::<_, T>(&value) {
+            Ok(read) if errors.is_empty() => return Ok(read),
+            Ok(_) => break,
+            Err(e) => e,
+        };
+        let error = field_error(refusal.path().to_string(), &refusal.inner().to_string());
+        if errors.iter().any(|e| e.field == error.field) {
+            break;
+        }
+        let missing = error.reason == REQUIRED;
+        errors.push(error);
+        if missing || errors.len() >= MAX_FIELD_ERRORS || !set_aside(&mut value, refusal.path()) {
+            break;
+        }
+    }
+    Err(ApiError::Validation(errors))
+}
+
+/// What a missing field is said to be.
+const REQUIRED: &str = "is required";
+
+/// Removes the object member at `path` from `value`; `false` when the path does not end at
+/// a member of an object (the document itself, an item of a list).
+fn set_aside(value: &mut serde_json::Value, path: &serde_path_to_error::Path) -> bool {
+    use serde_path_to_error::Segment;
+    let segments: Vec<&Segment> = path.iter().collect();
+    let Some((Segment::Map { key } | Segment::Enum { variant: key }, parents)) = segments.split_last() else {
+        return false;
+    };
+    let mut at = value;
+    for segment in parents {
+        let next = match segment {
+            Segment::Map { key } | Segment::Enum { variant: key } => at.get_mut(key.as_str()),
+            Segment::Seq { index } => at.get_mut(*index),
+            Segment::Unknown => None,
+        };
+        match next {
+            Some(next) => at = next,
+            None => return false,
+        }
+    }
+    at.as_object_mut().is_some_and(|object| object.shift_remove(key.as_str()).is_some())
 }
 
 /// Largest magnitude a whole number written with a fraction or exponent (`10.0`, `1e3`)
@@ -99,10 +160,8 @@ fn shorten_quoted(message: &str) -> String {
 fn field_error(path: String, message: &str) -> FieldError {
     let missing = message.strip_prefix("missing field `").and_then(|rest| rest.split_once('`')).map(|(name, _)| name);
     match missing {
-        Some(name) if path == "." || path.is_empty() => {
-            FieldError { field: name.to_string(), reason: "is required".into() }
-        }
-        Some(name) => FieldError { field: format!("{path}.{name}"), reason: "is required".into() },
+        Some(name) if path == "." || path.is_empty() => FieldError { field: name.to_string(), reason: REQUIRED.into() },
+        Some(name) => FieldError { field: format!("{path}.{name}"), reason: REQUIRED.into() },
         None => FieldError { field: field_of(path), reason: shorten_quoted(&reason(message)) },
     }
 }
@@ -149,15 +208,31 @@ where
     type Rejection = ApiError;
 
     async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, Self::Rejection> {
-        axum::extract::Path::<T>::from_request_parts(parts, state)
-            .await
-            .map(|axum::extract::Path(v)| ApiPath(v))
-            .map_err(path_rejection)
+        match axum::extract::Path::<T>::from_request_parts(parts, state).await {
+            Ok(axum::extract::Path(v)) => Ok(ApiPath(v)),
+            Err(rejection) => {
+                let raw = axum::extract::RawPathParams::from_request_parts(parts, state).await.ok();
+                let params: Vec<(String, String)> = raw
+                    .iter()
+                    .flat_map(|raw| raw.iter().map(|(key, value)| (key.to_string(), value.to_string())))
+                    .collect();
+                Err(path_rejection(rejection, &params))
+            }
+        }
+    }
+}
+
+/// The parameter a refusal without a key is about: the only one, or the one whose value
+/// the message quotes (a type of ours refusing its value says what it got).
+fn refused_parameter<'a>(message: &str, params: &'a [(String, String)]) -> Option<&'a str> {
+    match params {
+        [(key, _)] => Some(key),
+        _ => params.iter().find(|(_, value)| message.contains(&format!("\"{value}\""))).map(|(key, _)| key.as_str()),
     }
 }
 
 /// A path parameter that does not parse, named with what it must be.
-fn path_rejection(rejection: axum::extract::rejection::PathRejection) -> ApiError {
+fn path_rejection(rejection: axum::extract::rejection::PathRejection, params: &[(String, String)]) -> ApiError {
     use axum::extract::path::ErrorKind;
     use axum::extract::rejection::PathRejection;
     let detail = match &rejection {
@@ -170,6 +245,10 @@ fn path_rejection(rejection: axum::extract::rejection::PathRejection) -> ApiErro
                 format!("path parameter: {}", parameter_reason(expected_type, value))
             }
             ErrorKind::InvalidUtf8InPathParam { key } => format!("path parameter {key}: must be UTF-8 text"),
+            ErrorKind::Message(message) => match refused_parameter(message, params) {
+                Some(key) => format!("path parameter {key}: {}", reason(&shorten_quoted(message))),
+                None => format!("path: {}", reason(&shorten_quoted(message))),
+            },
             ErrorKind::DeserializeError { key, message, .. } => format!("path parameter {key}: {}", reason(message)),
             other => format!("path: {}", reason(&shorten_quoted(&other.to_string()))),
         },
@@ -209,6 +288,34 @@ mod tests {
         assert_eq!((e.field.as_str(), e.reason.as_str()), ("diameter_mm", "is required"));
         let e = only_error(parse_json::<Tool>(br#"{"diameter_mm": 10, "holder": {}}"#).unwrap_err());
         assert_eq!((e.field.as_str(), e.reason.as_str()), ("holder.gauge_mm", "is required"));
+    }
+
+    #[test]
+    fn every_refused_field_of_a_document_is_listed_at_once() {
+        #[derive(Debug, Deserialize)]
+        #[serde(deny_unknown_fields)]
+        #[allow(dead_code)]
+        struct Request {
+            diameter_mm: Option<f64>,
+            flutes: Option<u32>,
+            holder: Option<Holder>,
+        }
+        let body = br#"{"colour": "red", "diameter_mm": "ten", "flutes": -4, "holder": {"gauge_mm": "long"}}"#;
+        let ApiError::Validation(errors) = parse_json::<Request>(body).unwrap_err() else {
+            panic!("not a validation error")
+        };
+        let fields: Vec<&str> = errors.iter().map(|e| e.field.as_str()).collect();
+        assert_eq!(fields, ["colour", "diameter_mm", "flutes", "holder.gauge_mm"], "{errors:?}");
+    }
+
+    #[test]
+    fn a_missing_field_is_named_with_the_faults_read_before_it() {
+        let ApiError::Validation(errors) = parse_json::<Tool>(br#"{"diameter_mm": "ten", "holder": {}}"#).unwrap_err()
+        else {
+            panic!("not a validation error")
+        };
+        let fields: Vec<&str> = errors.iter().map(|e| e.field.as_str()).collect();
+        assert_eq!(fields, ["diameter_mm", "holder.gauge_mm"], "{errors:?}");
     }
 
     #[test]

@@ -1,12 +1,6 @@
 //! The OpenAPI document: every route and schema, generated from the code.
 
 use crate::service::error::{FieldError, Problem};
-use crate::service::jobs::analysis_result::AnalysisResult;
-use crate::service::jobs::conditions::ConditionsResult;
-use crate::service::jobs::costing_result::CostingResult;
-use crate::service::jobs::feeds_result::FeedsResult;
-use crate::service::jobs::plans_result::PlanResult;
-use crate::service::jobs::trochoids_result::TrochoidsResult;
 use crate::service::state::AppState;
 use utoipa::OpenApi;
 use utoipa_axum::router::OpenApiRouter;
@@ -24,7 +18,7 @@ use utoipa_axum::router::OpenApiRouter;
         (name = "keys", description = "API keys and their roles (admin)"),
         (name = "health", description = "Liveness and readiness")
     ),
-    components(schemas(Problem, FieldError, crate::service::jobs::model::ProgramPart, ConditionsResult, AnalysisResult, FeedsResult, CostingResult, TrochoidsResult, PlanResult))
+    components(schemas(Problem, FieldError, crate::service::jobs::model::ProgramPart))
 )]
 pub struct ApiDoc;
 

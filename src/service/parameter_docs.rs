@@ -4,7 +4,9 @@
 //! - `limit`: 1 to [`MAX_PAGE_LIMIT`] rows (default [`DEFAULT_PAGE_LIMIT`]);
 //! - `offset`: 0 or more rows (default 0);
 //! - an integer `id` in the path: 1 or more (ids start at 1);
-//! - a job's `id` in the path: a UUID.
+//! - a job's `id` in the path: a UUID;
+//! - the `Prefer` header of a submission: `wait=N`, cut to the longest wait the service
+//!   honours ([`crate::service::config::Config::effective_max_wait_s`], by default).
 //!
 //! Parameters of one route carry their bounds in their own `#[param]` attributes.
 
@@ -29,6 +31,9 @@ pub fn describe(doc: &mut OpenApi) {
 }
 
 fn bound(parameter: &mut Parameter, is_job: bool) {
+    if matches!(parameter.parameter_in, ParameterIn::Header) && parameter.name.eq_ignore_ascii_case("prefer") {
+        return describe_prefer(parameter);
+    }
     let int64 =
         || ObjectBuilder::new().schema_type(Type::Integer).format(Some(SchemaFormat::KnownFormat(KnownFormat::Int64)));
     let schema = match (&parameter.parameter_in, parameter.name.as_str()) {
@@ -49,6 +54,23 @@ fn bound(parameter: &mut Parameter, is_job: bool) {
             _ => "Rows to skip (default 0).".to_string(),
         });
     }
+}
+
+/// The longest `Prefer: wait=N` the service honours with its default configuration, s.
+pub fn default_max_wait_s() -> u64 {
+    crate::service::config::Config::with_database(std::path::PathBuf::new()).effective_max_wait_s()
+}
+
+/// The `Prefer` header of a submission, with the bound of its wait.
+fn describe_prefer(parameter: &mut Parameter) {
+    let max = default_max_wait_s();
+    parameter.description = Some(format!(
+        "RFC 7240 preferences. `wait=N`, N a whole number of seconds: answer with the finished job (201) if it \
+         finishes within N seconds. The wait is at most {max} s (the service's `--max-wait`, {max} by default, \
+         and always less than its request timeout): a longer one is cut to it, and `Preference-Applied` names the \
+         wait applied. Other preferences are ignored."
+    ));
+    parameter.schema = Some(ObjectBuilder::new().schema_type(Type::String).examples([format!("wait={max}")]).into());
 }
 
 fn is_integer(schema: Option<&RefOr<Schema>>) -> bool {

@@ -9,6 +9,9 @@ const STANDARD_CUT: &str = "G21 G90 G17\nT1 M6\nS9600 M3\nG0 X-10 Y4.5 Z5\nG1 Z-
 /// A plunge at the wall, then once round a concave arc of R/r = 2 at F4320 (seed 003).
 const CONCAVE_CIRCLE: &str = "G21 G90 G17\nS9600 M3\nG0 X5 Y0 Z5\nG1 Z-10 F1000\nG3 X5 Y0 I-5 J0 F4320\nG0 Z5\nM30\n";
 
+/// A well-formed job id no job has.
+const UNKNOWN_JOB: &str = "00000000-0000-4000-8000-000000000000";
+
 fn concave_stock() -> Value {
     json!({"box": {"x_min": -30, "y_min": -30, "z_min": -10, "x_max": 30, "y_max": 30, "z_max": 0},
            "open": [{"circle": {"cx": 0, "cy": 0, "r": 9.5}}]})
@@ -96,10 +99,13 @@ async fn a_feeds_jobs_program_costs_less_tool_and_more_time_than_the_original() 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn bad_costing_requests_are_refused_naming_the_field() {
     let app = TestApp::start().await;
-    let both = json!({"program": {"gcode": STANDARD_CUT}, "job_id": "x", "tool_type": "square", "diameter_mm": 10, "stock": concave_stock()});
+    let both = json!({"program": {"gcode": STANDARD_CUT}, "job_id": UNKNOWN_JOB, "tool_type": "square", "diameter_mm": 10, "stock": concave_stock()});
     assert_problem(&app.post("/v1/costing", both).await, 422, Some("program"));
-    let unknown = json!({"job_id": "no-such-job", "tool_type": "square", "diameter_mm": 10, "stock": concave_stock()});
+    let unknown = json!({"job_id": UNKNOWN_JOB, "tool_type": "square", "diameter_mm": 10, "stock": concave_stock()});
     assert_problem(&app.post("/v1/costing", unknown).await, 422, Some("job_id"));
+    let malformed =
+        json!({"job_id": "no-such-job", "tool_type": "square", "diameter_mm": 10, "stock": concave_stock()});
+    assert_problem(&app.post("/v1/costing", malformed).await, 422, Some("job_id"));
     let conditions = app.post_wait("/v1/conditions", json!({"tool_type": "square", "diameter_mm": 10})).await;
     let no_program =
         json!({"job_id": conditions.body["id"], "tool_type": "square", "diameter_mm": 10, "stock": concave_stock()});
@@ -108,6 +114,32 @@ async fn bad_costing_requests_are_refused_naming_the_field() {
     assert_problem(&app.post("/v1/costing", price).await, 422, Some("tool_price"));
     let price = json!({"program": {"gcode": STANDARD_CUT}, "tool_type": "square", "diameter_mm": 10, "stock": concave_stock(), "tool_price": 1e308});
     assert_problem(&app.post("/v1/costing", price).await, 422, Some("tool_price"));
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_planner_costs_the_programs_of_its_own_jobs_only_and_an_admin_of_any() {
+    use reqwest::Method;
+    let app = TestApp::start().await;
+    let admin = app.make_key(None, "admin", "admin").await;
+    let alice = app.make_key(Some(&admin), "planner", "station A").await;
+    let bob = app.make_key(Some(&admin), "planner", "station B").await;
+    let feeds = json!({"program": {"gcode": STANDARD_CUT}, "tool_type": "square", "diameter_mm": 10,
+        "stock": {"box": {"x_min": 0, "y_min": -40, "z_min": -10, "x_max": 100, "y_max": 0, "z_max": 0}}});
+    let auth = format!("Bearer {alice}");
+    let alices = app
+        .send(Method::POST, "/v1/feeds", Some(feeds.clone()), &[("authorization", &auth), ("prefer", "wait=30")])
+        .await;
+    assert_eq!(alices.body["status"], "succeeded", "{}", alices.text);
+    let id = alices.body["id"].as_str().expect("a job").to_string();
+    let costing = json!({"job_id": id, "tool_type": "square", "diameter_mm": 10, "stock": feeds["stock"]});
+    let refused = app.send_as(&bob, Method::POST, "/v1/costing", Some(costing.clone())).await;
+    assert_problem(&refused, 422, Some("job_id"));
+    assert!(!refused.text.contains("feeds"), "another's job is not described: {}", refused.text);
+    for key in [&alice, &admin] {
+        let accepted = app.send_as(key, Method::POST, "/v1/costing", Some(costing.clone())).await;
+        assert_eq!(accepted.status, 202, "{}", accepted.text);
+    }
     app.stop().await;
 }
 

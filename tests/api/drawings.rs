@@ -77,7 +77,7 @@ async fn bad_drawing_requests_are_refused_naming_the_parameter() {
     }
     assert_problem(&app.get(&format!("/v1/jobs/{id}/charts/nothing")).await, 404, None);
     assert_problem(&app.get(&format!("/v1/jobs/{id}/charts/alpha?height=5000")).await, 422, Some("height"));
-    assert_problem(&app.get("/v1/jobs/no-such-job/drawing.svg").await, 404, None);
+    assert_problem(&app.get("/v1/jobs/00000000-0000-4000-8000-000000000000/drawing.svg").await, 404, None);
 
     let conditions = app.post_wait("/v1/conditions", json!({"tool_type": "square", "diameter_mm": 10})).await;
     let cid = conditions.body["id"].as_str().unwrap();

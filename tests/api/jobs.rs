@@ -46,7 +46,7 @@ async fn with_no_worker_a_wait_times_out_into_a_queued_job_that_can_be_cancelled
     assert_eq!(cancelled.status, 200, "{}", cancelled.text);
     assert_eq!(cancelled.body["status"], "cancelled");
     assert_problem(&app.delete(&format!("/v1/jobs/{id}")).await, 409, None);
-    assert_problem(&app.delete("/v1/jobs/no-such-job").await, 404, None);
+    assert_problem(&app.delete("/v1/jobs/00000000-0000-4000-8000-000000000000").await, 404, None);
     app.stop().await;
 }
 
@@ -130,5 +130,39 @@ async fn a_job_that_runs_past_the_time_limit_is_stopped_and_fails_saying_so() {
     assert_eq!(error["status"], 413, "{error}");
     let detail = error["detail"].as_str().unwrap();
     assert!(detail.contains("1 s") && detail.contains("DIEPLAN_JOB_TIME_LIMIT"), "{detail}");
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_malformed_job_id_in_a_path_is_refused_naming_id() {
+    let app = TestApp::start_with(|c| c.workers = Some(0)).await;
+    for path in
+        ["/v1/jobs/abc", "/v1/jobs/abc/input", "/v1/jobs/abc/program", "/v1/jobs/abc/views", "/v1/jobs/abc/drawing.svg"]
+    {
+        let a = app.get(path).await;
+        assert_problem(&a, 400, None);
+        assert!(
+            a.body["detail"].as_str().unwrap().starts_with("path parameter id: must be a job id"),
+            "{path}: {}",
+            a.text
+        );
+    }
+    assert_problem(&app.delete("/v1/jobs/abc").await, 400, None);
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_request_with_three_faults_gets_all_three_in_one_problem() {
+    let app = TestApp::start_with(|c| c.workers = Some(0)).await;
+    let typed = json!({"tool_type": "squar", "diameter_mm": "ten", "operation": "standard_side_cutting", "colour": 1});
+    let a = app.post("/v1/conditions", typed).await;
+    assert_problem(&a, 422, None);
+    let fields: Vec<&str> = a.body["errors"].as_array().unwrap().iter().filter_map(|e| e["field"].as_str()).collect();
+    assert_eq!(fields, ["tool_type", "diameter_mm", "colour"], "{}", a.text);
+    let bounded = json!({"kind": "conditions", "input": {"tool_type": "square", "diameter_mm": 10, "spindle_rpm": -1, "fz_mm": 0, "rd_mm": -2}});
+    let a = app.post("/v1/jobs", bounded).await;
+    assert_problem(&a, 422, None);
+    let fields: Vec<&str> = a.body["errors"].as_array().unwrap().iter().filter_map(|e| e["field"].as_str()).collect();
+    assert_eq!(fields, ["input.spindle_rpm", "input.fz_mm", "input.rd_mm"], "{}", a.text);
     app.stop().await;
 }

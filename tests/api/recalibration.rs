@@ -62,7 +62,7 @@ async fn the_recalibration_leaves_a_shops_own_rows_edits_and_jobs_alone() {
         "INSERT INTO tools (name, tool_type, diameter_mm, flutes, corner_radius_mm, source, reference) VALUES ('shop square D10 z4', 'square', 10, 4, 0, 'user', 'catalogue')",
         "INSERT INTO standard_conditions (tool_id, material_id, operation, spindle_rpm, fz_mm, fz_min_mm, rd_mm, ad_mm, source, reference)
          SELECT id, 1, 'standard_side_cutting', 8000, 0.08, 0.004, 0.5, 10, 'user', 'shop trial' FROM tools WHERE name = 'shop square D10 z4'",
-        "INSERT INTO jobs (id, kind, status, input, prepared, result, program) VALUES ('old-job', 'feeds', 'succeeded', '{}', '{}', '{}', 'G0 X0')",
+        "INSERT INTO jobs (id, kind, status, input, prepared, result, program) VALUES ('0a0a0a0a-0000-4000-8000-0000000000b0', 'feeds', 'succeeded', '{}', '{}', '{}', 'G0 X0')",
     ] {
         sqlx::query(sql).execute(&pool).await.unwrap();
     }
@@ -88,9 +88,9 @@ async fn the_recalibration_leaves_a_shops_own_rows_edits_and_jobs_alone() {
     assert_eq!(app.get("/v1/tools?limit=500").await.body["total"], tools_before);
     // Foreign keys still hold: a tool in use cannot be deleted.
     assert_eq!(app.delete(&format!("/v1/tools/{mine_id}")).await.status, 409);
-    let old = app.get("/v1/jobs/old-job/program").await;
+    let old = app.get("/v1/jobs/0a0a0a0a-0000-4000-8000-0000000000b0/program").await;
     assert_eq!((old.status.as_u16(), old.text.as_str()), (200, "G0 X0"));
-    assert_problem(&app.get("/v1/jobs/old-job/program?part=baseline").await, 404, None);
+    assert_problem(&app.get("/v1/jobs/0a0a0a0a-0000-4000-8000-0000000000b0/program?part=baseline").await, 404, None);
     app.stop().await;
 }
 

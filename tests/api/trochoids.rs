@@ -2,8 +2,8 @@
 //! overloads the tool, checked by the full simulation, written as G-code our parser reads.
 
 use crate::common::{assert_problem, many_sided, TestApp};
-use dieplan::core::analysis::sampling::move_length;
 use dieplan::core::nc::{parse_gcode, toolpath_from_json, ParseOptions};
+use dieplan::core::toolpath::move_length;
 use dieplan::core::toolpath::Motion;
 use serde_json::{json, Value};
 

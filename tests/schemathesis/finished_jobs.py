@@ -4,7 +4,9 @@ Schemathesis validates every answer it gets, but the jobs it submits are random 
 rarely finish; this submits one real job of each kind (the built-in examples of
 GET /v1/examples, and a conditions request), waits for each, and validates the finished
 job against `Job` (the oneOf by kind) and against its kind's own schema, so a result that
-drifts from its documented type fails the test.
+drifts from its documented type fails the test. It also validates every example of the
+document (`example` and `examples` of a schema, a parameter or a media type) against the
+schema it illustrates, so no example shows a value the service would not send or accept.
 
     python finished_jobs.py submit FILE   # submits the jobs, writes their ids to FILE
     python finished_jobs.py check FILE    # waits for them and validates them
@@ -52,6 +54,52 @@ def submit(path):
         json.dump(ids, out)
 
 
+def example_faults(document):
+    """Every example of the document that does not validate against its own schema."""
+    components = document["components"]
+    faults = []
+
+    def validate(where, schema, example):
+        v = jsonschema_rs.Draft202012Validator({**schema, "components": components}, validate_formats=True)
+        errors = [f"{'/'.join(map(str, e.instance_path))}: {e.message[:160]}" for e in v.iter_errors(example)]
+        if errors:
+            faults.append(f"the example at {where} does not validate: " + "; ".join(errors[:3]))
+
+    def schema_examples(where, schema):
+        if not isinstance(schema, dict):
+            return
+        bare = {k: v for k, v in schema.items() if k not in ("example", "examples")}
+        if "example" in schema:
+            validate(where, bare, schema["example"])
+        for i, example in enumerate(schema.get("examples") or []):
+            validate(f"{where}/examples/{i}", bare, example)
+        for key, value in schema.items():
+            if key in ("properties", "patternProperties", "$defs"):
+                for name, inner in value.items():
+                    schema_examples(f"{where}/{key}/{name}", inner)
+            elif key in ("items", "additionalProperties", "not", "contains"):
+                schema_examples(f"{where}/{key}", value)
+            elif key in ("oneOf", "anyOf", "allOf", "prefixItems"):
+                for i, inner in enumerate(value):
+                    schema_examples(f"{where}/{key}/{i}", inner)
+
+    for name, schema in components["schemas"].items():
+        schema_examples(f"#/components/schemas/{name}", schema)
+    for route, item in document["paths"].items():
+        for method, operation in item.items():
+            if not isinstance(operation, dict):
+                continue
+            for parameter in operation.get("parameters", []):
+                schema_examples(f"{method.upper()} {route} parameter {parameter['name']}", parameter.get("schema"))
+            media = [("request", m) for m in (operation.get("requestBody") or {}).get("content", {}).values()]
+            for status, response in operation.get("responses", {}).items():
+                media += [(status, m) for m in response.get("content", {}).values()]
+            for label, m in media:
+                if "example" in m and "schema" in m:
+                    validate(f"{method.upper()} {route} {label}", m["schema"], m["example"])
+    return faults
+
+
 def check(path):
     document = call("GET", "/openapi.json")
     components = document["components"]
@@ -62,7 +110,8 @@ def check(path):
         )
 
     any_job = validator("Job")
-    faults = []
+    faults = example_faults(document)
+    print("finished_jobs: every example of the document validates against its schema" if not faults else "")
     for job in json.load(open(path)):
         deadline = time.monotonic() + WAIT_S
         while True:

@@ -154,7 +154,7 @@ fn a_pass_below_a_roughed_layer_cuts_the_material_the_roughing_left() {
     }
     to(P3::new(-10.0, 20.0, -10.0), &mut moves);
     to(P3::new(-10.0, 20.0, -10.5), &mut moves);
-    let before_last: f64 = moves.iter().map(sampling::move_length).sum();
+    let before_last: f64 = moves.iter().map(crate::core::toolpath::move_length).sum();
     to(P3::new(50.0, 20.0, -10.5), &mut moves);
     let mut s = spec(vec![StockRegion::Rect(block)], vec![]);
     s.z_bottom = -12.0;

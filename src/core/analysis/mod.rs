@@ -14,6 +14,7 @@ pub mod recent;
 pub mod region;
 pub mod report;
 pub mod same_below;
+pub mod samples;
 pub mod sampling;
 pub mod scan_memory;
 pub mod slices;
@@ -145,7 +146,7 @@ pub fn resolution(spec: &AnalysisSpec, bounds: Rect, slices: usize) -> (f64, f64
 /// The sample spacing of an analysis of `path` and the number of samples it takes.
 pub fn sample_count(path: &Toolpath, spec: &AnalysisSpec) -> (f64, f64) {
     let (spacing, _) = resolution(spec, region::union_bounds(&spec.stock), 1);
-    let samples = path.moves.iter().map(|m| (sampling::move_length(m) / spacing).ceil().max(1.0)).sum();
+    let samples = path.moves.iter().map(|m| (crate::core::toolpath::move_length(m) / spacing).ceil().max(1.0)).sum();
     (spacing, samples)
 }
 
@@ -219,7 +220,7 @@ pub fn analyze_with(
     let levels = slices::slice_levels(path, spec.z_bottom, spec.z_top);
     let (spacing, cell) = resolution(spec, bounds, levels.len() - 1);
     let total_samples: usize =
-        path.moves.iter().map(|m| ((sampling::move_length(m) / spacing).ceil() as usize).max(1)).sum();
+        path.moves.iter().map(|m| ((crate::core::toolpath::move_length(m) / spacing).ceil() as usize).max(1)).sum();
     // Painting and simulating share the progress by their expected times.
     let painting = Raster::cell_count(bounds, cell) as f64 / PAINTED_CELLS_PER_SAMPLE;
     let paint_share = painting / (painting + total_samples as f64);
@@ -228,7 +229,7 @@ pub fn analyze_with(
         slices::build(&levels, bounds, cell, |raster| region::paint(raster, &spec.stock, &spec.open, &paint_stage))?;
     let initial: Vec<f64> = slices.iter().map(|s| s.raster.material_area_mm2()).collect();
 
-    let total_length: f64 = path.moves.iter().map(sampling::move_length).sum();
+    let total_length: f64 = path.moves.iter().map(crate::core::toolpath::move_length).sum();
     let cutter = Cutter {
         radius_mm: spec.tool.radius_mm(),
         flutes: spec.tool.flutes,
@@ -303,7 +304,7 @@ fn assemble(
     let removed_volume_mm3 = slice_summaries.iter().map(|s| s.removed_area_mm2 * (s.z_top - s.z_bottom)).sum();
     let (mut rapid_length, mut minutes) = (0.0, 0.0);
     for m in &path.moves {
-        let len = sampling::move_length(m);
+        let len = crate::core::toolpath::move_length(m);
         if matches!(m.motion, Motion::Rapid) {
             rapid_length += len;
             minutes += len / spec.rapid_mm_min;

@@ -2,8 +2,7 @@
 //! programmed feed and source line (MODEL.md §6: "per sample").
 
 use crate::core::curvature::{polyline_curvature, PointCurvature, DEFAULT_FIT_HALF_WIDTH_MM};
-use crate::core::toolpath::{Motion, Move, Plane, Toolpath, P3};
-use std::f64::consts::PI;
+use crate::core::toolpath::{arc_sweep, in_plane, move_length, Motion, Move, Plane, Toolpath, P3};
 
 /// Below this (mm) a move has no length in XY.
 const MIN_XY_MM: f64 = 1e-9;
@@ -54,58 +53,11 @@ pub fn point_on(m: &Move, t: f64) -> (P3, (f64, f64)) {
     }
 }
 
-/// Signed sweep of an arc (radians): negative for clockwise.
-pub fn arc_sweep(s: (f64, f64, f64), e: (f64, f64, f64), c: (f64, f64, f64), clockwise: bool, turns: u32) -> f64 {
-    let a0 = (s.1 - c.1).atan2(s.0 - c.0);
-    let a1 = (e.1 - c.1).atan2(e.0 - c.0);
-    let mut sweep = a1 - a0;
-    if clockwise {
-        while sweep >= -1e-12 {
-            sweep -= 2.0 * PI;
-        }
-        sweep -= 2.0 * PI * f64::from(turns);
-    } else {
-        while sweep <= 1e-12 {
-            sweep += 2.0 * PI;
-        }
-        sweep += 2.0 * PI * f64::from(turns);
-    }
-    sweep
-}
-
-/// A point as (u, v, axial) coordinates of an arc's plane.
-type PlanePoint = (f64, f64, f64);
-
-/// Start, end and centre as (u, v, axial) in the arc's plane.
-fn in_plane(s: P3, e: P3, c: P3, plane: Plane) -> (PlanePoint, PlanePoint, PlanePoint) {
-    let f = |p: P3| match plane {
-        Plane::Xy => (p.x, p.y, p.z),
-        Plane::Zx => (p.z, p.x, p.y),
-        Plane::Yz => (p.y, p.z, p.x),
-    };
-    (f(s), f(e), f(c))
-}
-
 fn from_plane(p: (f64, f64, f64), d: (f64, f64, f64), plane: Plane) -> (P3, (f64, f64, f64)) {
     match plane {
         Plane::Xy => (P3::new(p.0, p.1, p.2), (d.0, d.1, d.2)),
         Plane::Zx => (P3::new(p.1, p.2, p.0), (d.1, d.2, d.0)),
         Plane::Yz => (P3::new(p.2, p.0, p.1), (d.2, d.0, d.1)),
-    }
-}
-
-/// Length of a move, mm.
-pub fn move_length(m: &Move) -> f64 {
-    match m.motion {
-        Motion::Rapid | Motion::Linear => {
-            ((m.end.x - m.start.x).powi(2) + (m.end.y - m.start.y).powi(2) + (m.end.z - m.start.z).powi(2)).sqrt()
-        }
-        Motion::Arc { center, clockwise, plane, turns } => {
-            let (s, e, c) = in_plane(m.start, m.end, center, plane);
-            let r = (s.0 - c.0).hypot(s.1 - c.1);
-            let planar = r * arc_sweep(s, e, c, clockwise, turns).abs();
-            planar.hypot(e.2 - s.2)
-        }
     }
 }
 
@@ -219,6 +171,7 @@ pub fn for_each_sample(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::PI;
 
     fn mv(motion: Motion, start: P3, end: P3) -> Move {
         Move { motion, start, end, feed_mm_min: Some(1000.0), spindle_rpm: Some(9600.0), tool: None, line: 1 }

@@ -9,8 +9,8 @@
 //! the material of the slice below it. Above a slice with no material near the tool,
 //! none has any.
 
-use super::sampling::move_length;
 use crate::core::stock::{BlockRange, CapsuleRows, Raster, Rect};
+use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Motion, Move, Plane, Toolpath};
 use crate::core::CoreError;
 

@@ -4,8 +4,8 @@
 
 use crate::core::analysis::engine::SampleResult;
 use crate::core::analysis::report::HISTOGRAM_BIN_DEG;
+use crate::core::analysis::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE_BINS};
 use crate::core::analysis::{analyze_with, Analysis, AnalysisSpec};
-use crate::core::drawing::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE_BINS};
 use crate::core::progress::Progress;
 use crate::core::tool_life::{machined_surface_mm, Consumption, ToolLifeModel, WearCut};
 use crate::core::CoreError;
@@ -175,7 +175,7 @@ pub fn path_wear(
 ) -> Result<(Analysis, WearReport), CoreError> {
     model.validate()?;
     let mut counter = WearCounter::new(model, spec.tool.flutes, spec.default_spindle_rpm);
-    let total_length_mm: f64 = path.moves.iter().map(crate::core::analysis::sampling::move_length).sum();
+    let total_length_mm: f64 = path.moves.iter().map(crate::core::toolpath::move_length).sum();
     let mut drawing = SampleCollector::new(total_length_mm, DRAWING_SAMPLE_BINS);
     let analysis = analyze_with(path, spec, progress, |r| {
         counter.add(r);

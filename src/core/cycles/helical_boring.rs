@@ -89,13 +89,13 @@ pub fn helical_boring(params: &HelicalBoringParams, setup: &CycleSetup) -> Resul
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::core::analysis::sampling::move_length;
     use crate::core::analysis::{analyze, StockRegion};
     use crate::core::conditions::CuttingConditions;
     use crate::core::cycles::test_support::*;
     use crate::core::progress::NoProgress;
     use crate::core::stock::Rect;
     use crate::core::tolerance::approx_eq;
+    use crate::core::toolpath::move_length;
     use crate::core::toolpath::Motion;
     use std::f64::consts::PI;
 

@@ -1,7 +1,7 @@
 //! What a cycle generator returns: its moves and a small report (lengths, loops or turns,
 //! z levels and the time at its feeds, MODEL.md §10 without the machine's acceleration).
 
-use crate::core::analysis::sampling::move_length;
+use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Motion, Move, Toolpath, Units};
 use serde::Serialize;
 

@@ -160,7 +160,7 @@ fn loops_on_a_turning_guide_turn_more_on_the_outside_and_stay_tangent() {
     assert_continuous(&c.moves);
     assert_tangent_at(&c.moves, -5.0, 1e-9);
     // The loops turn 2π each, plus the guide's 90° left turn in all.
-    let sweep: f64 = arcs(&c).iter().map(|m| crate::core::analysis::sampling::move_length(m) / 1.0).sum();
+    let sweep: f64 = arcs(&c).iter().map(|m| crate::core::toolpath::move_length(m) / 1.0).sum();
     let expected = (c.report.loops as f64 * 2.0 + 0.5) * std::f64::consts::PI;
     assert!(approx_eq(sweep, expected, 1e-6), "{sweep} vs {expected}");
 }

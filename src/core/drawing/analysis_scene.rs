@@ -5,9 +5,9 @@ use super::charts::distance_chart;
 use super::outlines::stock_outlines;
 use super::paths::traced;
 use super::regions::marks_of_regions;
-use super::samples::PathSamples;
 use super::scene::{ChartData, LayerInfo, Quantity, RegionMark, Scene, ScenePath};
 use super::trace::layer_of;
+use crate::core::analysis::samples::PathSamples;
 use crate::core::analysis::{Analysis, AnalysisSpec};
 use crate::core::toolpath::Toolpath;
 

@@ -2,8 +2,8 @@
 //! drawing, downsampled per pixel column so that peaks survive.
 
 use super::downsample::min_max_per_bucket;
-use super::samples::PathSamples;
 use super::scene::{BarChart, BarGroup, ChartBody, ChartData, LineChart, LineSeries, Quantity};
+use crate::core::analysis::samples::PathSamples;
 
 /// Buckets a line chart's series are reduced to (about one per pixel column of a
 /// 1200 px chart, each keeping its minimum and maximum).

@@ -8,9 +8,9 @@ use super::medial::medial_edges;
 use super::outlines::pocket_outlines;
 use super::paths::{move_feeds, traced};
 use super::regions::marks_of_samples;
-use super::samples::PathSamples;
 use super::scene::{LayerInfo, Quantity, Scene, TrochoidMark};
 use super::trace::layer_of;
+use crate::core::analysis::samples::PathSamples;
 use crate::core::geometry::Pocket;
 use crate::core::insertion::{InsertionPlan, InsertionSpec};
 

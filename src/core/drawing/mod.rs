@@ -21,7 +21,6 @@ pub mod paths;
 pub mod plan_view;
 pub mod process_scene;
 pub mod regions;
-pub mod samples;
 pub mod scene;
 pub mod svg;
 pub mod synthetic;

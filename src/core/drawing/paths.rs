@@ -1,10 +1,10 @@
 //! A tool path into the scene: its values per sample (from an analysis) and per move
 //! (programmed or optimised feed, wear), traced and simplified for drawing.
 
-use super::samples::PathSamples;
 use super::scene::{LayerInfo, Quantity, ScenePath};
 use super::trace::{trace_path, TraceOptions, TraceValues};
-use crate::core::analysis::sampling::move_length;
+use crate::core::analysis::samples::PathSamples;
+use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Motion, Toolpath};
 
 /// Millimetres per metre.

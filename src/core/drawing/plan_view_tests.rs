@@ -124,7 +124,7 @@ const SYNTHETIC_SPACING_MM: f64 = 0.05;
 fn a_million_sample_scene_stays_small() {
     // Its speed is measured by `cargo bench --bench drawing`.
     let path = long_loops();
-    let total: f64 = path.moves.iter().map(crate::core::analysis::sampling::move_length).sum();
+    let total: f64 = path.moves.iter().map(crate::core::toolpath::move_length).sum();
     let (s, alpha) = alpha_samples(total, SYNTHETIC_SPACING_MM);
     assert!(s.len() > 500_000, "{} samples", s.len());
     let values = TraceValues::new().per_sample(Quantity::Alpha, &s, &alpha);

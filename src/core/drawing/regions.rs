@@ -1,9 +1,9 @@
 //! Critical regions in the scene: the stretches of a path where the engagement is above
 //! the limit (seed 004 §2.1), as polylines through the samples kept for drawing.
 
-use super::samples::PathSamples;
 use super::scene::RegionMark;
 use crate::core::analysis::report::{CriticalRegion, RegionKind};
+use crate::core::analysis::samples::PathSamples;
 
 /// Marks for an analysis' critical regions: each through the kept samples between its
 /// start and end.

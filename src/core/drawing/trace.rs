@@ -5,7 +5,7 @@
 //!
 //! Path distance `s` is measured as the analysis measures it (`engine.rs` sums
 //! `Sample::step_mm` from 0, `sampling::for_each_sample` visits every move, rapids
-//! included, and a move's steps add up to `sampling::move_length`, its 3-D length, helices
+//! included, and a move's steps add up to `crate::core::toolpath::move_length`, its 3-D length, helices
 //! included): the cumulative 3-D length over all moves of the path, starting at 0. So the
 //! `s_mm` of `Series` or of the per-sample results can be passed as they are.
 //!
@@ -17,7 +17,8 @@
 //! no recursion.
 
 use super::scene::{LayerInfo, Quantity, Run, ScenePath};
-use crate::core::analysis::sampling::{move_length, point_on};
+use crate::core::analysis::sampling::point_on;
+use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Motion, Move, Plane, Toolpath, P3};
 use std::collections::BTreeMap;
 use std::f64::consts::PI;

@@ -5,13 +5,13 @@
 
 use super::objective::{Objective, ObjectiveSpec};
 use super::plan::{figures, optimize_side_milling_with, written, BlockFeed, FeedPlan, FeedSpec};
-use crate::core::analysis::sampling::move_length;
 use crate::core::analysis::{Analysis, AnalysisSpec};
 use crate::core::costing::cost::Rates;
 use crate::core::costing::estimate::{estimate, estimate_with_wear, Estimate};
 use crate::core::costing::wear::WearCounter;
 use crate::core::feed::blocks::Piece;
 use crate::core::progress::{Progress, Stage};
+use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Motion, Toolpath};
 use crate::core::CoreError;
 use std::collections::HashSet;

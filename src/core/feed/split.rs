@@ -1,7 +1,8 @@
 //! A piece of a move: the part of a line, arc or helix between two fractions of its
 //! length, as a move of the same kind (arcs stay arcs, about the same centre).
 
-use crate::core::analysis::sampling::{arc_sweep, point_on};
+use crate::core::analysis::sampling::point_on;
+use crate::core::toolpath::arc_sweep;
 use crate::core::toolpath::{Motion, Move, Plane, P3};
 use std::f64::consts::TAU;
 
@@ -69,8 +70,8 @@ fn with_axial_of(c: P3, p: P3, plane: Plane) -> P3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::core::analysis::sampling::move_length;
     use crate::core::tolerance::approx_eq;
+    use crate::core::toolpath::move_length;
 
     fn mv(motion: Motion, start: P3, end: P3) -> Move {
         Move { motion, start, end, feed_mm_min: Some(1000.0), spindle_rpm: Some(9600.0), tool: None, line: 7 }

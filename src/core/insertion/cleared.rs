@@ -10,9 +10,9 @@
 //! rapid, plunge in the air) where that is quicker than feeding along it, and kept otherwise.
 //! Whatever is fed through the air (kept runs and straight links) goes at the air feed.
 
-use crate::core::analysis::sampling::move_length;
 use crate::core::feed::split::sub_move;
 use crate::core::geometry::Point;
+use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Motion, Move, P3};
 use std::collections::HashMap;
 

@@ -11,7 +11,6 @@ use super::opening::OpeningStretch;
 use super::pitch::loop_exceeds;
 use super::spec::{InsertionSpec, PITCH_DESIGN_MARGIN_DEG};
 use super::treatments::{Stretch, TrochoidStretch, ZCutStretch};
-use crate::core::analysis::sampling::move_length;
 use crate::core::cycles::arcs::helix_turns;
 use crate::core::cycles::arcs::{at_z, PathBuilder};
 use crate::core::cycles::setup::DEFAULT_PLUNGE_FEED_RATIO;
@@ -19,6 +18,7 @@ use crate::core::cycles::trochoid::Entry;
 use crate::core::cycles::{z_levels, CycleSetup};
 use crate::core::geometry::Point;
 use crate::core::tolerance::LENGTH_EPS_MM;
+use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Motion, Move, Section, Step, P3};
 use crate::core::CoreError;
 

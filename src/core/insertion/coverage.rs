@@ -3,10 +3,11 @@
 //! centre position whose clearance is at least `r + allowance`). It gives the area each
 //! treatment removes and the check that nothing reachable is left.
 
-use crate::core::analysis::sampling::{move_length, point_on};
+use crate::core::analysis::sampling::point_on;
 use crate::core::geometry::{Pocket, Point};
 use crate::core::medial::Boundary;
 use crate::core::stock::Capsule;
+use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Motion, Move};
 
 /// Cells per tool radius of the coverage raster.

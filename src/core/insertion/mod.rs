@@ -160,7 +160,7 @@ pub fn labelled_program(moves: Vec<crate::core::toolpath::Move>, labels: Vec<Opt
         .zip(labels.into_iter().chain(std::iter::repeat(None)))
         .filter(|(m, _)| {
             matches!(m.motion, crate::core::toolpath::Motion::Arc { .. })
-                || crate::core::analysis::sampling::move_length(m) > crate::core::tolerance::LENGTH_EPS_MM
+                || crate::core::toolpath::move_length(m) > crate::core::tolerance::LENGTH_EPS_MM
         })
         .unzip();
     for (i, m) in moves.iter_mut().enumerate() {

@@ -232,7 +232,7 @@ fn gouges_measured_everywhere(
     let boundary = Boundary::of_pocket(pocket);
     let (mut count, mut min_margin, mut first) = (0, f64::INFINITY, None);
     for m in path.moves.iter().filter(|m| m.start.z < z_top_mm || m.end.z < z_top_mm) {
-        let n = (crate::core::analysis::sampling::move_length(m) / verify::GOUGE_STEP_MM).ceil().max(1.0) as usize;
+        let n = (crate::core::toolpath::move_length(m) / verify::GOUGE_STEP_MM).ceil().max(1.0) as usize;
         for k in 0..=n {
             let (p, _) = crate::core::analysis::sampling::point_on(m, k as f64 / n as f64);
             if p.z >= z_top_mm {

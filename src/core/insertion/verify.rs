@@ -4,12 +4,13 @@
 
 use super::cleared::ClearedZone;
 use crate::core::analysis::engine::SampleResult;
-use crate::core::analysis::sampling::{move_length, point_on};
+use crate::core::analysis::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE_BINS};
+use crate::core::analysis::sampling::point_on;
 use crate::core::analysis::{analyze_with, AnalysisSpec};
-use crate::core::drawing::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE_BINS};
 use crate::core::geometry::{Pocket, Point};
 use crate::core::medial::Boundary;
 use crate::core::progress::Progress;
+use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Move, Toolpath};
 use crate::core::CoreError;
 use serde::Serialize;

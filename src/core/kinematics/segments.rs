@@ -11,8 +11,8 @@
 //! [`ARC_TANGENTIAL_ACCEL_SHARE`], so their sum never exceeds the axes' limit.
 
 use super::limits::MachineLimits;
-use crate::core::analysis::sampling::{arc_sweep, move_length};
 use crate::core::error::CoreError;
+use crate::core::toolpath::{arc_sweep, move_length};
 use crate::core::toolpath::{Motion, Move, Plane, Toolpath, P3};
 
 /// Seconds in a minute (feeds are per minute, the planner works per second).

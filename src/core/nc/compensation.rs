@@ -19,7 +19,7 @@
 //! One move is held back until the next shows how its corner is cut, so moves come out one
 //! move late; [`Compensation::finish`] lets the last one go.
 
-use crate::core::analysis::sampling::arc_sweep;
+use crate::core::toolpath::arc_sweep;
 use crate::core::toolpath::{Motion, Move, Plane, P3};
 use std::f64::consts::PI;
 

@@ -17,8 +17,8 @@ use super::map::{ArcFormat, FeedMode, LineMotion, MotionContext};
 use super::parse::is_integer;
 use super::report::{Failed, Line};
 use super::CannedCycles;
-use crate::core::analysis::sampling::move_length;
 use crate::core::tolerance::{approx_eq, LENGTH_EPS_MM};
+use crate::core::toolpath::move_length;
 use crate::core::toolpath::{EventKind, Motion, Move, Plane, P3};
 
 /// What [`CannedCycles::Refuse`] says about a canned cycle.

@@ -6,7 +6,6 @@
 use super::feeds::force_at_feed;
 use super::layer::{moved_down, LayerPlan, Step};
 use super::spec::{ProcessOptions, ToolCandidate};
-use crate::core::analysis::sampling::move_length;
 use crate::core::costing::cost::{cost, Cost, Rates};
 use crate::core::feed::blocks::BlockOptions;
 use crate::core::feed::plan::FeedSpec;
@@ -15,6 +14,7 @@ use crate::core::insertion::{append_over, labelled_program};
 use crate::core::kinematics::{machining_time, MachiningTime, TimeOptions};
 use crate::core::progress::{Progress, Stage};
 use crate::core::tool_life::{machined_surface_mm, Consumption, WearCut};
+use crate::core::toolpath::move_length;
 use crate::core::toolpath::{labels_of, Motion, Move, Section, Toolpath};
 use crate::core::CoreError;
 use serde::Serialize;

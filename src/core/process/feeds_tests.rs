@@ -7,11 +7,11 @@ use super::layer::{plan_layers, Step};
 use super::tests::{options, ten_mm};
 use super::CavityInput;
 use crate::core::analysis::analyze_with;
-use crate::core::analysis::sampling::move_length;
 use crate::core::feed::plan::optimize_side_milling;
 use crate::core::fixtures::rounded_box;
 use crate::core::progress::NoProgress;
 use crate::core::tool_life::WearCut;
+use crate::core::toolpath::move_length;
 use crate::core::toolpath::Motion;
 
 /// Side-cutting wear (the approach holes left out: the simulation of a helix split into the

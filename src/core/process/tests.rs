@@ -101,7 +101,7 @@ fn a_small_box_cavity_is_planned_with_the_tool_that_reaches_its_corners_and_comp
     let parsed = parse_gcode(&text, &ParseOptions::default()).unwrap();
     let length = |p: &crate::core::toolpath::Toolpath| {
         let feed = p.moves.iter().filter(|m| !matches!(m.motion, crate::core::toolpath::Motion::Rapid));
-        feed.map(crate::core::analysis::sampling::move_length).sum::<f64>()
+        feed.map(crate::core::toolpath::move_length).sum::<f64>()
     };
     assert!((length(&parsed) - length(&e.program)).abs() < 1e-3 * length(&e.program));
 

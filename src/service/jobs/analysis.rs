@@ -2,26 +2,21 @@
 //! overloads the tool.
 
 use super::analysis_result::AnalysisResult;
-use super::conditions::{ForceModelRef, NamedRef, ToolRef};
-use super::inputs::{read_stock, StockInput};
-use super::program_input::{read_program, ProgramContext, ProgramInput, ReadProgram};
-use crate::core::analysis::feed_cap::cap_feeds;
-use crate::core::analysis::sampling::move_length;
-use crate::core::analysis::{
-    analyze_with, check, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_ALPHA_LIMIT_DEG, MAX_SERIES_POINTS,
-};
+use super::inputs::StockInput;
+use super::program_input::ProgramInput;
+use super::setup::{resolve, PathJobRefs, PathSetup, Resolved, Sampling};
+use crate::core::analysis::samples::{SampleCollector, DRAWING_SAMPLE_BINS};
+use crate::core::analysis::{analyze_with, check, AnalysisSpec, MAX_ALPHA_LIMIT_DEG, MAX_SERIES_POINTS};
 use crate::core::drawing::analysis_scene::analysis_scene;
-use crate::core::drawing::samples::{SampleCollector, DRAWING_SAMPLE_BINS};
 use crate::core::drawing::scene::Scene;
-use crate::core::operation::Operation;
 use crate::core::progress::Progress;
 use crate::core::tool::ToolType;
+use crate::core::toolpath::move_length;
 use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
-use crate::service::lookup;
-use crate::service::resources::machines::Machine;
-use crate::service::resources::standard_conditions::StandardConditions;
+use crate::service::jobs::kind::{JobKindSpec, Produced, Submission};
+use crate::service::jobs::model::JobKind;
 use crate::service::store::Pool;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
@@ -60,44 +55,8 @@ pub struct AnalysisRequest {
     pub series_points: usize,
 }
 
-/// What the request resolved to in the database.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct AnalysisPrepared {
-    pub material: NamedRef,
-    pub tool: ToolRef,
-    pub force_model: Option<ForceModelRef>,
-    pub machine: NamedRef,
-    pub rapid_mm_min: f64,
-    /// The machine's largest feed, mm/min: faster feeds are analysed at it (absent in
-    /// jobs stored before it was kept).
-    #[serde(default)]
-    pub max_feed_mm_min: Option<f64>,
-    pub default_spindle_rpm: Option<f64>,
-    /// The machine's coolant, for the programs the job writes (jobs stored before it was
-    /// kept: off).
-    #[serde(default)]
-    pub coolant: crate::core::coolant::Coolant,
-}
-
-impl AnalysisPrepared {
-    /// Reads the program and lowers every feed above the machine's maximum to it, as the
-    /// machine runs it (the warning goes with the path's).
-    pub fn read_program(&self, program: &ProgramInput, stock_top_mm: Option<f64>) -> Result<ReadProgram, ApiError> {
-        let context = ProgramContext { tool_radius_mm: Some(self.tool.geometry.diameter_mm / 2.0), stock_top_mm };
-        let read = read_program(program, context)?;
-        Ok(match self.max_feed_mm_min {
-            Some(max) => {
-                let (mut capped, warning) = cap_feeds(&read.path, max);
-                capped.warnings.extend(warning);
-                ReadProgram { path: capped, ..read }
-            }
-            None => read,
-        })
-    }
-}
-
 /// Checks the request (parsing the program and the stock) and resolves it.
-pub async fn prepare(pool: &Pool, request: AnalysisRequest) -> Result<AnalysisPrepared, ApiError> {
+pub async fn prepare(pool: &Pool, request: AnalysisRequest) -> Result<PathSetup, ApiError> {
     let mut v = Validator::new();
     if let Some(a) = request.alpha_limit_deg {
         v.above_and_at_most("alpha_limit_deg", a, 0.0, MAX_ALPHA_LIMIT_DEG);
@@ -134,17 +93,6 @@ pub async fn prepare(pool: &Pool, request: AnalysisRequest) -> Result<AnalysisPr
     Ok(prepared)
 }
 
-/// What names the database rows of a path job.
-pub struct PathJobRefs<'a> {
-    pub tool_id: Option<i64>,
-    pub tool_type: Option<ToolType>,
-    pub diameter_mm: Option<f64>,
-    pub material_id: Option<i64>,
-    pub material: Option<&'a str>,
-    pub machine_id: Option<i64>,
-    pub spindle_rpm: Option<f64>,
-}
-
 impl AnalysisRequest {
     fn path_job(&self) -> PathJobRefs<'_> {
         PathJobRefs {
@@ -159,60 +107,10 @@ impl AnalysisRequest {
     }
 }
 
-/// The rows a path job resolved to.
-pub struct Resolved {
-    pub prepared: AnalysisPrepared,
-    /// The tool's standard side-cutting conditions in the material, if any.
-    pub standard: Option<StandardConditions>,
-    /// The machine's largest feed, mm/min.
-    pub machine_max_feed_mm_min: f64,
-    /// The machine's largest spindle speed, min⁻¹.
-    pub machine_max_spindle_rpm: f64,
-}
-
-/// Resolves the material, tool, force model, machine and standard conditions of a path
-/// job (analysis, feeds).
-pub async fn resolve(pool: &Pool, refs: &PathJobRefs<'_>) -> Result<Resolved, ApiError> {
-    let material = lookup::material(pool, refs.material_id, refs.material).await?;
-    let tool = lookup::tool(pool, refs.tool_id, refs.tool_type, refs.diameter_mm).await?;
-    let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(|m| ForceModelRef::of_tool(m, &tool));
-    let machine = match refs.machine_id {
-        Some(id) => {
-            sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = $1").bind(id).fetch_optional(pool).await?
-        }
-        None => sqlx::query_as::<_, Machine>("SELECT * FROM machines ORDER BY id LIMIT 1").fetch_optional(pool).await?,
-    }
-    .ok_or_else(|| ApiError::field("machine_id", "no such machine (add one at /v1/machines)"))?;
-    if let Some(rpm) = refs.spindle_rpm.filter(|rpm| *rpm > machine.data.max_spindle_rpm) {
-        return Err(ApiError::field(
-            "spindle_rpm",
-            format!("{rpm} is above the machine's maximum of {} min⁻¹", machine.data.max_spindle_rpm),
-        ));
-    }
-    let standard = lookup::standard_conditions(pool, tool.id, material.id, Operation::StandardSideCutting).await?;
-    let default_spindle_rpm = refs.spindle_rpm.or(standard.as_ref().map(|c| c.data.spindle_rpm));
-    let prepared = AnalysisPrepared {
-        material: NamedRef { id: material.id, name: material.data.name },
-        tool: ToolRef::from(&tool),
-        force_model,
-        machine: NamedRef { id: machine.id, name: machine.data.name.clone() },
-        rapid_mm_min: machine.data.rapid_mm_min,
-        max_feed_mm_min: Some(machine.data.max_feed_mm_min),
-        default_spindle_rpm,
-        coolant: machine.data.coolant,
-    };
-    Ok(Resolved {
-        prepared,
-        standard,
-        machine_max_feed_mm_min: machine.data.max_feed_mm_min,
-        machine_max_spindle_rpm: machine.data.max_spindle_rpm,
-    })
-}
-
 /// Runs the analysis.
 pub fn run(
     request: AnalysisRequest,
-    prepared: AnalysisPrepared,
+    prepared: PathSetup,
     progress: &dyn Progress,
 ) -> Result<(AnalysisResult, Scene), CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
@@ -225,22 +123,40 @@ pub fn run(
 }
 
 /// Reads the program and the stock and puts the analysis together.
-pub fn build(request: &AnalysisRequest, prepared: &AnalysisPrepared) -> Result<(Toolpath, AnalysisSpec), ApiError> {
-    let stock = read_stock(&request.stock)?;
-    let path = prepared.read_program(&request.program, Some(stock.z_top))?.path;
-    let spec = AnalysisSpec {
-        tool: prepared.tool.geometry.into(),
-        stock: stock.regions,
-        open: stock.open,
-        z_top: stock.z_top,
-        z_bottom: stock.z_bottom,
-        force_model: prepared.force_model.as_ref().map(|f| f.model),
-        default_spindle_rpm: prepared.default_spindle_rpm,
-        rapid_mm_min: prepared.rapid_mm_min,
+pub fn build(request: &AnalysisRequest, prepared: &PathSetup) -> Result<(Toolpath, AnalysisSpec), ApiError> {
+    let sampling = Sampling {
         sample_spacing_mm: request.sample_spacing_mm,
         cell_mm: request.cell_mm,
-        alpha_limit_deg: request.alpha_limit_deg.unwrap_or(DEFAULT_ALPHA_LIMIT_DEG),
+        alpha_limit_deg: request.alpha_limit_deg,
         series_points: request.series_points,
     };
-    Ok((path, spec))
+    prepared.analysis(&request.program, &request.stock, &sampling)
+}
+
+/// The `analysis` job kind.
+pub struct Analysis;
+
+impl JobKindSpec for Analysis {
+    const KIND: JobKind = JobKind::Analysis;
+    const PATH: &'static str = "/v1/analysis";
+    const OPERATION_ID: &'static str = "analyzePath";
+    const SUMMARY: &'static str = "Analyses a tool path (job kind `analysis`).";
+    const DESCRIPTION: &'static str = "Simulates the material removal of the layer along the path (G-code or JSON moves) and reports, per sample, the engagement angle, arc length, chip thickness at the programmed feed and the predicted force; the summary (cutting and air-cut length, time at programmed feeds, α and force statistics with a histogram) and the critical regions where α exceeds the limit (default 40°). Bad NC or contour input is refused here with a 422 naming the line or vertex.";
+    const REFUSES: &'static str = "A refused field, NC line or contour vertex";
+    type Request = AnalysisRequest;
+    type Prepared = PathSetup;
+    type Output = AnalysisResult;
+
+    async fn prepare(submission: &Submission<'_>, request: AnalysisRequest) -> Result<PathSetup, ApiError> {
+        prepare(submission.pool, request).await
+    }
+
+    fn run(
+        request: AnalysisRequest,
+        prepared: PathSetup,
+        progress: &dyn Progress,
+    ) -> Result<Produced<AnalysisResult>, CoreError> {
+        let (result, scene) = run(request, prepared, progress)?;
+        Ok(Produced::drawn(result, scene))
+    }
 }

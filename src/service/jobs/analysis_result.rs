@@ -1,7 +1,7 @@
 //! The answer of an `analysis` job, as the API documents it.
 
-use super::analysis::AnalysisPrepared;
-use super::conditions::{NamedRef, ToolRef};
+use super::setup::PathSetup;
+use super::setup::{NamedRef, ToolRef};
 use crate::core::analysis::outside::{Extent, ForceOverload, OutsideModel};
 use crate::core::analysis::report::{CriticalRegion, HistogramBin, PathPoint, RegionKind, Series, Stats};
 use crate::core::analysis::{Analysis, SliceSummary, Summary};
@@ -324,7 +324,7 @@ pub fn summary(moves: usize, s: Summary, regions: usize) -> SummaryDto {
 }
 
 impl AnalysisResult {
-    pub fn new(prepared: AnalysisPrepared, moves: usize, a: Analysis) -> AnalysisResult {
+    pub fn new(prepared: PathSetup, moves: usize, a: Analysis) -> AnalysisResult {
         let regions = a.critical_regions.len();
         AnalysisResult {
             material: prepared.material,

@@ -3,14 +3,15 @@
 //! predict for them (seed 002, subsystem "decision of cutting conditions").
 
 use crate::core::conditions::{evaluate_conditions, CuttingConditions};
-use crate::core::force_model::ForceModel;
 use crate::core::operation::Operation;
-use crate::core::tool::{EndMill, ToolType};
+use crate::core::progress::Progress;
+use crate::core::tool::ToolType;
 use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
+use crate::service::jobs::kind::{JobKindSpec, Produced, Submission};
+use crate::service::jobs::model::JobKind;
+use crate::service::jobs::setup::{ForceModelRef, NamedRef, StandardRef, ToolRef};
 use crate::service::lookup;
-use crate::service::resources::force_models::ForceModelRecord;
-use crate::service::resources::tools::Tool;
 use crate::service::resources::Source;
 use crate::service::store::Pool;
 use serde::{Deserialize, Serialize};
@@ -55,98 +56,6 @@ pub struct ConditionsPrepared {
     pub conditions: CuttingConditions,
     pub overridden: Vec<String>,
     pub force_model: Option<ForceModelRef>,
-}
-
-/// A row named by id and name.
-#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
-pub struct NamedRef {
-    pub id: i64,
-    pub name: String,
-}
-
-/// The tool of a result.
-#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
-pub struct ToolRef {
-    pub id: i64,
-    pub name: String,
-    #[serde(flatten)]
-    #[schema(inline)]
-    pub geometry: ToolGeometry,
-}
-
-/// Tool geometry in a result.
-#[derive(Debug, Clone, Copy, Serialize, Deserialize, ToSchema)]
-pub struct ToolGeometry {
-    pub tool_type: ToolType,
-    pub diameter_mm: f64,
-    pub flutes: u32,
-    pub corner_radius_mm: f64,
-}
-
-impl From<EndMill> for ToolGeometry {
-    fn from(t: EndMill) -> Self {
-        ToolGeometry {
-            tool_type: t.tool_type,
-            diameter_mm: t.diameter_mm,
-            flutes: t.flutes,
-            corner_radius_mm: t.corner_radius_mm,
-        }
-    }
-}
-
-impl From<ToolGeometry> for EndMill {
-    fn from(g: ToolGeometry) -> Self {
-        EndMill {
-            tool_type: g.tool_type,
-            diameter_mm: g.diameter_mm,
-            flutes: g.flutes,
-            corner_radius_mm: g.corner_radius_mm,
-        }
-    }
-}
-
-/// The standard-conditions row used.
-#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
-pub struct StandardRef {
-    pub id: i64,
-    pub source: Source,
-    pub reference: String,
-    pub fz_min_mm: f64,
-    pub fz_max_mm: Option<f64>,
-    pub ad_last_layer_mm: Option<f64>,
-    pub notes: String,
-}
-
-/// The force model used.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct ForceModelRef {
-    pub id: i64,
-    pub source: Source,
-    pub reference: String,
-    pub model: ForceModel,
-}
-
-impl From<&Tool> for ToolRef {
-    fn from(tool: &Tool) -> Self {
-        ToolRef {
-            id: tool.id,
-            name: tool.data.name.clone(),
-            geometry: ToolGeometry {
-                tool_type: tool.data.tool_type,
-                diameter_mm: tool.data.diameter_mm,
-                flutes: tool.data.flutes,
-                corner_radius_mm: tool.data.resolved_corner_radius_mm(),
-            },
-        }
-    }
-}
-
-impl ForceModelRef {
-    /// The model of a row for its tool: forces scale with that tool's engaged edge length.
-    pub fn of_tool(m: ForceModelRecord, tool: &Tool) -> Self {
-        let model = m.data.model(tool.data.resolved_corner_radius_mm());
-        ForceModelRef { id: m.id, source: m.data.source, model, reference: m.data.reference }
-    }
 }
 
 /// Checks the request and resolves it against the database.
@@ -333,4 +242,31 @@ pub fn run(prepared: ConditionsPrepared) -> Result<ConditionsResult, CoreError> 
         operation: prepared.operation,
         standard_conditions: prepared.standard,
     })
+}
+
+/// The `conditions` job kind.
+pub struct Conditions;
+
+impl JobKindSpec for Conditions {
+    const KIND: JobKind = JobKind::Conditions;
+    const PATH: &'static str = "/v1/conditions";
+    const OPERATION_ID: &'static str = "recommendConditions";
+    const SUMMARY: &'static str = "Recommends cutting conditions (job kind `conditions`).";
+    const DESCRIPTION: &'static str = "For a material (default SKD61), a tool (id, or type + diameter) and an operation (default standard_side_cutting): S, fz, F, Rd, Ad and the cutting speed from the database, with the engagement angle, t_m, L and XY force the models predict.";
+    const REFUSES: &'static str = "A refused field (every one of the request)";
+    type Request = ConditionsRequest;
+    type Prepared = ConditionsPrepared;
+    type Output = ConditionsResult;
+
+    async fn prepare(submission: &Submission<'_>, request: ConditionsRequest) -> Result<ConditionsPrepared, ApiError> {
+        prepare(submission.pool, request).await
+    }
+
+    fn run(
+        _request: ConditionsRequest,
+        prepared: ConditionsPrepared,
+        _progress: &dyn Progress,
+    ) -> Result<Produced<ConditionsResult>, CoreError> {
+        Ok(Produced::result(run(prepared)?))
+    }
 }

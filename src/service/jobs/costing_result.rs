@@ -1,8 +1,9 @@
 //! The answer of a `costing` job, as the API documents it.
 
 use super::analysis_result::{summary, SummaryDto};
-use super::conditions::{NamedRef, ToolRef};
-use super::costing::{CostSetup, CostingPrepared};
+use super::costing::CostingPrepared;
+use super::setup::CostSetup;
+use super::setup::{NamedRef, ToolRef};
 use crate::core::analysis::Analysis;
 use crate::core::costing::cost::{cost, Cost};
 use crate::core::costing::estimate::Estimate;

@@ -1,7 +1,7 @@
 //! Drawings and charts of a finished job as SVG: `GET /v1/jobs/{id}/views` lists what can
 //! be drawn, `drawing.svg` draws the plan view, `charts/{chart}` one chart.
 
-use super::model::{JobKind, JobStatus};
+use super::model::{JobId, JobKind, JobStatus};
 use super::store;
 use crate::core::drawing::chart::render_chart;
 use crate::core::drawing::plan_view::{render_drawing, DrawOptions};
@@ -142,15 +142,16 @@ fn svg(body: String) -> Response {
 /// What can be drawn of a finished job: its paths and the quantities each can be
 /// coloured by, its layers and its charts.
 #[utoipa::path(get, path = "/v1/jobs/{id}/views", tag = "jobs", operation_id = "getJobViews",
-    params(("id" = String, Path, description = "Job id")),
+    params(("id" = JobId, Path, description = "Job id (a UUID)")),
     responses(
         (status = 200, description = "What can be drawn", body = JobViews),
+        (status = 400, description = "A malformed job id", body = Problem, content_type = "application/problem+json"),
         (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json"),
         (status = 409, description = "Not finished, or a kind of job without drawings", body = Problem, content_type = "application/problem+json")))]
 pub async fn get_views(
     State(state): State<AppState>,
     caller: Caller,
-    ApiPath(id): ApiPath<String>,
+    ApiPath(id): ApiPath<JobId>,
 ) -> Result<Response, ApiError> {
     let scene = scene_of(&state, &caller, &id).await?;
     let views = JobViews {
@@ -189,17 +190,17 @@ pub async fn get_views(
 /// quantity (rapids dashed), critical regions, the medial axis by class, trochoids, a
 /// legend and a scale bar.
 #[utoipa::path(get, path = "/v1/jobs/{id}/drawing.svg", tag = "jobs", operation_id = "getJobDrawing",
-    params(("id" = String, Path, description = "Job id"), DrawingQuery),
+    params(("id" = JobId, Path, description = "Job id (a UUID)"), DrawingQuery),
     responses(
         (status = 200, description = "The drawing", body = String, content_type = "image/svg+xml"),
-        (status = 400, description = "A malformed query parameter", body = Problem, content_type = "application/problem+json"),
+        (status = 400, description = "A malformed job id or query parameter", body = Problem, content_type = "application/problem+json"),
         (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json"),
         (status = 409, description = "Not finished, or a kind of job without drawings", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "An unknown path, layer or quantity, or a width out of bounds", body = Problem, content_type = "application/problem+json")))]
 pub async fn get_drawing(
     State(state): State<AppState>,
     caller: Caller,
-    ApiPath(id): ApiPath<String>,
+    ApiPath(id): ApiPath<JobId>,
     ApiQuery(query): ApiQuery<DrawingQuery>,
 ) -> Result<Response, ApiError> {
     let color = match query.color.as_deref() {
@@ -228,16 +229,17 @@ pub async fn get_drawing(
 
 /// One chart of a finished job as SVG (the ids are listed by `getJobViews`).
 #[utoipa::path(get, path = "/v1/jobs/{id}/charts/{chart}", tag = "jobs", operation_id = "getJobChart",
-    params(("id" = String, Path, description = "Job id"), ("chart" = String, Path, description = "Chart id, e.g. alpha"), ChartQuery),
+    params(("id" = JobId, Path, description = "Job id (a UUID)"), ("chart" = String, Path, description = "Chart id, e.g. alpha"), ChartQuery),
     responses(
         (status = 200, description = "The chart", body = String, content_type = "image/svg+xml"),
+        (status = 400, description = "A malformed job id", body = Problem, content_type = "application/problem+json"),
         (status = 404, description = "No such job or chart", body = Problem, content_type = "application/problem+json"),
         (status = 409, description = "Not finished, or a kind of job without drawings", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "A size out of bounds", body = Problem, content_type = "application/problem+json")))]
 pub async fn get_chart(
     State(state): State<AppState>,
     caller: Caller,
-    ApiPath((id, chart)): ApiPath<(String, String)>,
+    ApiPath((id, chart)): ApiPath<(JobId, String)>,
     ApiQuery(query): ApiQuery<ChartQuery>,
 ) -> Result<Response, ApiError> {
     let width = query.width.unwrap_or(DEFAULT_CHART_WIDTH_PX);

@@ -2,12 +2,13 @@
 //! optimised for a constant feed at the cutting point, a constant cutting force, or
 //! both, written back as an NC program.
 
-use super::analysis::{resolve, AnalysisPrepared, PathJobRefs, Resolved};
-use super::costing::{machine_limits, resolve_cost, CostSetup};
 use super::feeds_result::FeedsResult;
 use super::inputs::{read_stock, StockInput};
 use super::output::OutputOptions;
 use super::program_input::ProgramInput;
+use super::setup::{
+    machine_limits, resolve, resolve_cost, CostSetup, PathJobRefs, PathSetup, Resolved, MAX_FEED_PER_STANDARD,
+};
 use crate::core::analysis::{check, sample_count, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_ALPHA_LIMIT_DEG};
 use crate::core::conditions::{feed_mm_min, standard_centres};
 use crate::core::drawing::feeds_scene::feeds_scene;
@@ -28,14 +29,13 @@ use crate::core::tool::ToolType;
 use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
+use crate::service::jobs::kind::{JobKindSpec, Produced, Submission};
+use crate::service::jobs::model::JobKind;
 use crate::service::lookup;
 use crate::service::store::Pool;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-/// The default maximum feed as a multiple of the standard feed (MODEL.md §3: seed 003
-/// caps at about 2.1 × standard).
-pub const MAX_FEED_PER_STANDARD: f64 = 2.0;
 /// Surface finishing samples at most this far apart by default, mm.
 pub const DEFAULT_SURFACE_SPACING_MM: f64 = 0.05;
 
@@ -144,7 +144,7 @@ pub struct FeedsRequest {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct FeedsPrepared {
     #[serde(flatten)]
-    pub base: AnalysisPrepared,
+    pub base: PathSetup,
     pub strategy: FeedStrategy,
     pub target_force_n: Option<f64>,
     pub min_feed_mm_min: f64,
@@ -510,4 +510,32 @@ pub fn run(
         result.edit = Some(edited.into());
     }
     Ok((result, program, scene))
+}
+
+/// The `feeds` job kind.
+pub struct Feeds;
+
+impl JobKindSpec for Feeds {
+    const KIND: JobKind = JobKind::Feeds;
+    const PATH: &'static str = "/v1/feeds";
+    const OPERATION_ID: &'static str = "optimizeFeeds";
+    const SUMMARY: &'static str = "Optimises the feeds of a tool path (job kind `feeds`).";
+    const DESCRIPTION: &'static str = "`side_milling` (default) simulates the stock to find the engagement at every sample and sets each block's feed for a constant cutting force (`constant_force`, default), a constant feed at the cutting point (`cutting_point`, seed 000) or both; long blocks are split where the feed must change, the change per mm of path is limited, feeds are clamped to the limits and rounded. `surface_finishing` holds the feed at the cutting point of a ball end mill on a 3-D path. The result holds the before/after figures, the feed of every block and where the target could not be held; the NC program is at `GET /v1/jobs/{id}/program`.";
+    const REFUSES: &'static str = "A refused field, NC line or contour vertex";
+    type Request = FeedsRequest;
+    type Prepared = FeedsPrepared;
+    type Output = FeedsResult;
+
+    async fn prepare(submission: &Submission<'_>, request: FeedsRequest) -> Result<FeedsPrepared, ApiError> {
+        prepare(submission.pool, request).await
+    }
+
+    fn run(
+        request: FeedsRequest,
+        prepared: FeedsPrepared,
+        progress: &dyn Progress,
+    ) -> Result<Produced<FeedsResult>, CoreError> {
+        let (result, program, scene) = run(request, prepared, progress)?;
+        Ok(Produced::programmed(result, program, scene))
+    }
 }

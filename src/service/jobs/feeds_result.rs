@@ -3,10 +3,10 @@
 use super::analysis_result::{
     summary, CriticalRegionDto, ForceOverloadDto, OutsideModelDto, PathPointDto, StatsDto, SummaryDto,
 };
-use super::conditions::{NamedRef, ToolRef};
-use super::costing::CostSetup;
 use super::costing_result::CostDto;
 use super::feeds::{CutMode, FeedsPrepared};
+use super::setup::CostSetup;
+use super::setup::{NamedRef, ToolRef};
 use crate::core::analysis::Analysis;
 use crate::core::costing::estimate::Estimate;
 use crate::core::feed::collect::{ReasonLengths, Shortfall, ShortfallKind};

@@ -73,10 +73,48 @@ impl JobKind {
         }
     }
 
+    /// Every kind.
+    pub const ALL: [JobKind; 6] =
+        [JobKind::Conditions, JobKind::Analysis, JobKind::Feeds, JobKind::Costing, JobKind::Trochoids, JobKind::Plan];
+
     pub fn parse(text: &str) -> Option<JobKind> {
-        [JobKind::Conditions, JobKind::Analysis, JobKind::Feeds, JobKind::Costing, JobKind::Trochoids, JobKind::Plan]
-            .into_iter()
-            .find(|k| k.as_str() == text)
+        JobKind::ALL.into_iter().find(|k| k.as_str() == text)
+    }
+}
+
+/// A job's id as a path parameter or a field: a UUID, read in any case and with or
+/// without hyphens, and kept in the hyphenated lower-case form jobs are stored under. A
+/// malformed one is refused naming the field (`GET /v1/jobs/abc` is a 400 about `id`).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, ToSchema)]
+#[schema(value_type = String, format = "uuid", example = "0f8e9c3a-2b1d-4e5f-9a7b-6c5d4e3f2a10")]
+pub struct JobId(String);
+
+impl JobId {
+    pub fn as_str(&self) -> &str {
+        &self.0
+    }
+}
+
+impl std::ops::Deref for JobId {
+    type Target = str;
+
+    fn deref(&self) -> &str {
+        &self.0
+    }
+}
+
+impl std::fmt::Display for JobId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl<'de> Deserialize<'de> for JobId {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let text = String::deserialize(deserializer)?;
+        uuid::Uuid::try_parse(&text).map(|id| JobId(id.hyphenated().to_string())).map_err(|_| {
+            serde::de::Error::invalid_value(serde::de::Unexpected::Str(&text), &"a job id (a UUID, as in Location)")
+        })
     }
 }
 
@@ -202,6 +240,14 @@ impl ProgramPart {
 mod tests {
     use super::*;
     use serde_json::json;
+
+    #[test]
+    fn a_job_id_is_a_uuid_kept_hyphenated_in_lower_case_and_anything_else_is_refused() {
+        let id: JobId = serde_json::from_value(json!("0F8E9C3A2B1D4E5F9A7B6C5D4E3F2A10")).unwrap();
+        assert_eq!(id.as_str(), "0f8e9c3a-2b1d-4e5f-9a7b-6c5d4e3f2a10");
+        let refused = serde_json::from_value::<JobId>(json!("abc")).unwrap_err().to_string();
+        assert!(refused.contains("a job id"), "{refused}");
+    }
 
     #[test]
     fn a_summary_keeps_the_short_figures_of_the_top_two_levels_and_no_lists() {

@@ -4,7 +4,7 @@
 //! safe height the path's highest point (the planners' `safe_z`), the coolant the
 //! machine's row (`/v1/machines`, `coolant`), the spindle speed the conditions'.
 
-use super::analysis::AnalysisPrepared;
+use super::setup::PathSetup;
 use crate::core::coolant::Coolant;
 use crate::core::nc::{
     Dialect, LineNumbers, WriterOptions, DEFAULT_DECIMALS, DEFAULT_FEED_DECIMALS, MAX_DECIMALS, MAX_SEQUENCE_NUMBER,
@@ -20,6 +20,9 @@ pub const MAX_TITLE_CHARS: usize = 120;
 /// Largest tool number written in the header's `T… M6` and `H…` (four digits, as most
 /// controls read).
 pub const MAX_TOOL_NUMBER: u32 = 9999;
+/// Height of the safe plane above the top of the layer when none is given, mm (**assumed**):
+/// the default `safe_z` of the programs trochoids and plans write.
+pub const DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM: f64 = 5.0;
 /// Largest safe height, mm, either way from the work zero (**assumed**: beyond the travel of
 /// any machining centre, and within the eight digits a Fanuc reads at 0.001 mm).
 pub const MAX_SAFE_Z_MM: f64 = 10_000.0;
@@ -180,7 +183,7 @@ impl OutputOptions {
     }
 
     /// The writer's options, with the job's defaults.
-    pub fn to_writer(&self, prepared: &AnalysisPrepared) -> WriterOptions {
+    pub fn to_writer(&self, prepared: &PathSetup) -> WriterOptions {
         let defaults = LineNumbers::default();
         WriterOptions {
             dialect: match self.dialect {

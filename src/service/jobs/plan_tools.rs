@@ -1,13 +1,12 @@
 //! The candidate tools of a plan: which tools the request names (by diameter, by id, or
 //! the default range) and what each needs from the database.
 
-use super::analysis::{resolve as resolve_path_job, AnalysisPrepared, PathJobRefs, Resolved};
 use super::plans::{CandidatePrepared, PlanRequest, CANDIDATE_DIAMETER_RANGE_MM};
+use super::setup::{resolve as resolve_path_job, PathJobRefs, PathSetup, Resolved, MAX_FEED_PER_STANDARD};
 use crate::core::conditions::{feed_mm_min, standard_centres};
 use crate::core::operation::Operation;
 use crate::core::tool::{EndMill, ToolType};
 use crate::service::error::{ApiError, Validator};
-use crate::service::jobs::feeds::MAX_FEED_PER_STANDARD;
 use crate::service::lookup;
 use crate::service::resources::tools::Tool;
 use crate::service::store::Pool;
@@ -75,7 +74,7 @@ pub async fn resolve(
     material_id: i64,
     machine_id: i64,
     default_tool_price: f64,
-) -> Result<Result<(CandidatePrepared, AnalysisPrepared), String>, ApiError> {
+) -> Result<Result<(CandidatePrepared, PathSetup), String>, ApiError> {
     let refs = PathJobRefs {
         tool_id: Some(tool_id),
         tool_type: None,

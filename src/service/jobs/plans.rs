@@ -3,13 +3,11 @@
 //! a breakdown per layer and step, the tuning to about 90 % of one tool, and the comparison
 //! with the conventional ball-end baseline.
 
-use super::conditions::NamedRef;
-use super::costing::machine_limits;
 use super::inputs::{read_contour, read_dxf, ContourInput};
-use super::output::OutputOptions;
+use super::output::{OutputOptions, DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM};
 use super::plan_tools;
 use super::plans_result::PlanResult;
-use super::trochoids::DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM;
+use super::setup::{machine_limits, NamedRef};
 use crate::core::conditions::{standard_centres, CuttingConditions};
 use crate::core::drawing::process_scene::process_scene;
 use crate::core::drawing::scene::Scene;
@@ -26,6 +24,8 @@ use crate::core::tool::{EndMill, ToolType};
 use crate::core::tool_life::ToolLifeModel;
 use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
+use crate::service::jobs::kind::{JobKindSpec, Produced, Submission};
+use crate::service::jobs::model::JobKind;
 use crate::service::lookup;
 use crate::service::resources::Source;
 use crate::service::store::Pool;
@@ -155,7 +155,7 @@ pub struct PlanPrepared {
     pub skipped: Vec<String>,
     pub baseline: Option<BaselinePrepared>,
     /// For the program writer (the chosen tool is set at run time).
-    pub writer_base: super::analysis::AnalysisPrepared,
+    pub writer_base: super::setup::PathSetup,
 }
 
 /// Most candidate diameters one plan may compare.
@@ -475,4 +475,38 @@ pub struct PlanOutput {
     pub program: String,
     pub baseline_program: Option<String>,
     pub scene: Scene,
+}
+
+/// The `plan` job kind.
+pub struct Plan;
+
+impl JobKindSpec for Plan {
+    const KIND: JobKind = JobKind::Plan;
+    const PATH: &'static str = "/v1/plans";
+    const OPERATION_ID: &'static str = "planCavity";
+    const SUMMARY: &'static str =
+        "Plans a cavity from end to end (job kind `plan`; seed 002 Fig. 1 and §2.6, seed 004 Table 1).";
+    const DESCRIPTION: &'static str = "For each candidate flat end mill (6–16 mm from the database, or `diameters_mm`) that can reach the whole cavity, every layer is planned (helical entries, spiral hole expansion, trochoidal grooving of the critical regions, z-cut division, contour-parallel rough side cutting; the last layer intermediate-rough), the feeds are optimised for a constant cutting force, and time (nominal and kinematic), tool life and cost are estimated. The cheapest complete candidate is chosen and its force target tuned so the job uses about 90 % of one tool. The conventional ball-end baseline is planned for the comparison. The NC program is at `GET /v1/jobs/{id}/program`. Progress is reported while it runs; `DELETE` cancels it.";
+    const REFUSES: &'static str = "A refused field or contour vertex";
+    type Request = PlanRequest;
+    type Prepared = PlanPrepared;
+    type Output = PlanResult;
+
+    async fn prepare(submission: &Submission<'_>, request: PlanRequest) -> Result<PlanPrepared, ApiError> {
+        prepare(submission.pool, request).await
+    }
+
+    fn run(
+        request: PlanRequest,
+        prepared: PlanPrepared,
+        progress: &dyn Progress,
+    ) -> Result<Produced<PlanResult>, CoreError> {
+        let out = run(request, prepared, progress)?;
+        Ok(Produced {
+            result: out.result,
+            program: Some(out.program),
+            baseline_program: out.baseline_program,
+            scene: Some(out.scene),
+        })
+    }
 }

@@ -2,10 +2,10 @@
 //! chosen tool's layers and steps, its tuning, the totals, and the baseline comparison (the
 //! G-code is at the job's `program` link).
 
-use super::conditions::NamedRef;
 use super::costing_result::CutLengthDto;
 use super::feeds_result::ProgramInfoDto;
 use super::plans::{BaselinePrepared, PlanPrepared, RowRef};
+use super::setup::NamedRef;
 use super::trochoids_result::OverloadDto;
 use crate::core::nc::WrittenProgram;
 use crate::core::process::{

@@ -1,18 +1,13 @@
 //! `/v1/jobs` and the named job endpoints.
 
-use super::analysis::AnalysisRequest;
-use super::conditions::ConditionsRequest;
-use super::costing::CostingRequest;
-use super::feeds::FeedsRequest;
-use super::kinds::{self, JobInput};
+use super::kind::Submission;
+use super::kinds::{self, off_runtime, JobInput, Registered, REGISTRY};
 use super::lane::Lane;
-use super::model::{Job, JobKind, JobStatus, JobSummary, ProgramPart};
-use super::plans::PlanRequest;
+use super::model::{Job, JobId, JobKind, JobStatus, JobSummary, ProgramPart};
 use super::store;
-use super::trochoids::TrochoidsRequest;
 use crate::service::auth::Caller;
 use crate::service::error::{ApiError, Problem};
-use crate::service::extract::{ApiJson, ApiPath, ApiQuery};
+use crate::service::extract::{parse_json, ApiPath, ApiQuery, JsonBytes};
 use crate::service::resources::{Page, DEFAULT_PAGE_LIMIT, MAX_PAGE_LIMIT};
 use crate::service::state::AppState;
 use axum::extract::State;
@@ -20,6 +15,9 @@ use axum::http::{header, HeaderMap, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
 use serde::{Deserialize, Serialize};
 use std::time::Duration;
+use utoipa::openapi::path::{HttpMethod, Operation};
+use utoipa::openapi::request_body::RequestBodyBuilder;
+use utoipa::openapi::{ContentBuilder, Ref, RefOr, Required};
 use utoipa::{IntoParams, ToSchema};
 use utoipa_axum::{router::OpenApiRouter, routes};
 
@@ -61,14 +59,20 @@ async fn submit(
     prefix: &str,
     headers: &HeaderMap,
 ) -> Result<Response, ApiError> {
-    let prepared = kinds::prepare(&state.pool, kind, input.clone(), prefix).await?;
+    let submission = Submission { pool: &state.pool, caller };
+    let accepted = kinds::accept(&submission, kind, input, prefix).await?;
     let id = uuid::Uuid::new_v4().to_string();
     let mut finished = state.jobs.subscribe();
     let mut stopping = state.jobs.stopping();
-    let input = input.to_string();
-    let lane = Lane::of(kind, input.len());
-    let new =
-        store::NewJob { id: &id, kind, input: &input, prepared: &prepared.to_string(), key_id: caller.key_id(), lane };
+    let lane = Lane::of(kind, accepted.input.len());
+    let new = store::NewJob {
+        id: &id,
+        kind,
+        input: &accepted.input,
+        prepared: &accepted.prepared,
+        key_id: caller.key_id(),
+        lane,
+    };
     store::insert(&state.pool, new).await?;
     state.jobs.wake();
     tracing::info!(job = %id, kind = kind.as_str(), "job queued");
@@ -140,6 +144,8 @@ async fn job_response(
 
 /// The key that [`job_response`] appends the stored result under.
 const RESULT_KEY: &str = ",\"result\":";
+/// The OpenAPI tag of the job routes (the role a route needs follows its tag).
+const JOBS_TAG: &str = "jobs";
 /// The content type of JSON answers.
 const JSON: &str = "application/json";
 
@@ -165,125 +171,24 @@ pub async fn create_job(
     State(state): State<AppState>,
     caller: Caller,
     headers: HeaderMap,
-    ApiJson(request): ApiJson<JobRequest>,
+    JsonBytes(body): JsonBytes,
 ) -> Result<Response, ApiError> {
+    let request: JobRequest = off_runtime(move || parse_json(&body)).await?;
     submit(&state, &caller, request.kind, request.input, "input.", &headers).await
-}
-
-/// Recommends cutting conditions (job kind `conditions`).
-///
-/// For a material (default SKD61), a tool (id, or type + diameter) and an operation
-/// (default standard_side_cutting): S, fz, F, Rd, Ad and the cutting speed from the
-/// database, with the engagement angle, t_m, L and XY force the models predict. The
-/// finished job's `result` is a `ConditionsResult`.
-#[utoipa::path(post, path = "/v1/conditions", tag = "jobs", operation_id = "recommendConditions", request_body = ConditionsRequest,
-    params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
-    responses(
-        (status = 201, description = "Finished within the preferred wait; result is a ConditionsResult", body = Job,
-            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
-        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
-            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
-        (status = 422, description = "A refused field", body = Problem, content_type = "application/problem+json")))]
-pub async fn create_conditions(
-    State(state): State<AppState>,
-    caller: Caller,
-    headers: HeaderMap,
-    ApiJson(input): ApiJson<serde_json::Value>,
-) -> Result<Response, ApiError> {
-    submit(&state, &caller, JobKind::Conditions, input, "", &headers).await
-}
-
-/// Analyses a tool path (job kind `analysis`).
-///
-/// Simulates the material removal of the layer along the path (G-code or JSON moves)
-/// and reports, per sample, the engagement angle, arc length, chip thickness at the
-/// programmed feed and the predicted force; the summary (cutting and air-cut length,
-/// time at programmed feeds, α and force statistics with a histogram) and the critical
-/// regions where α exceeds the limit (default 40°). Bad NC or contour input is refused
-/// here with a 422 naming the line or vertex. The finished job's `result` is an
-/// `AnalysisResult`.
-#[utoipa::path(post, path = "/v1/analysis", tag = "jobs", operation_id = "analyzePath", request_body = AnalysisRequest,
-    params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
-    responses(
-        (status = 201, description = "Finished within the preferred wait; result is an AnalysisResult", body = Job,
-            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
-        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
-            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
-        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
-        (status = 422, description = "A refused field, NC line or contour vertex", body = Problem, content_type = "application/problem+json")))]
-pub async fn create_analysis(
-    State(state): State<AppState>,
-    caller: Caller,
-    headers: HeaderMap,
-    ApiJson(input): ApiJson<serde_json::Value>,
-) -> Result<Response, ApiError> {
-    submit(&state, &caller, JobKind::Analysis, input, "", &headers).await
-}
-
-/// Optimises the feeds of a tool path (job kind `feeds`).
-///
-/// `side_milling` (default) simulates the stock to find the engagement at every sample
-/// and sets each block's feed for a constant cutting force (`constant_force`, default),
-/// a constant feed at the cutting point (`cutting_point`, seed 000) or both; long blocks
-/// are split where the feed must change, the change per mm of path is limited, feeds are
-/// clamped to the limits and rounded. `surface_finishing` holds the feed at the cutting
-/// point of a ball end mill on a 3-D path. The finished job's `result` is a
-/// `FeedsResult` (before/after figures, the feed of every block, where the target could
-/// not be held); the NC program is at `GET /v1/jobs/{id}/program`.
-#[utoipa::path(post, path = "/v1/feeds", tag = "jobs", operation_id = "optimizeFeeds", request_body = FeedsRequest,
-    params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
-    responses(
-        (status = 201, description = "Finished within the preferred wait; result is a FeedsResult", body = Job,
-            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
-        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
-            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
-        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
-        (status = 422, description = "A refused field, NC line or contour vertex", body = Problem, content_type = "application/problem+json")))]
-pub async fn create_feeds(
-    State(state): State<AppState>,
-    caller: Caller,
-    headers: HeaderMap,
-    ApiJson(input): ApiJson<serde_json::Value>,
-) -> Result<Response, ApiError> {
-    submit(&state, &caller, JobKind::Feeds, input, "", &headers).await
-}
-
-/// Costs an NC program (job kind `costing`).
-///
-/// Simulates the program in its stock and reports the machining time, the tool-life
-/// consumption `L_t / L_f` with the lines and engagement angles where the tool wears
-/// (MODEL.md §9), the cost `C = c_m · T_m + c_t · L_t / L_f` (seed 002, Eq. 4), the
-/// material removed and the removal rate. The program is given, or taken from a finished
-/// job (`job_id`, e.g. a `feeds` job). The finished job's `result` is a `CostingResult`.
-#[utoipa::path(post, path = "/v1/costing", tag = "jobs", operation_id = "costProgram", request_body = CostingRequest,
-    params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
-    responses(
-        (status = 201, description = "Finished within the preferred wait; result is a CostingResult", body = Job,
-            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
-        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
-            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
-        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
-        (status = 422, description = "A refused field, NC line or contour vertex", body = Problem, content_type = "application/problem+json")))]
-pub async fn create_costing(
-    State(state): State<AppState>,
-    caller: Caller,
-    headers: HeaderMap,
-    ApiJson(input): ApiJson<serde_json::Value>,
-) -> Result<Response, ApiError> {
-    submit(&state, &caller, JobKind::Costing, input, "", &headers).await
 }
 
 /// Reads a job: status, progress, timestamps, result or error (the input is at
 /// `links.input`).
 #[utoipa::path(get, path = "/v1/jobs/{id}", tag = "jobs", operation_id = "getJob",
-    params(("id" = String, Path, description = "Job id")),
+    params(("id" = JobId, Path, description = "Job id (a UUID)")),
     responses(
         (status = 200, description = "The job", body = Job),
+        (status = 400, description = "A malformed job id", body = Problem, content_type = "application/problem+json"),
         (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json")))]
 pub async fn get_job(
     State(state): State<AppState>,
     caller: Caller,
-    ApiPath(id): ApiPath<String>,
+    ApiPath(id): ApiPath<JobId>,
 ) -> Result<Response, ApiError> {
     let row = store::get_visible(&state.pool, &caller, &id).await?;
     job_response(&state.pool, StatusCode::OK, &row).await
@@ -291,14 +196,15 @@ pub async fn get_job(
 
 /// A job's input as submitted (JSON), as stored.
 #[utoipa::path(get, path = "/v1/jobs/{id}/input", tag = "jobs", operation_id = "getJobInput",
-    params(("id" = String, Path, description = "Job id")),
+    params(("id" = JobId, Path, description = "Job id (a UUID)")),
     responses(
         (status = 200, description = "The input as submitted", body = JobInput),
+        (status = 400, description = "A malformed job id", body = Problem, content_type = "application/problem+json"),
         (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json")))]
 pub async fn get_input(
     State(state): State<AppState>,
     caller: Caller,
-    ApiPath(id): ApiPath<String>,
+    ApiPath(id): ApiPath<JobId>,
 ) -> Result<Response, ApiError> {
     let row = store::get_visible(&state.pool, &caller, &id).await?;
     let input = store::input(&state.pool, &row.id)
@@ -360,18 +266,18 @@ pub struct DeleteJobQuery {
 /// job and everything it stored (204); a job still queued or running is refused (409:
 /// cancel it first). A planner's key may cancel and remove only its own jobs.
 #[utoipa::path(delete, path = "/v1/jobs/{id}", tag = "jobs", operation_id = "cancelJob",
-    params(("id" = String, Path, description = "Job id"), DeleteJobQuery),
+    params(("id" = JobId, Path, description = "Job id (a UUID)"), DeleteJobQuery),
     responses(
         (status = 200, description = "Cancelled", body = Job),
         (status = 202, description = "Cancellation requested; the job stops shortly", body = Job),
         (status = 204, description = "Purged: the job and its data are gone"),
-        (status = 400, description = "A bad query parameter", body = Problem, content_type = "application/problem+json"),
+        (status = 400, description = "A malformed job id or a bad query parameter", body = Problem, content_type = "application/problem+json"),
         (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json"),
         (status = 409, description = "Already finished (cancel), or not finished yet (purge)", body = Problem, content_type = "application/problem+json")))]
 pub async fn cancel_job(
     State(state): State<AppState>,
     caller: Caller,
-    ApiPath(id): ApiPath<String>,
+    ApiPath(id): ApiPath<JobId>,
     ApiQuery(query): ApiQuery<DeleteJobQuery>,
 ) -> Result<Response, ApiError> {
     let row = store::get_visible(&state.pool, &caller, &id).await?;
@@ -410,16 +316,16 @@ pub struct ProgramQuery {
 /// `part=baseline` gives a plan's conventional baseline (the R5 ball in thin levels, at its
 /// `conventional_ball_roughing` conditions), written with the plan's output options.
 #[utoipa::path(get, path = "/v1/jobs/{id}/program", tag = "jobs", operation_id = "getJobProgram",
-    params(("id" = String, Path, description = "Job id"), ProgramQuery),
+    params(("id" = JobId, Path, description = "Job id (a UUID)"), ProgramQuery),
     responses(
         (status = 200, description = "The NC program", body = String, content_type = "text/plain"),
-        (status = 400, description = "An unknown part or query parameter", body = Problem, content_type = "application/problem+json"),
+        (status = 400, description = "A malformed job id, or an unknown part or query parameter", body = Problem, content_type = "application/problem+json"),
         (status = 404, description = "No such job, or this job makes no such program (a baseline only comes with a plan that has one)", body = Problem, content_type = "application/problem+json"),
         (status = 409, description = "Not finished yet", body = Problem, content_type = "application/problem+json")))]
 pub async fn get_program(
     State(state): State<AppState>,
     caller: Caller,
-    ApiPath(id): ApiPath<String>,
+    ApiPath(id): ApiPath<JobId>,
     ApiQuery(query): ApiQuery<ProgramQuery>,
 ) -> Result<Response, ApiError> {
     let row = store::get_visible(&state.pool, &caller, &id).await?;
@@ -445,78 +351,54 @@ fn makes(kind: JobKind, part: ProgramPart) -> bool {
     }
 }
 
-/// Inserts trochoid cycles where a pocket's path overloads the tool (job kind `trochoids`).
-///
-/// Takes a pocket contour (or DXF) and optionally a path to modify; without one, the
-/// contour-parallel roughing path is generated (Rd and Ad of the rough side-cutting
-/// conditions). The path is simulated; its samples above the engagement limit are mapped onto
-/// the medial axis; each critical stretch gets trochoids (classes A and B, the pitch reduced
-/// where the limit needs it, entered by a helix) or z-cut division (class C, seed 004 §2.3);
-/// the path is cut where the trochoids cleared and re-linked; and the result is simulated
-/// again. The finished job's `result` is a `TrochoidsResult` (the axis with its classes, the
-/// treatments with the area each removes, the checks, the path as JSON moves); the NC
-/// program is at `GET /v1/jobs/{id}/program`.
-#[utoipa::path(post, path = "/v1/trochoids", tag = "jobs", operation_id = "insertTrochoids", request_body = TrochoidsRequest,
-    params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
-    responses(
-        (status = 201, description = "Finished within the preferred wait; result is a TrochoidsResult", body = Job,
-            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
-        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
-            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
-        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
-        (status = 422, description = "A refused field, NC line or contour vertex", body = Problem, content_type = "application/problem+json")))]
-pub async fn create_trochoids(
-    State(state): State<AppState>,
-    caller: Caller,
-    headers: HeaderMap,
-    ApiJson(input): ApiJson<serde_json::Value>,
-) -> Result<Response, ApiError> {
-    submit(&state, &caller, JobKind::Trochoids, input, "", &headers).await
-}
-
-/// Plans a cavity from end to end (job kind `plan`; seed 002 Fig. 1 and §2.6, seed 004
-/// Table 1).
-///
-/// For each candidate flat end mill (6–16 mm from the database, or `diameters_mm`) that can
-/// reach the whole cavity, every layer is planned (helical entries, spiral hole expansion,
-/// trochoidal grooving of the critical regions, z-cut division, contour-parallel rough side
-/// cutting; the last layer intermediate-rough), the feeds are optimised for a constant
-/// cutting force, and time (nominal and kinematic), tool life and cost are estimated. The
-/// cheapest complete candidate is chosen and its force target tuned so the job uses about
-/// 90 % of one tool. The conventional ball-end baseline is planned for the comparison. The
-/// finished job's `result` is a `PlanResult`; the NC program is at
-/// `GET /v1/jobs/{id}/program`. Progress is reported while it runs; `DELETE` cancels it.
-#[utoipa::path(post, path = "/v1/plans", tag = "jobs", operation_id = "planCavity", request_body = PlanRequest,
-    params(("Prefer" = Option<String>, Header, description = "wait=N: return the finished job if it finishes within N seconds")),
-    responses(
-        (status = 201, description = "Finished within the preferred wait; result is a PlanResult", body = Job,
-            headers(("Location" = String, description = "The job"), ("Preference-Applied" = String, description = "wait=N"))),
-        (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
-            headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
-        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
-        (status = 422, description = "A refused field or contour vertex", body = Problem, content_type = "application/problem+json")))]
-pub async fn create_plan(
-    State(state): State<AppState>,
-    caller: Caller,
-    headers: HeaderMap,
-    ApiJson(input): ApiJson<serde_json::Value>,
-) -> Result<Response, ApiError> {
-    submit(&state, &caller, JobKind::Plan, input, "", &headers).await
-}
-
 /// The job routes.
 pub fn router() -> OpenApiRouter<AppState> {
-    OpenApiRouter::new()
+    let router = OpenApiRouter::new()
         .routes(routes!(create_job, list_jobs))
         .routes(routes!(get_job, cancel_job))
         .routes(routes!(get_program))
-        .routes(routes!(get_input))
-        .routes(routes!(create_conditions))
-        .routes(routes!(create_analysis))
-        .routes(routes!(create_feeds))
-        .routes(routes!(create_costing))
-        .routes(routes!(create_trochoids))
-        .routes(routes!(create_plan))
+        .routes(routes!(get_input));
+    let template = <__path_create_job as utoipa::Path>::operation();
+    REGISTRY.iter().fold(router, |router, registered| {
+        let kind = registered.kind;
+        let create = move |State(state): State<AppState>,
+                           caller: Caller,
+                           headers: HeaderMap,
+                           JsonBytes(body): JsonBytes| async move {
+            let input = off_runtime(move || parse_json::<serde_json::Value>(&body)).await?;
+            submit(&state, &caller, kind, input, "", &headers).await
+        };
+        let mut paths = utoipa::openapi::Paths::new();
+        paths.add_path_operation(registered.path, vec![HttpMethod::Post], operation_of(registered, template.clone()));
+        router.routes(((registered.schemas)(), paths, axum::routing::post(create)))
+    })
+}
+
+/// The operation of the route that submits one kind alone (`POST /v1/conditions`, …):
+/// `createJob`'s, with the kind's id, words and request.
+fn operation_of(registered: &Registered, mut operation: Operation) -> Operation {
+    let result = (registered.result_schema)();
+    operation.operation_id = Some(registered.operation_id.to_string());
+    operation.tags = Some(vec![JOBS_TAG.to_string()]);
+    operation.summary = Some(registered.summary.to_string());
+    operation.description = Some(format!(
+        "{}\n\nJob kind `{}`; the finished job's `result` is a `{result}`.",
+        registered.description,
+        registered.kind.as_str()
+    ));
+    let content = ContentBuilder::new().schema(Some(Ref::from_schema_name((registered.request_schema)()))).build();
+    operation.request_body =
+        Some(RequestBodyBuilder::new().content(JSON, content).required(Some(Required::True)).build());
+    for (status, response) in operation.responses.responses.iter_mut() {
+        if let RefOr::T(response) = response {
+            match status.as_str() {
+                "201" => response.description = format!("Finished within the preferred wait; result is a {result}"),
+                "422" => response.description = registered.refuses.to_string(),
+                _ => {}
+            }
+        }
+    }
+    operation
 }
 
 #[cfg(test)]

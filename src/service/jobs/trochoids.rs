@@ -3,10 +3,10 @@
 //! cycles and z-cut division inserted where the engagement exceeds the limit, its G-code, and
 //! the report of which region got which treatment out.
 
-use super::analysis::{resolve, AnalysisPrepared, PathJobRefs, Resolved};
 use super::inputs::{read_contour, read_dxf, ContourInput};
-use super::output::OutputOptions;
+use super::output::{OutputOptions, DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM};
 use super::program_input::{read_program, ProgramContext, ProgramInput};
+use super::setup::{resolve, PathJobRefs, PathSetup, Resolved};
 use super::trochoids_result::TrochoidsResult;
 use crate::core::conditions::{feed_mm_min, CuttingConditions};
 use crate::core::cycles::trochoid::default_loop_radius_mm;
@@ -21,13 +21,12 @@ use crate::core::operation::Operation;
 use crate::core::progress::Progress;
 use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
+use crate::service::jobs::kind::{JobKindSpec, Produced, Submission};
+use crate::service::jobs::model::JobKind;
 use crate::service::lookup;
 use crate::service::store::Pool;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
-
-/// Height of the safe plane above the top of the layer when none is given, mm (**assumed**).
-pub const DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM: f64 = 5.0;
 
 /// Cutting conditions given in a request.
 #[derive(Debug, Clone, Copy, Serialize, Deserialize, ToSchema)]
@@ -124,7 +123,7 @@ pub enum LoopSizeInput {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct TrochoidsPrepared {
     #[serde(flatten)]
-    pub base: AnalysisPrepared,
+    pub base: PathSetup,
     pub roughing: CuttingConditions,
     /// Where the roughing conditions come from (a standard-conditions row, or the request).
     pub roughing_source: String,
@@ -335,4 +334,33 @@ pub fn run(
     let written = write_program_mapped(&plan.toolpath, &options);
     let scene = insertion_scene(&pocket, &spec, &plan);
     Ok((TrochoidsResult::new(prepared, path.is_some(), &written, plan), written.text, scene))
+}
+
+/// The `trochoids` job kind.
+pub struct Trochoids;
+
+impl JobKindSpec for Trochoids {
+    const KIND: JobKind = JobKind::Trochoids;
+    const PATH: &'static str = "/v1/trochoids";
+    const OPERATION_ID: &'static str = "insertTrochoids";
+    const SUMMARY: &'static str =
+        "Inserts trochoid cycles where a pocket's path overloads the tool (job kind `trochoids`).";
+    const DESCRIPTION: &'static str = "Takes a pocket contour (or DXF) and optionally a path to modify; without one, the contour-parallel roughing path is generated (Rd and Ad of the rough side-cutting conditions). The path is simulated; its samples above the engagement limit are mapped onto the medial axis; each critical stretch gets trochoids (classes A and B, the pitch reduced where the limit needs it, entered by a helix) or z-cut division (class C, seed 004 §2.3); the path is cut where the trochoids cleared and re-linked; and the result is simulated again. The result holds the axis with its classes, the treatments with the area each removes, the checks and the path as JSON moves; the NC program is at `GET /v1/jobs/{id}/program`.";
+    const REFUSES: &'static str = "A refused field, NC line or contour vertex";
+    type Request = TrochoidsRequest;
+    type Prepared = TrochoidsPrepared;
+    type Output = TrochoidsResult;
+
+    async fn prepare(submission: &Submission<'_>, request: TrochoidsRequest) -> Result<TrochoidsPrepared, ApiError> {
+        prepare(submission.pool, request).await
+    }
+
+    fn run(
+        request: TrochoidsRequest,
+        prepared: TrochoidsPrepared,
+        progress: &dyn Progress,
+    ) -> Result<Produced<TrochoidsResult>, CoreError> {
+        let (result, program, scene) = run(request, prepared, progress)?;
+        Ok(Produced::programmed(result, program, scene))
+    }
 }

@@ -2,8 +2,8 @@
 //! classes, the treatments with the area each removes, the checks, and the new path as JSON
 //! moves (the G-code is at the job's `program` link).
 
-use super::conditions::{NamedRef, ToolRef};
 use super::feeds_result::ProgramInfoDto;
+use super::setup::{NamedRef, ToolRef};
 use super::trochoids::TrochoidsPrepared;
 use crate::core::conditions::CuttingConditions;
 use crate::core::insertion::{EngagementCheck, InsertionPlan, Overload, Spot, Treatment, TreatmentKind};

@@ -29,9 +29,9 @@ use std::collections::HashMap;
 use serde::Serialize;
 
 use super::blocks::Piece;
-use crate::core::analysis::sampling::move_length;
 use crate::core::nc::words::{feed_down, Fixed, LineWords, Style, MIN_DECIMALS_INCH, MIN_DECIMALS_MM};
 use crate::core::nc::{FeedMode, LineMotion, MotionContext, ProgramMap};
+use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Motion, Toolpath, Units};
 
 /// The program as the interpreter read it.

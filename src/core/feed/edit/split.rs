@@ -9,9 +9,9 @@
 use super::super::blocks::Piece;
 use super::super::split::sub_move;
 use super::{feed_word, mm_per, FeedValue};
-use crate::core::analysis::sampling::arc_sweep;
 use crate::core::nc::words::{Fixed, LineWords, Style};
 use crate::core::nc::{ArcFormat, MotionContext};
+use crate::core::toolpath::arc_sweep;
 use crate::core::toolpath::{Motion, Move, Plane, P3};
 
 /// Letters of the motion words a split rewrites (axes, polar words, centre, radius).

@@ -5,8 +5,8 @@ use std::f64::consts::PI;
 
 use super::format::Fixed;
 use super::{Writer, CENTRE_LETTERS, G_CLOCKWISE, G_COUNTER_CLOCKWISE};
-use crate::core::analysis::sampling::arc_sweep;
 use crate::core::nc::arcs::{arc_radius_tolerance_mm, check_arc, coord, plane_axes, with_coord};
+use crate::core::toolpath::arc_sweep;
 use crate::core::toolpath::{Motion, Move, Plane, P3};
 
 /// G codes of the planes.

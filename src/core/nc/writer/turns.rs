@@ -3,8 +3,8 @@
 
 use std::f64::consts::TAU;
 
-use crate::core::analysis::sampling::arc_sweep;
 use crate::core::nc::arcs::{coord, plane_axes, with_coord};
+use crate::core::toolpath::arc_sweep;
 use crate::core::toolpath::{Motion, Move};
 
 /// The pieces of `m`: for an arc with `turns` = k > 0, k full circles from its start, then
@@ -36,8 +36,8 @@ pub(crate) fn split_turns(m: &Move) -> Vec<Move> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::core::analysis::sampling::move_length;
     use crate::core::tolerance::approx_eq;
+    use crate::core::toolpath::move_length;
     use crate::core::toolpath::{Plane, P3};
 
     /// The pieces are computed from the same numbers: equal to rounding.

@@ -1,0 +1,88 @@
+//! One job kind: its request, what the request resolves to against the database at
+//! submission (stored with the job, so a job's answer does not change when the database
+//! does), how a worker runs it and what it hands back. Each kind implements
+//! [`JobKindSpec`] in its own file and is registered once, in [`super::kinds`].
+
+use super::model::JobKind;
+use crate::core::drawing::scene::Scene;
+use crate::core::progress::Progress;
+use crate::core::CoreError;
+use crate::service::auth::Caller;
+use crate::service::error::ApiError;
+use crate::service::store::Pool;
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+use std::future::Future;
+use utoipa::ToSchema;
+
+/// What a submission knows besides its input: the database, and who submits it (a
+/// planner may name only its own jobs, e.g. the `job_id` of a costing).
+pub struct Submission<'a> {
+    pub pool: &'a Pool,
+    pub caller: &'a Caller,
+}
+
+/// What a run of a job produces: its result, and the NC programs and drawing it made.
+pub struct Produced<R> {
+    pub result: R,
+    /// The job's NC program (`GET /v1/jobs/{id}/program`).
+    pub program: Option<String>,
+    /// A plan's baseline program (`GET /v1/jobs/{id}/program?part=baseline`).
+    pub baseline_program: Option<String>,
+    /// What can be drawn of the job.
+    pub scene: Option<Scene>,
+}
+
+impl<R> Produced<R> {
+    /// A result alone.
+    pub fn result(result: R) -> Self {
+        Produced { result, program: None, baseline_program: None, scene: None }
+    }
+
+    /// A result with its drawing.
+    pub fn drawn(result: R, scene: Scene) -> Self {
+        Produced { scene: Some(scene), ..Produced::result(result) }
+    }
+
+    /// A result with its NC program and drawing.
+    pub fn programmed(result: R, program: String, scene: Scene) -> Self {
+        Produced { program: Some(program), ..Produced::drawn(result, scene) }
+    }
+}
+
+/// A kind of job.
+pub trait JobKindSpec: 'static {
+    /// Its name in `kind`.
+    const KIND: JobKind;
+    /// The route that submits it alone, e.g. `/v1/conditions`.
+    const PATH: &'static str;
+    /// The operation id of that route, e.g. `recommendConditions`.
+    const OPERATION_ID: &'static str;
+    /// The route's summary (one line).
+    const SUMMARY: &'static str;
+    /// The route's description: what the job does and what its result holds.
+    const DESCRIPTION: &'static str;
+    /// What the 422 of a submission refuses (a field, an NC line, a contour vertex…).
+    const REFUSES: &'static str;
+
+    /// The input as submitted.
+    type Request: DeserializeOwned + Serialize + ToSchema + Send + 'static;
+    /// What the request resolved to: checked, with the database rows it names.
+    type Prepared: DeserializeOwned + Serialize + Send + 'static;
+    /// The finished job's `result`.
+    type Output: Serialize + ToSchema + 'static;
+
+    /// Checks a request, reporting every refused field at once, and resolves it against
+    /// the database. CPU work of the check runs off the async runtime.
+    fn prepare(
+        submission: &Submission<'_>,
+        request: Self::Request,
+    ) -> impl Future<Output = Result<Self::Prepared, ApiError>> + Send;
+
+    /// Runs a prepared job. CPU-bound: called on a blocking thread.
+    fn run(
+        request: Self::Request,
+        prepared: Self::Prepared,
+        progress: &dyn Progress,
+    ) -> Result<Produced<Self::Output>, CoreError>;
+}

@@ -1,0 +1,364 @@
+//! What a job resolves to in the database at submission, shared by the kinds: the rows it
+//! names (material, tool, force model, machine, standard conditions) as a snapshot stored
+//! with the job, the setup of a job that reads a tool path, and the tool life, rates and
+//! machine limits a program is costed with. Look-ups of single rows are in
+//! [`crate::service::lookup`]; no kind imports another's helpers.
+use crate::core::analysis::feed_cap::cap_feeds;
+use crate::core::analysis::{AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG};
+use crate::core::conditions::standard_centres;
+use crate::core::costing::cost::Rates;
+use crate::core::costing::estimate::CostModel;
+use crate::core::force_model::ForceModel;
+use crate::core::kinematics::MachineLimits;
+use crate::core::operation::Operation;
+use crate::core::tool::{EndMill, ToolType};
+use crate::core::tool_life::ToolLifeModel;
+use crate::core::toolpath::Toolpath;
+use crate::service::error::ApiError;
+use crate::service::jobs::inputs::{read_stock, StockInput};
+use crate::service::jobs::program_input::{read_program, ProgramContext, ProgramInput, ReadProgram};
+use crate::service::lookup;
+use crate::service::resources::force_models::ForceModelRecord;
+use crate::service::resources::machines::Machine;
+use crate::service::resources::standard_conditions::StandardConditions;
+use crate::service::resources::tools::Tool;
+use crate::service::resources::Source;
+use crate::service::store::Pool;
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+/// The default maximum feed of a job that sets feeds, as a multiple of the tool's
+/// standard feed (MODEL.md §3: seed 003 caps at about 2.1 × standard).
+pub const MAX_FEED_PER_STANDARD: f64 = 2.0;
+
+/// A row named by id and name.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+pub struct NamedRef {
+    pub id: i64,
+    pub name: String,
+}
+
+/// The tool of a result.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+pub struct ToolRef {
+    pub id: i64,
+    pub name: String,
+    #[serde(flatten)]
+    #[schema(inline)]
+    pub geometry: ToolGeometry,
+}
+
+/// Tool geometry in a result.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, ToSchema)]
+pub struct ToolGeometry {
+    pub tool_type: ToolType,
+    pub diameter_mm: f64,
+    pub flutes: u32,
+    pub corner_radius_mm: f64,
+}
+
+impl From<EndMill> for ToolGeometry {
+    fn from(t: EndMill) -> Self {
+        ToolGeometry {
+            tool_type: t.tool_type,
+            diameter_mm: t.diameter_mm,
+            flutes: t.flutes,
+            corner_radius_mm: t.corner_radius_mm,
+        }
+    }
+}
+
+impl From<ToolGeometry> for EndMill {
+    fn from(g: ToolGeometry) -> Self {
+        EndMill {
+            tool_type: g.tool_type,
+            diameter_mm: g.diameter_mm,
+            flutes: g.flutes,
+            corner_radius_mm: g.corner_radius_mm,
+        }
+    }
+}
+
+/// The standard-conditions row used.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+pub struct StandardRef {
+    pub id: i64,
+    pub source: Source,
+    pub reference: String,
+    pub fz_min_mm: f64,
+    pub fz_max_mm: Option<f64>,
+    pub ad_last_layer_mm: Option<f64>,
+    pub notes: String,
+}
+
+/// The force model used.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct ForceModelRef {
+    pub id: i64,
+    pub source: Source,
+    pub reference: String,
+    pub model: ForceModel,
+}
+
+impl From<&Tool> for ToolRef {
+    fn from(tool: &Tool) -> Self {
+        ToolRef {
+            id: tool.id,
+            name: tool.data.name.clone(),
+            geometry: ToolGeometry {
+                tool_type: tool.data.tool_type,
+                diameter_mm: tool.data.diameter_mm,
+                flutes: tool.data.flutes,
+                corner_radius_mm: tool.data.resolved_corner_radius_mm(),
+            },
+        }
+    }
+}
+
+impl ForceModelRef {
+    /// The model of a row for its tool: forces scale with that tool's engaged edge length.
+    pub fn of_tool(m: ForceModelRecord, tool: &Tool) -> Self {
+        let model = m.data.model(tool.data.resolved_corner_radius_mm());
+        ForceModelRef { id: m.id, source: m.data.source, model, reference: m.data.reference }
+    }
+}
+
+/// What a job that reads a tool path (analysis, feeds, costing, trochoids, a plan's
+/// candidates) resolved to in the database: the tool, material, force model and machine.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct PathSetup {
+    pub material: NamedRef,
+    pub tool: ToolRef,
+    pub force_model: Option<ForceModelRef>,
+    pub machine: NamedRef,
+    pub rapid_mm_min: f64,
+    /// The machine's largest feed, mm/min: faster feeds are analysed at it (absent in
+    /// jobs stored before it was kept).
+    #[serde(default)]
+    pub max_feed_mm_min: Option<f64>,
+    pub default_spindle_rpm: Option<f64>,
+    /// The machine's coolant, for the programs the job writes (jobs stored before it was
+    /// kept: off).
+    #[serde(default)]
+    pub coolant: crate::core::coolant::Coolant,
+}
+
+impl PathSetup {
+    /// Reads the program and lowers every feed above the machine's maximum to it, as the
+    /// machine runs it (the warning goes with the path's).
+    pub fn read_program(&self, program: &ProgramInput, stock_top_mm: Option<f64>) -> Result<ReadProgram, ApiError> {
+        let context = ProgramContext { tool_radius_mm: Some(self.tool.geometry.diameter_mm / 2.0), stock_top_mm };
+        let read = read_program(program, context)?;
+        Ok(match self.max_feed_mm_min {
+            Some(max) => {
+                let (mut capped, warning) = cap_feeds(&read.path, max);
+                capped.warnings.extend(warning);
+                ReadProgram { path: capped, ..read }
+            }
+            None => read,
+        })
+    }
+}
+
+/// How a path is sampled and simulated, as a request sets it (each `None` is the core's
+/// default).
+pub struct Sampling {
+    pub sample_spacing_mm: Option<f64>,
+    pub cell_mm: Option<f64>,
+    pub alpha_limit_deg: Option<f64>,
+    pub series_points: usize,
+}
+
+impl PathSetup {
+    /// Reads the program and the stock and puts the analysis of the path together.
+    pub fn analysis(
+        &self,
+        program: &ProgramInput,
+        stock: &StockInput,
+        sampling: &Sampling,
+    ) -> Result<(Toolpath, AnalysisSpec), ApiError> {
+        let stock = read_stock(stock)?;
+        let path = self.read_program(program, Some(stock.z_top))?.path;
+        let spec = AnalysisSpec {
+            tool: self.tool.geometry.into(),
+            stock: stock.regions,
+            open: stock.open,
+            z_top: stock.z_top,
+            z_bottom: stock.z_bottom,
+            force_model: self.force_model.as_ref().map(|f| f.model),
+            default_spindle_rpm: self.default_spindle_rpm,
+            rapid_mm_min: self.rapid_mm_min,
+            sample_spacing_mm: sampling.sample_spacing_mm,
+            cell_mm: sampling.cell_mm,
+            alpha_limit_deg: sampling.alpha_limit_deg.unwrap_or(DEFAULT_ALPHA_LIMIT_DEG),
+            series_points: sampling.series_points,
+        };
+        Ok((path, spec))
+    }
+}
+
+/// What names the database rows of a path job.
+pub struct PathJobRefs<'a> {
+    pub tool_id: Option<i64>,
+    pub tool_type: Option<ToolType>,
+    pub diameter_mm: Option<f64>,
+    pub material_id: Option<i64>,
+    pub material: Option<&'a str>,
+    pub machine_id: Option<i64>,
+    pub spindle_rpm: Option<f64>,
+}
+
+/// The rows a path job resolved to.
+pub struct Resolved {
+    pub prepared: PathSetup,
+    /// The tool's standard side-cutting conditions in the material, if any.
+    pub standard: Option<StandardConditions>,
+    /// The machine's largest feed, mm/min.
+    pub machine_max_feed_mm_min: f64,
+    /// The machine's largest spindle speed, min⁻¹.
+    pub machine_max_spindle_rpm: f64,
+}
+
+/// Resolves the material, tool, force model, machine and standard conditions of a path
+/// job (analysis, feeds, costing, trochoids, a plan's candidates).
+pub async fn resolve(pool: &Pool, refs: &PathJobRefs<'_>) -> Result<Resolved, ApiError> {
+    let material = lookup::material(pool, refs.material_id, refs.material).await?;
+    let tool = lookup::tool(pool, refs.tool_id, refs.tool_type, refs.diameter_mm).await?;
+    let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(|m| ForceModelRef::of_tool(m, &tool));
+    let machine = match refs.machine_id {
+        Some(id) => {
+            sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = $1").bind(id).fetch_optional(pool).await?
+        }
+        None => sqlx::query_as::<_, Machine>("SELECT * FROM machines ORDER BY id LIMIT 1").fetch_optional(pool).await?,
+    }
+    .ok_or_else(|| ApiError::field("machine_id", "no such machine (add one at /v1/machines)"))?;
+    if let Some(rpm) = refs.spindle_rpm.filter(|rpm| *rpm > machine.data.max_spindle_rpm) {
+        return Err(ApiError::field(
+            "spindle_rpm",
+            format!("{rpm} is above the machine's maximum of {} min⁻¹", machine.data.max_spindle_rpm),
+        ));
+    }
+    let standard = lookup::standard_conditions(pool, tool.id, material.id, Operation::StandardSideCutting).await?;
+    let default_spindle_rpm = refs.spindle_rpm.or(standard.as_ref().map(|c| c.data.spindle_rpm));
+    let prepared = PathSetup {
+        material: NamedRef { id: material.id, name: material.data.name },
+        tool: ToolRef::from(&tool),
+        force_model,
+        machine: NamedRef { id: machine.id, name: machine.data.name.clone() },
+        rapid_mm_min: machine.data.rapid_mm_min,
+        max_feed_mm_min: Some(machine.data.max_feed_mm_min),
+        default_spindle_rpm,
+        coolant: machine.data.coolant,
+    };
+    Ok(Resolved {
+        prepared,
+        standard,
+        machine_max_feed_mm_min: machine.data.max_feed_mm_min,
+        machine_max_spindle_rpm: machine.data.max_spindle_rpm,
+    })
+}
+
+/// The tool life, machine and rates a program is costed with (MODEL.md §9 and §10).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct CostSetup {
+    pub tool_life_id: i64,
+    pub life_m: f64,
+    pub gamma_table: Vec<(f64, f64)>,
+    pub force_exponent: f64,
+    pub standard_arc_length_mm: f64,
+    pub standard_fz_mm: f64,
+    pub standard_force_n: Option<f64>,
+    pub cost_rates: NamedRef,
+    pub machine_rate_per_hour: f64,
+    pub tool_price: f64,
+    pub currency: String,
+    /// The machine's limits for the kinematic time.
+    pub limits: MachineLimits,
+}
+
+/// The tool life, standard force, rates, tool price and machine limits a program cut by
+/// the tool of `base` is costed with; errors name the field to change.
+pub async fn resolve_cost(
+    pool: &Pool,
+    base: &PathSetup,
+    standard: Option<&StandardConditions>,
+    cost_rates_id: Option<i64>,
+    tool_price: Option<f64>,
+) -> Result<CostSetup, ApiError> {
+    let life = lookup::tool_life(pool, base.tool.id, base.material.id).await?.ok_or_else(|| {
+        ApiError::field(
+            "tool_id",
+            format!("no tool-life data for tool {} in {} (add it at /v1/tool-life)", base.tool.id, base.material.name),
+        )
+    })?;
+    let standard = standard.ok_or_else(|| {
+        ApiError::field(
+            "tool_id",
+            format!("no standard side-cutting conditions for tool {} in {}", base.tool.id, base.material.name),
+        )
+    })?;
+    let (t_um, arc_mm) = standard_centres(base.tool.geometry.diameter_mm / 2.0, standard.data.conditions())?;
+    let standard_force_n = base.force_model.as_ref().map(|m| m.model.force_n(t_um, arc_mm, m.model.ad_ref_mm));
+    let rates = lookup::cost_rates(pool, cost_rates_id).await?;
+    let price = sqlx::query_scalar::<_, Option<f64>>("SELECT price FROM tools WHERE id = $1")
+        .bind(base.tool.id)
+        .fetch_one(pool)
+        .await?;
+    let setup = CostSetup {
+        tool_life_id: life.id,
+        life_m: life.data.life_m,
+        gamma_table: life.data.gamma_table.iter().map(|g| (g.0, g.1)).collect(),
+        force_exponent: life.data.force_exponent,
+        standard_arc_length_mm: arc_mm,
+        standard_fz_mm: standard.data.fz_mm,
+        standard_force_n,
+        cost_rates: NamedRef { id: rates.id, name: rates.data.name.clone() },
+        machine_rate_per_hour: rates.data.machine_rate_per_hour,
+        tool_price: tool_price.or(price).unwrap_or(rates.data.default_tool_price),
+        currency: rates.data.currency.clone(),
+        limits: machine_limits(pool, base.machine.id).await?,
+    };
+    setup.life_model().validate()?;
+    Ok(setup)
+}
+
+/// The kinematic limits of machine `id` (which must exist); errors name `machine_id`.
+pub async fn machine_limits(pool: &Pool, id: i64) -> Result<MachineLimits, ApiError> {
+    let machine =
+        sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = $1").bind(id).fetch_one(pool).await?.data;
+    let limits = MachineLimits {
+        rapid_mm_min: machine.rapid_mm_min,
+        max_feed_mm_min: machine.max_feed_mm_min,
+        accel_mm_s2: [machine.accel_x_mm_s2, machine.accel_y_mm_s2, machine.accel_z_mm_s2],
+        jerk_mm_s3: [machine.jerk_x_mm_s3, machine.jerk_y_mm_s3, machine.jerk_z_mm_s3],
+        tool_change_s: machine.tool_change_s,
+    };
+    limits.validate().map_err(|e| ApiError::field("machine_id", format!("machine {id}: {e}")))?;
+    Ok(limits)
+}
+
+impl CostSetup {
+    fn life_model(&self) -> ToolLifeModel {
+        ToolLifeModel {
+            life_m: self.life_m,
+            gamma_table: self.gamma_table.clone(),
+            force_exponent: self.force_exponent,
+            standard_arc_length_mm: self.standard_arc_length_mm,
+            standard_fz_mm: self.standard_fz_mm,
+            standard_force_n: self.standard_force_n,
+        }
+    }
+
+    pub fn rates(&self) -> Rates {
+        Rates {
+            machine_rate_per_hour: self.machine_rate_per_hour,
+            tool_price: self.tool_price,
+            currency: self.currency.clone(),
+        }
+    }
+
+    /// The costing's model.
+    pub fn cost_model(&self) -> CostModel {
+        CostModel { life: self.life_model(), machine: self.limits, rates: self.rates() }
+    }
+}
