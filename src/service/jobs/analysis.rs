@@ -48,7 +48,7 @@ pub struct AnalysisRequest {
     pub alpha_limit_deg: Option<f64>,
     /// Distance between samples, mm (default min(0.05, D/100)).
     pub sample_spacing_mm: Option<f64>,
-    /// Raster cell of the stock simulation, mm (default D/200).
+    /// Raster cell of the stock simulation, mm (default D/100, kept within 0.002–0.5 mm).
     pub cell_mm: Option<f64>,
     /// Per-sample series downsampled to this many points (0: none).
     #[serde(default)]
