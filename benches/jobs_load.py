@@ -151,21 +151,26 @@ def list_latency(port, clients, rounds):
     return lists, health
 
 
-def small_throughput(port, clients, seconds):
-    body = json.dumps({"tool_type": "square", "diameter_mm": 10, "operation": "rough_side_cutting"}).encode()
+CONDITIONS_JOB = json.dumps({"tool_type": "square", "diameter_mm": 10, "operation": "rough_side_cutting"}).encode()
+
+
+def throughput(ports, clients, seconds, path="/v1/conditions", body=CONDITIONS_JOB):
+    """`clients` threads, spread over `ports`, each POSTing `body` to `path` one after another
+    with `Prefer: wait=60` for `seconds`: the latencies of the jobs that succeeded, the
+    failures, and the time taken."""
     latencies, failures = [], []
     lock = threading.Lock()
     start_line = threading.Barrier(clients + 1)
     stop_at = [0.0]
 
-    def client():
+    def client(port):
         c = Client(port)
         mine, bad = [], 0
         start_line.wait()
         while time.time() < stop_at[0]:
             t = time.time()
             try:
-                status, text = c.request("POST", "/v1/conditions", body, {"prefer": "wait=60"})
+                status, text = c.request("POST", path, body, {"prefer": "wait=60"})
             except OSError:
                 bad += 1
                 continue
@@ -177,7 +182,7 @@ def small_throughput(port, clients, seconds):
             latencies.extend(mine)
             failures.append(bad)
 
-    threads = [threading.Thread(target=client) for _ in range(clients)]
+    threads = [threading.Thread(target=client, args=(ports[i % len(ports)],)) for i in range(clients)]
     for t in threads:
         t.start()
     stop_at[0] = time.time() + seconds
@@ -185,8 +190,7 @@ def small_throughput(port, clients, seconds):
     start_line.wait()
     for t in threads:
         t.join()
-    elapsed = time.time() - t0
-    return latencies, sum(failures), elapsed
+    return latencies, sum(failures), time.time() - t0
 
 
 def main():
@@ -218,7 +222,7 @@ def main():
                   f"median {statistics.median(lists):.3f} s, max {max(lists):.3f} s", flush=True)
             print(f"GET /healthz meanwhile: median {statistics.median(health):.3f} s, max {max(health):.3f} s",
                   flush=True)
-        lat, bad, elapsed = small_throughput(port, args.small_clients, args.small_seconds)
+        lat, bad, elapsed = throughput([port], args.small_clients, args.small_seconds)
         print(f"conditions jobs, {args.small_clients} clients for {elapsed:.1f} s: {len(lat)} finished "
               f"({len(lat) / elapsed:.0f}/s), {bad} failed; latency p50 {percentile(lat, 50) * 1000:.0f} ms, "
               f"p95 {percentile(lat, 95) * 1000:.0f} ms, p99 {percentile(lat, 99) * 1000:.0f} ms", flush=True)

@@ -27,11 +27,9 @@ import os
 import subprocess
 import sys
 import tempfile
-import threading
-import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from jobs_load import Client, free_port, percentile, wait_ready  # noqa: E402
+from jobs_load import free_port, percentile, throughput, wait_ready  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 JOB = json.dumps({"kind": "conditions", "input": {"tool_type": "square", "diameter_mm": 10}}).encode()
@@ -65,42 +63,6 @@ def start_replicas(binary, database, count):
     return procs, ports
 
 
-def throughput(ports, clients, seconds):
-    latencies, failures = [], []
-    lock = threading.Lock()
-    start_line = threading.Barrier(clients + 1)
-    stop_at = [0.0]
-
-    def client(port):
-        c = Client(port)
-        mine, bad = [], 0
-        start_line.wait()
-        while time.time() < stop_at[0]:
-            t = time.time()
-            try:
-                status, text = c.request("POST", "/v1/jobs", JOB, {"prefer": "wait=60"})
-            except OSError:
-                bad += 1
-                continue
-            if status == 201 and b'"succeeded"' in text:
-                mine.append(time.time() - t)
-            else:
-                bad += 1
-        with lock:
-            latencies.extend(mine)
-            failures.append(bad)
-
-    threads = [threading.Thread(target=client, args=(ports[i % len(ports)],)) for i in range(clients)]
-    for t in threads:
-        t.start()
-    stop_at[0] = time.time() + seconds
-    t0 = time.time()
-    start_line.wait()
-    for t in threads:
-        t.join()
-    return latencies, sum(failures), time.time() - t0
-
-
 def report(name, latencies, failures, elapsed):
     print(f"{name:<28} {len(latencies) / elapsed:7.1f} jobs/s  p50 {percentile(latencies, 50):.3f} s  "
           f"p95 {percentile(latencies, 95):.3f} s  p99 {percentile(latencies, 99):.3f} s  failed {failures}",
@@ -120,7 +82,7 @@ def main():
     with tempfile.TemporaryDirectory() as d:
         procs, ports = start_replicas(binary, os.path.join(d, "bench.sqlite"), 1)
         try:
-            report("SQLite, 1 instance", *throughput(ports, args.clients, args.seconds))
+            report("SQLite, 1 instance", *throughput(ports, args.clients, args.seconds, "/v1/jobs", JOB))
         finally:
             for p in procs:
                 p.terminate()
@@ -131,7 +93,7 @@ def main():
         create_database(server_port, name)
         procs, ports = start_replicas(binary, f"{server}/{name}", count)
         try:
-            report(f"PostgreSQL, {count} replica{'s' if count > 1 else ''}", *throughput(ports, args.clients, args.seconds))
+            report(f"PostgreSQL, {count} replica{'s' if count > 1 else ''}", *throughput(ports, args.clients, args.seconds, "/v1/jobs", JOB))
         finally:
             for p in procs:
                 p.terminate()
