@@ -45,8 +45,15 @@ pub struct LayerPlan {
     pub geometry: Option<Arc<PathGeometry>>,
 }
 
-/// The insertion spec of layer `index` for `candidate`.
-pub fn layer_spec(cavity: &Cavity, index: usize, candidate: &ToolCandidate, options: &ProcessOptions) -> InsertionSpec {
+/// The insertion spec of layer `index` for `candidate`, simulated on cells of `cell_mm`
+/// (`None`: the analysis's default).
+pub fn layer_spec(
+    cavity: &Cavity,
+    index: usize,
+    candidate: &ToolCandidate,
+    options: &ProcessOptions,
+    cell_mm: Option<f64>,
+) -> InsertionSpec {
     let layer = &cavity.layers[index];
     let (roughing, base_step) = match cavity.role(index) {
         LayerRole::Rough => (candidate.roughing, Step::RoughSideCutting),
@@ -59,6 +66,7 @@ pub fn layer_spec(cavity: &Cavity, index: usize, candidate: &ToolCandidate, opti
     spec.alpha_limit_deg = options.alpha_limit_deg;
     spec.rapid_mm_min = options.machine.rapid_mm_min;
     spec.sample_spacing_mm = options.sample_spacing_mm;
+    spec.cell_mm = cell_mm;
     spec
 }
 
@@ -83,9 +91,6 @@ pub fn plan_layers_on_cells(
     cell_mm: Option<f64>,
     progress: &dyn Progress,
 ) -> Result<Vec<LayerPlan>, CoreError> {
-    let layer_spec = |cavity: &Cavity, index: usize, candidate: &ToolCandidate, options: &ProcessOptions| {
-        InsertionSpec { cell_mm, ..layer_spec(cavity, index, candidate, options) }
-    };
     let n = cavity.layers.len();
     let alike = |a: usize, b: usize| {
         let (la, lb) = (&cavity.layers[a], &cavity.layers[b]);
@@ -101,7 +106,7 @@ pub fn plan_layers_on_cells(
     let originals: Vec<usize> = (0..n).filter(|&i| like[i].is_none()).collect();
     let shares = Shares::new(progress, 0.0, 1.0, originals.len());
     let planned = parallel::map(&originals, |k, &index| {
-        let spec = layer_spec(cavity, index, candidate, options);
+        let spec = layer_spec(cavity, index, candidate, options, cell_mm);
         let part = shares.part(k);
         part.checkpoint()?;
         plan_insertion_sampled(&cavity.layers[index].pocket, &spec, None, candidate.force_model, &part)
@@ -110,7 +115,7 @@ pub fn plan_layers_on_cells(
     let mut planned = originals.iter().copied().zip(planned);
     for (index, layer) in cavity.layers.iter().enumerate() {
         let role = cavity.role(index);
-        let spec = layer_spec(cavity, index, candidate, options);
+        let spec = layer_spec(cavity, index, candidate, options, cell_mm);
         let mut analysis = analysis_spec(&layer.pocket, &spec);
         analysis.force_model = Some(candidate.force_model);
         let plan = match like[index] {
