@@ -93,18 +93,27 @@ struct Prepared {
     prepared: String,
 }
 
-/// The fastest of `runs` runs of the job, s, and its result.
-fn time(case: &Prepared, runs: usize) -> (f64, Value) {
+/// The fastest of `runs` runs of the job, s, its result, and a fingerprint of its program
+/// (to see at a glance that a speed-up left the program as it was).
+fn time(case: &Prepared, runs: usize) -> (f64, Value, String) {
     let mut best = f64::INFINITY;
     let mut result = Value::Null;
+    let mut program = None;
     for _ in 0..runs {
         let start = Instant::now();
         let out = kinds::run(case.kind, &case.input, &case.prepared, &NoProgress)
             .unwrap_or_else(|e| panic!("{}: {e}", case.label));
         best = best.min(start.elapsed().as_secs_f64());
         result = out.result;
+        program = out.program;
     }
-    (best, result)
+    (best, result, program.map_or_else(|| "no program".to_string(), |p| fingerprint(&p)))
+}
+
+/// The program's length and a 64-bit FNV-1a hash of its text.
+fn fingerprint(program: &str) -> String {
+    let hash = program.bytes().fold(0xcbf2_9ce4_8422_2325_u64, |h, b| (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3));
+    format!("program {} bytes, {hash:016x}", program.len())
 }
 
 /// The key figures of a job's result, to see that speed did not change them.
@@ -187,8 +196,8 @@ fn main() {
     let mut timed = Vec::new();
     let mut run_cases = || {
         for case in &chosen {
-            let (secs, result) = time(case, runs);
-            println!("{}: {secs:.2} s ({})", case.label, figures(case.kind, &result));
+            let (secs, result, program) = time(case, runs);
+            println!("{}: {secs:.2} s ({}; {program})", case.label, figures(case.kind, &result));
             timed.push((case.label, secs));
         }
     };
@@ -196,10 +205,10 @@ fn main() {
         run_cases();
         return;
     }
-    let (before, result) = time(&tiger, runs);
+    let (before, result, _) = time(&tiger, runs);
     println!("{}: {before:.2} s ({})", tiger.label, figures(tiger.kind, &result));
     run_cases();
-    let (after, _) = time(&tiger, runs);
+    let (after, _, _) = time(&tiger, runs);
     println!("{} again: {after:.2} s", tiger.label);
     let unit = before.min(after);
     println!("ratios to one tiger.nc analysis ({unit:.2} s, the faster of the two):");

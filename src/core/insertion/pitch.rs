@@ -29,29 +29,34 @@ const PITCH_BISECTION_STEPS: usize = 48;
 /// and the region belongs to z-cut division (seed 004 §2.3).
 pub const MIN_PITCH_MM: f64 = 0.01;
 
-/// Length of the overlap of the arcs `[a0, a0 + la]` and `[b0, b0 + lb]` of a circle (rad,
-/// lengths at most 2π).
-fn arc_overlap_rad(a0: f64, la: f64, b0: f64, lb: f64) -> f64 {
-    let s = (b0 - a0).rem_euclid(TAU);
-    let overlap = |lo: f64, hi: f64| (hi.min(la) - lo.max(0.0)).max(0.0);
-    overlap(s, s + lb) + overlap(s - TAU, s - TAU + lb)
+/// Length of the overlap of the arcs `[−a, a]` and `[δ − b, δ + b]` of a circle (rad; half
+/// lengths `a`, `b` at most π, centres `δ` apart, `0 ≤ δ ≤ π`): the second arc may also reach
+/// the first round the far side, at `δ − 2π`.
+fn centred_arc_overlap_rad(a: f64, b: f64, delta: f64) -> f64 {
+    let overlap = |centre: f64| (a.min(centre + b) - (-a).max(centre - b)).max(0.0);
+    overlap(delta) + overlap(delta - TAU)
 }
 
 /// Engagement (rad) of a tool of radius `r` whose centre is at `v` from the centre of a swept
 /// disc of radius `w` (material outside it), travelling in the unit direction `t`.
 pub fn engagement_outside_disc_rad(v: (f64, f64), t: (f64, f64), w_mm: f64, r_mm: f64) -> f64 {
-    let d = v.0.hypot(v.1);
-    if d <= f64::EPSILON {
+    engagement_at_rad(v, (v.0 * v.0 + v.1 * v.1).sqrt(), t, w_mm, r_mm)
+}
+
+/// [`engagement_outside_disc_rad`] with `d_mm = |v|`: the material arc, centred on `v`, met
+/// with the leading half of the tool, centred on `t`; the angle between the two from one
+/// `atan2` of their cross and dot products (exact near 0 and π, where an `acos` is not).
+fn engagement_at_rad(v: (f64, f64), d_mm: f64, t: (f64, f64), w_mm: f64, r_mm: f64) -> f64 {
+    if d_mm <= f64::EPSILON {
         return if r_mm > w_mm { PI } else { 0.0 };
     }
-    let kappa = material_arc_cosine(d, w_mm, r_mm);
+    let kappa = material_arc_cosine(d_mm, w_mm, r_mm);
     if kappa >= 1.0 {
         return 0.0;
     }
     let half = kappa.max(-1.0).acos();
-    let a_v = v.1.atan2(v.0);
-    let a_t = t.1.atan2(t.0);
-    arc_overlap_rad(a_v - half, 2.0 * half, a_t - PI / 2.0, PI)
+    let delta = (v.0 * t.1 - v.1 * t.0).abs().atan2(v.0 * t.0 + v.1 * t.1);
+    centred_arc_overlap_rad(half, PI / 2.0, delta)
 }
 
 /// The cosine of the half-angle of the tool's edge that lies outside a swept disc of radius
@@ -95,15 +100,55 @@ pub fn loop_exceeds(rho_prev_mm: f64, rho_mm: f64, pitch_mm: f64, r_mm: f64, lim
     // The engagement is part of the material arc, 2·acos(κ): below the limit when κ is above
     // cos(limit / 2), raised a little so that an angle at the limit itself is measured.
     let short_arc = (0.5 * limit_deg.to_radians()).cos() + SHORT_ARC_MARGIN;
-    loop_angles().iter().any(|&(s, c)| {
+    let angles = loop_angles();
+    let (lo, hi) = short_arc_indices(rho_mm, pitch_mm, w, r_mm, short_arc);
+    angles[..lo].iter().chain(&angles[hi..]).any(|&(s, c)| {
         let v = (pitch_mm + rho_mm * c, rho_mm * s);
         let d = (v.0 * v.0 + v.1 * v.1).sqrt();
         if d > f64::EPSILON && material_arc_cosine(d, w, r_mm) >= short_arc {
             return false;
         }
-        engagement_outside_disc_rad(v, (-s, c), w, r_mm).to_degrees() > limit_deg
+        engagement_at_rad(v, d, (-s, c), w, r_mm).to_degrees() > limit_deg
     })
 }
+
+/// The loop angles (indices `lo..hi` of [`loop_angles`]) whose material arc is certainly no
+/// longer than the cosine `short_arc` says, so [`loop_exceeds`] would pass over each of them.
+///
+/// The arc's cosine `κ(d) = (w² − r² − d²)/(2rd)` falls as the distance `d` of the tool
+/// centre from the previous loop's centre grows, and `d² = p² + ρ² + 2pρ·cos φ` grows with
+/// `cos φ`: the short arcs are the angles whose cosine is at most one bound, one range of
+/// indices about φ = π. The range is narrowed by [`SHORT_ARC_INDEX_MARGIN`] steps at both
+/// ends, so that no rounding can pass over an angle the measure would take; an empty range
+/// when `κ` does not fall with `d` or the loop does not move.
+fn short_arc_indices(rho_mm: f64, pitch_mm: f64, w_mm: f64, r_mm: f64, short_arc: f64) -> (usize, usize) {
+    let a = w_mm * w_mm - r_mm * r_mm;
+    let spread = 2.0 * pitch_mm * rho_mm;
+    if a <= 0.0 || spread <= f64::EPSILON || !short_arc.is_finite() {
+        return (0, 0);
+    }
+    // κ(d*) = short_arc: d*² + 2r·short_arc·d* − a = 0.
+    let rs = r_mm * short_arc;
+    let d_star = -rs + (rs * rs + a).sqrt();
+    if d_star <= 0.0 {
+        return (0, 0);
+    }
+    let cos_bound = (d_star * d_star - pitch_mm * pitch_mm - rho_mm * rho_mm) / spread;
+    if cos_bound < -1.0 {
+        return (0, 0);
+    }
+    let step = TAU / LOOP_ANGLE_STEPS as f64;
+    let from = (cos_bound.min(1.0).acos() / step).floor() as usize + SHORT_ARC_INDEX_MARGIN;
+    let to = (LOOP_ANGLE_STEPS + 1).saturating_sub(from);
+    if from >= to {
+        return (0, 0);
+    }
+    (from, to)
+}
+
+/// Loop angle steps by which [`short_arc_indices`] narrows its range at each end: one step
+/// changes the cosine by far more than any rounding of `d`.
+const SHORT_ARC_INDEX_MARGIN: usize = 2;
 
 /// The largest pitch in `(0, max_pitch_mm]` whose loop (radius `rho(p)` at that pitch, after
 /// a loop of radius `rho_prev_mm`) stays at or under `alpha_limit_deg`; `None` when even
@@ -186,6 +231,34 @@ mod tests {
                     proptest::prop_assert!(loop_engagement_deg(rho, rho, (p * 1.01).min(max_p), 5.0) > limit - 0.5);
                 }
             }
+        }
+    }
+
+    /// The engagement counted edge direction by edge direction: those outside the swept disc
+    /// and in the leading half, `n` of them round the tool.
+    fn counted_engagement_rad(v: (f64, f64), t: (f64, f64), w: f64, r: f64, n: usize) -> f64 {
+        let step = TAU / n as f64;
+        let inside = (0..n)
+            .map(|k| (k as f64 + 0.5) * step)
+            .filter(|&a| {
+                let u = (a.cos(), a.sin());
+                let edge = (v.0 + r * u.0, v.1 + r * u.1);
+                edge.0.hypot(edge.1) > w && u.0 * t.0 + u.1 * t.1 > 0.0
+            })
+            .count();
+        inside as f64 * step
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(256))]
+        #[test]
+        fn the_engagement_outside_a_disc_is_the_edge_in_material_and_in_the_leading_half(
+            x in -12.0f64..12.0, y in -12.0f64..12.0, heading in 0.0f64..TAU, w in 0.5f64..10.0
+        ) {
+            let t = (heading.cos(), heading.sin());
+            let exact = engagement_outside_disc_rad((x, y), t, w, 5.0);
+            let counted = counted_engagement_rad((x, y), t, w, 5.0, 20_000);
+            proptest::prop_assert!((exact - counted).abs() <= 4.0 * TAU / 20_000.0, "{exact} {counted}");
         }
     }
 
