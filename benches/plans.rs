@@ -19,12 +19,15 @@
 //! runs), `--runs N` to time each case N times and keep the fastest, and `--alone` to
 //! leave the yardstick out (for profiling one case; no ratios then).
 
+use dieplan::core::analysis::geometry::SampleGeometry;
 use dieplan::core::progress::NoProgress;
 use dieplan::service::auth::Caller;
 use dieplan::service::jobs::kind::Submission;
 use dieplan::service::jobs::kinds;
 use dieplan::service::jobs::model::JobKind;
 use serde_json::{json, Value};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 fn data(name: &str) -> String {
@@ -44,6 +47,10 @@ struct Case {
     kind: JobKind,
     input: Value,
 }
+
+/// The plan's default sample spacing when the request names none, mm (the 10 mm tool's
+/// D/200; the plans of the case study are all judged at it).
+const DEFAULT_SAMPLE_SPACING_MM: f64 = 0.05;
 
 fn cases() -> Vec<Case> {
     vec![
@@ -108,6 +115,67 @@ fn time(case: &Prepared, runs: usize) -> (f64, Value, String) {
         program = out.program;
     }
     (best, result, program.map_or_else(|| "no program".to_string(), |p| fingerprint(&p)))
+}
+
+/// The system allocator, counting the bytes allocated now and at the peak, so that each
+/// case's peak of live heap memory is measured alone (the process's resident peak keeps
+/// what earlier cases left to the allocator).
+struct Counting;
+
+static LIVE_BYTES: AtomicUsize = AtomicUsize::new(0);
+static PEAK_BYTES: AtomicUsize = AtomicUsize::new(0);
+
+// SAFETY: every call is passed on to the system allocator unchanged; only counts are kept.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let p = System.alloc(layout);
+        if !p.is_null() {
+            let live = LIVE_BYTES.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
+            PEAK_BYTES.fetch_max(live, Ordering::Relaxed);
+        }
+        p
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        System.dealloc(ptr, layout);
+        LIVE_BYTES.fetch_sub(layout.size(), Ordering::Relaxed);
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        let p = System.realloc(ptr, layout, new_size);
+        if !p.is_null() {
+            LIVE_BYTES.fetch_sub(layout.size(), Ordering::Relaxed);
+            let live = LIVE_BYTES.fetch_add(new_size, Ordering::Relaxed) + new_size;
+            PEAK_BYTES.fetch_max(live, Ordering::Relaxed);
+        }
+        p
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: Counting = Counting;
+
+/// Starts a new peak of live heap memory at what is live now.
+fn reset_peak_memory() {
+    PEAK_BYTES.store(LIVE_BYTES.load(Ordering::Relaxed), Ordering::Relaxed);
+}
+
+/// The peak of live heap memory since the last [`reset_peak_memory`], MB.
+fn peak_memory_mb() -> f64 {
+    PEAK_BYTES.load(Ordering::Relaxed) as f64 / (1024.0 * 1024.0)
+}
+
+/// For a plan: the memory of one candidate's samples as the plan keeps them (the chosen
+/// program's feed length at the sample spacing, one `SampleGeometry` each), MB.
+fn one_candidates_samples_mb(kind: JobKind, input: &str, result: &Value) -> Option<f64> {
+    if kind != JobKind::Plan {
+        return None;
+    }
+    let input: Value = serde_json::from_str(input).ok()?;
+    let spacing = input["sample_spacing_mm"].as_f64().unwrap_or(DEFAULT_SAMPLE_SPACING_MM);
+    let feed_mm = result["totals"]["feed_length_mm"].as_f64()?;
+    let bytes = feed_mm / spacing * std::mem::size_of::<SampleGeometry>() as f64;
+    Some(bytes / (1024.0 * 1024.0))
 }
 
 /// The program's length and a 64-bit FNV-1a hash of its text.
@@ -193,11 +261,16 @@ fn main() {
     let tiger = prepare(yardstick());
     let chosen: Vec<Prepared> = cases().into_iter().filter(|c| wanted(c.label)).map(prepare).collect();
 
+    let cores = std::thread::available_parallelism().map_or(1, usize::from);
     let mut timed = Vec::new();
     let mut run_cases = || {
         for case in &chosen {
+            reset_peak_memory();
             let (secs, result, program) = time(case, runs);
             println!("{}: {secs:.2} s ({}; {program})", case.label, figures(case.kind, &result));
+            let samples = one_candidates_samples_mb(case.kind, &case.input, &result)
+                .map_or(String::new(), |mb| format!("; one candidate's samples {mb:.0} MB, {cores} cores"));
+            println!("  peak heap memory {:.0} MB{samples}", peak_memory_mb());
             timed.push((case.label, secs));
         }
     };
