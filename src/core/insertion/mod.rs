@@ -45,6 +45,7 @@ use crate::core::progress::Progress;
 use crate::core::toolpath::{section_events, Event, EventKind, Section, Toolpath, Units};
 use crate::core::CoreError;
 use cleared::ClearedZone as Zone;
+use std::collections::HashMap;
 use treatments::Stretch;
 
 /// How much longer than its base path a plan may be, for the size check at submission (the
@@ -282,6 +283,9 @@ fn plan_rounds(
     // Stretches whose loops may use all the room the clearance leaves (see `uncapped`).
     let mut uncapped: Vec<CriticalInterval> = Vec::new();
     let wide = uncapped_spec(spec);
+    // The stretches of each interval treated so far: a later round treats again only the
+    // intervals it adds, merges or widens (the treatment depends on nothing else).
+    let mut treated: HashMap<TreatedKey, Vec<Stretch>> = HashMap::new();
     let mut rounds = 0;
     loop {
         rounds += 1;
@@ -289,8 +293,14 @@ fn plan_rounds(
         for c in &intervals {
             let overlaps =
                 |u: &CriticalInterval| u.branch == c.branch && u.s_start_mm <= c.s_end_mm && c.s_start_mm <= u.s_end_mm;
-            let spec_here = if uncapped.iter().any(overlaps) { &wide } else { spec };
-            stretches.extend(treatments::treat_interval(&axis.branches[c.branch], c, &boundary, pocket, spec_here)?);
+            let widened = uncapped.iter().any(overlaps);
+            let key = (c.branch, c.s_start_mm.to_bits(), c.s_end_mm.to_bits(), widened);
+            if !treated.contains_key(&key) {
+                let spec_here = if widened { &wide } else { spec };
+                let found = treatments::treat_interval(&axis.branches[c.branch], c, &boundary, pocket, spec_here)?;
+                treated.insert(key, found);
+            }
+            stretches.extend(treated[&key].iter().cloned());
         }
         let (air, zcut) = zones(&stretches, r);
         let composed = compose::compose(&base.moves, &stretches, &air, spec)?;
@@ -356,6 +366,10 @@ fn plan_rounds(
         merge_intervals(&mut intervals, more.intervals);
     }
 }
+
+/// An interval's treatment as [`plan_rounds`] keeps it: the branch, the bits of the interval's
+/// ends, and whether its loops may fill the clearance (see [`uncapped_spec`]).
+type TreatedKey = (usize, u64, u64, bool);
 
 /// The spec with no cap on the variable loop radius: loops fill the clearance to the walls
 /// (`ρ = R − r − allowance − gap`), which leaves no band edge inside the pocket.
