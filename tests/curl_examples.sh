@@ -19,13 +19,7 @@ done
 source tests/serve.sh
 
 # Collect the examples: ```sh blocks between the two markers of README.md.
-awk -v out="$TMP/examples.sh" '
-  /<!-- examples:start -->/ { on = 1; next }
-  /<!-- examples:end -->/   { on = 0; next }
-  on && /^```sh$/ { inblock = 1; n++; printf "echo \"--- example %d (README.md line %d)\"\n", n, NR + 1 >> out; next }
-  on && inblock && /^```$/ { inblock = 0; print "echo" >> out; next }
-  on && inblock { print >> out }
-' README.md
+awk -v out="$TMP/examples.sh" -f tests/readme_examples.awk README.md
 COUNT=$(grep -c '^echo "--- example' "$TMP/examples.sh" || true)
 [ "$COUNT" -ge 12 ] || { echo "expected at least 12 README examples, found $COUNT"; exit 1; }
 

@@ -187,8 +187,10 @@ async fn identify(auth: &AuthState, header: Option<&HeaderValue>) -> Result<Call
     };
     let role = key.role().map_err(IntoResponse::into_response)?;
     let per_minute = key.rate_limit_per_minute.unwrap_or(auth.app.config.rate_limit_per_minute);
-    if let Err(wait) = auth.limits.check(key.id, per_minute) {
-        return Err(too_many_requests(wait, per_minute));
+    match auth.limits.check(pool, key.id, per_minute).await {
+        Ok(None) => {}
+        Ok(Some(wait)) => return Err(too_many_requests(wait, per_minute)),
+        Err(e) => return Err(ApiError::from(e).into_response()),
     }
     note_use(pool, &key);
     Ok(Caller::Key { id: key.id, role })

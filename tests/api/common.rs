@@ -2,7 +2,7 @@
 
 use dieplan::service::app::{start, RunningServer};
 use dieplan::service::config::Config;
-use dieplan::service::store::Location;
+use dieplan::service::store::{Location, Pool};
 use reqwest::{header::HeaderMap, Method, StatusCode};
 use serde_json::Value;
 use std::path::PathBuf;
@@ -66,8 +66,23 @@ impl TestApp {
         self.dir
     }
 
+    /// The app's SQLite file (in the SQLite run).
     pub fn database(&self) -> PathBuf {
         db_path(&self.dir)
+    }
+
+    /// The app's database as `--database` takes it: the SQLite file, or in the PostgreSQL
+    /// run the URL of the test's database.
+    pub async fn database_arg(&self) -> String {
+        match database_of(&self.dir).await {
+            Location::Sqlite(path) => path.display().to_string(),
+            Location::Postgres(url) => url,
+        }
+    }
+
+    /// A pool on the app's database, to look at or change its tables behind its back.
+    pub async fn pool(&self) -> Pool {
+        database_pool(&self.dir).await
     }
 
     pub fn url(&self, path: &str) -> String {
@@ -162,6 +177,12 @@ async fn database_of(dir: &TempDir) -> Location {
         }
     };
     Location::Postgres(url)
+}
+
+/// A pool on the database of a test directory (of a stopped app, too), whichever the
+/// backend: its SQL is written for both (`$1` placeholders).
+pub async fn database_pool(dir: &TempDir) -> Pool {
+    dieplan::service::store::open(&database_of(dir).await).await.expect("the test database opens")
 }
 
 /// Asserts a problem document with `status` naming `field`.

@@ -196,9 +196,8 @@ async fn a_shops_edit_of_a_seeded_row_is_marked_and_survives_restarts_and_later_
     assert!(close(&edited.body["spindle_rpm"], 5200.0, 1e-9));
 
     // A later migration corrects seeded rows the documented way (migrations/0001_schema.sql).
-    let db = app.database();
     let app = app.restart_with(|c| c.workers = Some(1)).await;
-    let pool = sqlx::SqlitePool::connect(&format!("sqlite://{}", db.display())).await.unwrap();
+    let pool = app.pool().await;
     let corrected = sqlx::query(
         "UPDATE standard_conditions SET spindle_rpm = 4900 WHERE seed_key LIKE 'conditions:square-10:skd61:%' AND operation IN ('rough_side_cutting', 'spiral_hole_expansion') AND edited = 0",
     )

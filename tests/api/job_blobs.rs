@@ -3,9 +3,9 @@
 //! its own route, and a purge removes everything.
 
 use crate::common::{assert_problem, database_before, TestApp};
+use dieplan::service::store::Pool;
 use reqwest::Method;
 use serde_json::{json, Value};
-use sqlx::SqlitePool;
 
 fn conditions() -> Value {
     json!({"tool_type": "square", "diameter_mm": 10, "operation": "rough_side_cutting"})
@@ -18,12 +18,7 @@ fn feeds() -> Value {
            "stock": {"box": {"x_min": 0, "y_min": 0, "z_min": -5, "x_max": 40, "y_max": 20, "z_max": 0}}})
 }
 
-/// A pool on the app's database file, to look at its tables.
-async fn database(app: &TestApp) -> SqlitePool {
-    SqlitePool::connect(&format!("sqlite://{}", app.database().display())).await.unwrap()
-}
-
-async fn count(pool: &SqlitePool, sql: &str, id: &str) -> i64 {
+async fn count(pool: &Pool, sql: &str, id: &str) -> i64 {
     sqlx::query_scalar(sqlx::AssertSqlSafe(sql.to_string())).bind(id).fetch_one(pool).await.unwrap()
 }
 
@@ -89,7 +84,7 @@ async fn the_list_of_many_jobs_comes_from_their_rows_and_carries_no_blob() {
     let feeds = app.post_wait("/v1/feeds", feeds()).await;
     assert_eq!(feeds.body["status"], "succeeded", "{}", feeds.text);
     // Blobs no list may read: were it to parse them, it would fail.
-    let pool = database(&app).await;
+    let pool = app.pool().await;
     sqlx::query("UPDATE job_blobs SET body = 'not JSON'").execute(&pool).await.unwrap();
     pool.close().await;
 
@@ -118,11 +113,11 @@ async fn a_purge_removes_the_jobs_blobs_programs_and_scene() {
     let a = app.post_wait("/v1/feeds", feeds()).await;
     assert_eq!(a.body["status"], "succeeded", "{}", a.text);
     let id = a.body["id"].as_str().unwrap().to_string();
-    let pool = database(&app).await;
+    let pool = app.pool().await;
     let tables = [
-        "SELECT COUNT(*) FROM job_blobs WHERE job_id = ?",
-        "SELECT COUNT(*) FROM job_programs WHERE job_id = ?",
-        "SELECT COUNT(*) FROM job_scenes WHERE job_id = ?",
+        "SELECT COUNT(*) FROM job_blobs WHERE job_id = $1",
+        "SELECT COUNT(*) FROM job_programs WHERE job_id = $1",
+        "SELECT COUNT(*) FROM job_scenes WHERE job_id = $1",
     ];
     let before: Vec<i64> = futures_counts(&pool, &tables, &id).await;
     assert_eq!(before, vec![3, 1, 1], "input, prepared and result; the program; the scene");
@@ -132,7 +127,7 @@ async fn a_purge_removes_the_jobs_blobs_programs_and_scene() {
     app.stop().await;
 }
 
-async fn futures_counts(pool: &SqlitePool, tables: &[&str], id: &str) -> Vec<i64> {
+async fn futures_counts(pool: &Pool, tables: &[&str], id: &str) -> Vec<i64> {
     let mut counts = Vec::new();
     for sql in tables {
         counts.push(count(pool, sql, id).await);

@@ -1,6 +1,6 @@
 //! Jobs: create, wait, poll, list, cancel, persistence across restarts.
 
-use crate::common::{assert_problem, TestApp};
+use crate::common::{assert_problem, database_pool, TestApp};
 use serde_json::json;
 
 fn conditions_job() -> serde_json::Value {
@@ -68,11 +68,10 @@ async fn a_job_left_running_by_a_crash_is_queued_again_and_finishes_at_the_next_
     let app = TestApp::start_with(|c| c.workers = Some(0)).await;
     let a = app.post("/v1/jobs", conditions_job()).await;
     let id = a.body["id"].as_str().unwrap().to_string();
-    let db = app.database();
     let dir = app.stop().await;
     // Simulate a crash in the middle of the job.
-    let pool = sqlx::SqlitePool::connect(&format!("sqlite://{}", db.display())).await.unwrap();
-    sqlx::query("UPDATE jobs SET status = 'running', attempts = 1, progress = 0.5 WHERE id = ?")
+    let pool = database_pool(&dir).await;
+    sqlx::query("UPDATE jobs SET status = 'running', attempts = 1, progress = 0.5 WHERE id = $1")
         .bind(&id)
         .execute(&pool)
         .await

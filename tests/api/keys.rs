@@ -194,9 +194,9 @@ async fn the_service_refuses_to_listen_beyond_loopback_without_a_key_unless_told
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_keys_command_makes_a_key_the_service_accepts() {
     let app = TestApp::start_with(|c| c.workers = Some(0)).await;
+    let database = app.database_arg().await;
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_dieplan"))
-        .args(["keys", "create", "--role", "planner", "--name", "CAM 3", "--database"])
-        .arg(app.database())
+        .args(["keys", "create", "--role", "planner", "--name", "CAM 3", "--database", &database])
         .output()
         .expect("dieplan runs");
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
@@ -205,8 +205,7 @@ async fn the_keys_command_makes_a_key_the_service_accepts() {
     assert_problem(&app.get("/v1/materials").await, 401, None);
     assert_eq!(app.send_as(&key, Method::GET, "/v1/materials", None).await.status, 200);
     let list = std::process::Command::new(env!("CARGO_BIN_EXE_dieplan"))
-        .args(["keys", "list", "--database"])
-        .arg(app.database())
+        .args(["keys", "list", "--database", &database])
         .output()
         .unwrap();
     let listed = String::from_utf8(list.stdout).unwrap();

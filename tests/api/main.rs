@@ -26,6 +26,7 @@ mod postgres;
 mod postgres_backend;
 mod postgres_seed;
 mod programs;
+mod rate_limits;
 mod recalibration;
 mod replicas;
 mod restarts;

@@ -1,7 +1,7 @@
 //! Retention: a finished job can be purged with its data, old finished jobs are purged
 //! after `--job-retention-days`, and the database file shrinks afterwards.
 
-use crate::common::{assert_problem, TestApp};
+use crate::common::{assert_problem, database_pool, TestApp};
 use serde_json::json;
 use std::time::Duration;
 
@@ -54,11 +54,10 @@ async fn finished_jobs_older_than_the_retention_are_purged_and_newer_ones_kept()
     let queued = app.post("/v1/conditions", conditions).await.body["id"].as_str().unwrap().to_string();
     app.delete(&format!("/v1/jobs/{old}")).await;
     app.delete(&format!("/v1/jobs/{recent}")).await;
-    let db = app.database();
     let dir = app.stop().await;
-    let pool = sqlx::SqlitePool::connect(&format!("sqlite://{}", db.display())).await.unwrap();
+    let pool = database_pool(&dir).await;
     for (id, days) in [(&old, 31), (&recent, 29), (&queued, 400)] {
-        sqlx::query("UPDATE jobs SET finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now', ?), created_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now', ?) WHERE id = ?")
+        sqlx::query("UPDATE jobs SET finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now', $1), created_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now', $2) WHERE id = $3")
             .bind(format!("-{days} days"))
             .bind(format!("-{days} days"))
             .bind(id)
@@ -66,7 +65,7 @@ async fn finished_jobs_older_than_the_retention_are_purged_and_newer_ones_kept()
             .await
             .unwrap();
     }
-    sqlx::query("UPDATE jobs SET finished_at = NULL WHERE id = ?").bind(&queued).execute(&pool).await.unwrap();
+    sqlx::query("UPDATE jobs SET finished_at = NULL WHERE id = $1").bind(&queued).execute(&pool).await.unwrap();
     pool.close().await;
 
     let app = TestApp::start_in(dir, |c| c.workers = Some(0)).await;

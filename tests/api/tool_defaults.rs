@@ -154,7 +154,7 @@ async fn a_default_tool_moved_to_another_size_hands_its_default_on_and_takes_non
 async fn the_database_itself_refuses_two_defaults_of_one_type_and_diameter() {
     let app = TestApp::start().await;
     assert_eq!(app.post("/v1/tools", shop_square_d10()).await.status, 201);
-    let pool = sqlx::SqlitePool::connect(&format!("sqlite://{}", app.database().display())).await.unwrap();
+    let pool = app.pool().await;
     let second = sqlx::query("UPDATE tools SET is_default = 1 WHERE name = 'shop square D10 z4'").execute(&pool).await;
     assert!(second.is_err(), "a second default must violate the unique index");
     pool.close().await;

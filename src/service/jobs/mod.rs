@@ -4,9 +4,11 @@
 pub mod analysis;
 pub mod analysis_result;
 pub mod conditions;
+pub mod control;
 pub mod costing;
 pub mod costing_result;
 pub mod drawings;
+pub mod execution;
 pub mod feeds;
 pub mod feeds_result;
 pub mod inputs;
