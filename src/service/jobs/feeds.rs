@@ -507,7 +507,7 @@ pub fn run(
             );
         }
         result.warnings.extend(edited.warnings.iter().cloned());
-        result.edit = Some(edited.into());
+        result.edit = Some(edited);
     }
     Ok((result, program, scene))
 }
