@@ -2,6 +2,7 @@
 //! (RFC 9457) naming the field and the reason. 5xx details are logged, never sent.
 
 use crate::core::CoreError;
+use crate::service::request_fields::request_field;
 use axum::http::{header, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
 use serde::{Deserialize, Serialize};
@@ -145,10 +146,12 @@ impl IntoResponse for ApiError {
 }
 
 impl From<CoreError> for ApiError {
+    /// The core's refusal of a field, named as the request names it
+    /// ([`request_field`]).
     fn from(err: CoreError) -> Self {
         match err {
             CoreError::InvalidInput { field, reason } | CoreError::Unsolvable { field, reason } => {
-                ApiError::field(field, reason)
+                ApiError::field(request_field(&field), reason)
             }
             CoreError::Cancelled => ApiError::Conflict("the computation was cancelled".to_string()),
         }

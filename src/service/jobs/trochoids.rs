@@ -234,7 +234,7 @@ pub async fn prepare(pool: &Pool, request: TrochoidsRequest) -> Result<Trochoids
     let checked = prepared.clone();
     tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
         let (pocket, spec, path) = build(&request, &checked)?;
-        check_plan(&pocket, &spec, path.as_ref()).map_err(request_field)?;
+        check_plan(&pocket, &spec, path.as_ref())?;
         Ok(())
     })
     .await
@@ -263,22 +263,6 @@ fn within_machine(
         return Err(ApiError::field(format!("{name}.fz_mm"), reason));
     }
     Ok(())
-}
-
-/// The core's error under the request's name of its field (`z_bottom_mm` is `z_bottom`).
-fn request_field(e: CoreError) -> ApiError {
-    match e {
-        CoreError::InvalidInput { field, reason } | CoreError::Unsolvable { field, reason } => {
-            let renamed = match field.as_str() {
-                "z_top_mm" => "z_top",
-                "z_bottom_mm" => "z_bottom",
-                "safe_z_mm" => "safe_z",
-                other => other,
-            };
-            ApiError::field(renamed, reason)
-        }
-        other => other.into(),
-    }
 }
 
 type Built = (Pocket, InsertionSpec, Option<crate::core::toolpath::Toolpath>);
