@@ -16,7 +16,7 @@ const UM_PER_MM: f64 = 1000.0;
 const MM_PER_M: f64 = 1000.0;
 
 /// The standard conditions of one operation for one tool.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, utoipa::ToSchema)]
 pub struct CuttingConditions {
     /// Spindle speed S, min⁻¹.
     pub spindle_rpm: f64,

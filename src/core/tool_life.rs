@@ -10,7 +10,7 @@ use serde::Serialize;
 const MM_PER_M: f64 = 1000.0;
 
 /// A tool's life in a material and what shortens it.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct ToolLifeModel {
     /// Machined length at the standard straight conditions until worn, m.
     pub life_m: f64,
@@ -131,7 +131,7 @@ impl WearCut {
 /// surface is traced by the cutting point: on a concave arc it is `R/(R − r)` times the
 /// centre path (twice at R/r = 2), on a straight cut equal, on a convex arc shorter
 /// (MODEL.md §2 and §9).
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, utoipa::ToSchema)]
 pub struct CutLength {
     pub centre_path_m: f64,
     pub machined_surface_m: f64,

@@ -2,6 +2,7 @@
 //! (RFC 9457) naming the field and the reason. 5xx details are logged, never sent.
 
 use crate::core::CoreError;
+use crate::service::request_fields::request_field;
 use axum::http::{header, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
 use serde::{Deserialize, Serialize};
@@ -145,10 +146,12 @@ impl IntoResponse for ApiError {
 }
 
 impl From<CoreError> for ApiError {
+    /// The core's refusal of a field, named as the request names it
+    /// ([`request_field`]).
     fn from(err: CoreError) -> Self {
         match err {
             CoreError::InvalidInput { field, reason } | CoreError::Unsolvable { field, reason } => {
-                ApiError::field(field, reason)
+                ApiError::field(request_field(&field), reason)
             }
             CoreError::Cancelled => ApiError::Conflict("the computation was cancelled".to_string()),
         }
@@ -201,8 +204,13 @@ impl Validator {
         Self::default()
     }
 
+    /// Refuses `field` for `reason`. A field is named once, with its first fault (a
+    /// negative cell is not also said to be out of range).
     pub fn fail(&mut self, field: impl Into<String>, reason: impl Into<String>) {
-        self.errors.push(FieldError { field: field.into(), reason: reason.into() });
+        let field = field.into();
+        if !self.errors.iter().any(|e| e.field == field) {
+            self.errors.push(FieldError { field, reason: reason.into() });
+        }
     }
 
     pub fn check(&mut self, ok: bool, field: &str, reason: impl Into<String>) {
@@ -261,6 +269,11 @@ impl Validator {
         !self.errors.is_empty()
     }
 
+    /// The faults found, in order.
+    pub fn into_errors(self) -> Vec<FieldError> {
+        self.errors
+    }
+
     pub fn finish(self) -> Result<(), ApiError> {
         if self.errors.is_empty() {
             Ok(())
@@ -313,6 +326,16 @@ mod tests {
         assert_eq!(p.errors.len(), 2);
         assert!(p.detail.starts_with("diameter_mm: must be"));
         assert!(p.detail.ends_with("(and 1 more)"));
+    }
+
+    #[test]
+    fn a_field_is_named_once_with_its_first_fault() {
+        let mut v = Validator::new();
+        v.positive("cell_mm", -1.0);
+        v.within("cell_mm", -1.0, 1e-3, 5.0);
+        let Err(ApiError::Validation(errors)) = v.finish() else { panic!("no errors") };
+        assert_eq!(errors.len(), 1);
+        assert_eq!(errors[0].reason, "must be a finite number > 0, got -1");
     }
 
     #[test]

@@ -64,26 +64,44 @@ pub const MAX_FIELD_ERRORS: usize = 50;
 /// every refused field at once: after each refusal the field is set aside and the rest read
 /// again, until the value reads, a required field is missing, a refusal repeats or is
 /// inside a list (whose later items would be misnamed), or [`MAX_FIELD_ERRORS`] are found.
-pub fn from_value<T: DeserializeOwned>(mut value: serde_json::Value) -> Result<T, ApiError> {
+pub fn from_value<T: DeserializeOwned>(value: serde_json::Value) -> Result<T, ApiError> {
+    match read_all(value) {
+        Read { value: Some(read), refused } if refused.is_empty() => Ok(read),
+        Read { refused, .. } => Err(ApiError::Validation(refused)),
+    }
+}
+
+/// What [`read_all`] made of a document.
+pub struct Read<T> {
+    /// The document as read, with every refused member set aside (`None` when it does not
+    /// read even so: a required field is missing or refused, or the reading stopped).
+    pub value: Option<T>,
+    /// Every refused field.
+    pub refused: Vec<FieldError>,
+}
+
+/// Reads `value` as a `T` like [`from_value`], and also returns what the rest of the
+/// document reads as once the refused members are set aside, so that the values of the
+/// fields that did read can be checked as well and every fault reported at once.
+pub fn read_all<T: DeserializeOwned>(mut value: serde_json::Value) -> Read<T> {
     whole_numbers_as_integers(&mut value);
-    let mut errors: Vec<FieldError> = Vec::new();
+    let mut refused: Vec<FieldError> = Vec::new();
     loop {
         let refusal = match serde_path_to_error::deserialize::<_, T>(&value) {
-            Ok(read) if errors.is_empty() => return Ok(read),
-            Ok(_) => break,
+            Ok(read) => return Read { value: Some(read), refused },
             Err(e) => e,
         };
         let error = field_error(refusal.path().to_string(), &refusal.inner().to_string());
-        if errors.iter().any(|e| e.field == error.field) {
+        if refused.iter().any(|e| e.field == error.field) {
             break;
         }
         let missing = error.reason == REQUIRED;
-        errors.push(error);
-        if missing || errors.len() >= MAX_FIELD_ERRORS || !set_aside(&mut value, refusal.path()) {
+        refused.push(error);
+        if missing || refused.len() >= MAX_FIELD_ERRORS || !set_aside(&mut value, refusal.path()) {
             break;
         }
     }
-    Err(ApiError::Validation(errors))
+    Read { value: None, refused }
 }
 
 /// What a missing field is said to be.

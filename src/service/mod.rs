@@ -19,6 +19,7 @@ pub mod openapi;
 pub mod parameter_docs;
 pub mod rate_limit;
 pub mod reasons;
+pub mod request_fields;
 pub mod resources;
 pub mod retention;
 pub mod schemas;

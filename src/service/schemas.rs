@@ -1,5 +1,7 @@
-//! OpenAPI schemas of the core's plain enums, written here so the core stays free of
-//! utoipa.
+//! OpenAPI schemas of the core's plain enums that requests name (tool type, operation,
+//! strategy, objective, cut direction, coolant) and of the shortfall kind: each lists its
+//! values with what they mean, in one description written for the API. The core's report
+//! types derive theirs (`utoipa::ToSchema`, descriptions from their doc comments).
 
 use crate::core::feed::collect::ShortfallKind;
 use crate::core::feed::objective::Objective;

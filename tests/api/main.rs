@@ -34,4 +34,5 @@ mod retention;
 mod schemathesis;
 mod tool_defaults;
 mod trochoids;
+mod validation;
 mod web;

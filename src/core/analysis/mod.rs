@@ -84,8 +84,9 @@ pub struct AnalysisSpec {
     pub series_points: usize,
 }
 
-/// One z slice of the simulated stock.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+/// One z slice of the simulated stock. The slices follow the z levels the program cuts
+/// (at most 16; where levels are merged, the layers the program cuts flat stay exact).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, utoipa::ToSchema)]
 pub struct SliceSummary {
     pub z_top: f64,
     pub z_bottom: f64,
@@ -94,7 +95,7 @@ pub struct SliceSummary {
 }
 
 /// The figures of a whole analysis.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, utoipa::ToSchema)]
 pub struct Summary {
     pub samples: usize,
     pub sample_spacing_mm: f64,
@@ -106,21 +107,24 @@ pub struct Summary {
     /// Length of feed moves in the air, mm.
     pub air_cut_length_mm: f64,
     pub rapid_length_mm: f64,
-    /// Feed moves at their programmed feeds plus rapids at the rapid rate, min.
+    /// Feed moves at their programmed feeds plus rapids at the machine's rapid rate, min.
     pub time_at_programmed_feeds_min: f64,
     pub removed_volume_mm3: f64,
+    /// Engagement angle α, deg.
     pub alpha_deg: Stats,
+    /// Maximum undeformed chip thickness at the programmed feed, µm.
     pub t_m_um: Stats,
+    /// Predicted XY force, N (null without a force model).
     pub force_n: Option<Stats>,
     /// Cut length per 10° of engagement.
     pub alpha_histogram: Vec<HistogramBin>,
     pub alpha_limit_deg: f64,
     pub critical_length_mm: f64,
-    /// Where the forces rest on the force model outside its experiments (`None` without
-    /// a force model).
+    /// Where the forces leave the force model's experimental domain, and how far (null
+    /// without a force model).
     pub outside_model: Option<OutsideModel>,
-    /// Where the predicted force exceeds 3 × the tool's standard force (`None` without a
-    /// force model).
+    /// Where the predicted force exceeds 3 × the tool's standard force, by line (null
+    /// without a force model).
     pub force_overload: Option<ForceOverload>,
     pub warnings: Vec<String>,
 }

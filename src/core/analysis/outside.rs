@@ -7,6 +7,7 @@ use super::report::PathPoint;
 use crate::core::force_model::{ForceModel, DESIGN_REGION_CODED_RADIUS};
 use serde::Serialize;
 use std::collections::HashMap;
+use utoipa::ToSchema;
 
 /// A predicted force above this many times the tool's standard force F* is an overload
 /// that a warning names by line (**assumed**: three times the force the tool's life was
@@ -16,7 +17,7 @@ pub const OVERLOAD_FORCE_FACTOR: f64 = 3.0;
 pub const MAX_OVERLOAD_LINES: usize = 20;
 
 /// The smallest and largest value of a quantity.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
 pub struct Extent {
     pub min: f64,
     pub max: f64,
@@ -48,8 +49,11 @@ impl Default for Extent {
     }
 }
 
-/// Where the path's force predictions leave the force model's experimental domain.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// Where the forces rest on the force model outside its experiments: the
+/// central-composite designs of seed 001 reach a coded radius of √2 (MODEL.md §3). The
+/// forces of those samples, and the tool wear and cost computed from them, are
+/// extrapolations.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct OutsideModel {
     /// Cutting length whose force rests on the model outside the design region
     /// (|X| > √2), mm.
@@ -61,39 +65,41 @@ pub struct OutsideModel {
     pub max_coded_radius: f64,
     /// √2: the axial points of the experiments' central-composite design.
     pub design_coded_radius: f64,
-    /// Coded chip thickness X1 over the cutting samples.
+    /// Coded chip thickness X1 = (t_m − t0)/δt over the cutting samples.
     pub x1: Extent,
-    /// Coded arc length X2 over the cutting samples.
+    /// Coded arc length X2 = (L − L0)/δL over the cutting samples.
     pub x2: Extent,
-    /// Chip thickness over the cutting samples, µm, and the experiments' range.
+    /// Chip thickness over the cutting samples, µm.
     pub t_m_um: Extent,
+    /// The experiments' chip thickness, t0 ± √2·δt, µm.
     pub design_t_m_um: Extent,
-    /// Engagement arc length over the cutting samples, mm, and the experiments' range.
+    /// Engagement arc length over the cutting samples, mm.
     pub arc_length_mm: Extent,
+    /// The experiments' arc length, L0 ± √2·δL, mm.
     pub design_arc_length_mm: Extent,
     /// The sample furthest outside.
     pub furthest: Option<PathPoint>,
 }
 
-/// Where the predicted force exceeds [`OVERLOAD_FORCE_FACTOR`] × the standard force.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// Where the predicted force exceeds 3 × the tool's standard force F* (the tool may break
+/// there).
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct ForceOverload {
     /// F*: the model's force at its design centre, the standard cut (MODEL.md §3), N.
     pub standard_force_n: f64,
-    /// [`OVERLOAD_FORCE_FACTOR`] × F*, N.
+    /// 3 × F*, N.
     pub threshold_n: f64,
     /// Cutting length above the threshold, mm.
     pub length_mm: f64,
     pub max_force_n: f64,
-    /// The lines above the threshold with their largest force, largest first (at most
-    /// [`MAX_OVERLOAD_LINES`]).
+    /// The lines above the threshold with their largest force, largest first (at most 20).
     pub lines: Vec<OverloadLine>,
     /// How many lines are above the threshold in all.
     pub line_count: usize,
 }
 
 /// One overloaded NC line.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
 pub struct OverloadLine {
     pub line: u32,
     pub max_force_n: f64,

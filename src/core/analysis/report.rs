@@ -6,6 +6,7 @@ use super::engine::SampleResult;
 use super::outside::{ForceOverload, ModelDomain, OutsideModel};
 use crate::core::force_model::ForceModel;
 use serde::Serialize;
+use utoipa::ToSchema;
 
 /// Width of one bin of the engagement histogram, deg.
 pub const HISTOGRAM_BIN_DEG: f64 = 10.0;
@@ -18,18 +19,20 @@ pub const FULL_SLOT_DEG: f64 = 175.0;
 pub const CORNER_LENGTH_DIAMETERS: f64 = 2.0;
 
 /// A point of the path.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
 pub struct PathPoint {
     /// Path distance from the start, mm.
     pub s_mm: f64,
+    /// NC line number.
     pub line: u32,
     pub x: f64,
     pub y: f64,
     pub z: f64,
 }
 
-/// What kind of overload a critical region is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+/// What kind of overload a critical region is: full slotting (α reaches 175°), an inner
+/// corner (at most two diameters long) or a narrow region (longer).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, ToSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum RegionKind {
     FullSlotting,
@@ -61,7 +64,7 @@ impl RegionKind {
 }
 
 /// A run of samples with α above the limit.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct CriticalRegion {
     pub kind: RegionKind,
     pub start: PathPoint,
@@ -74,7 +77,7 @@ pub struct CriticalRegion {
 }
 
 /// One bin of the engagement histogram: path length cut with α in [from, to).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
 pub struct HistogramBin {
     pub from_deg: f64,
     pub to_deg: f64,
@@ -82,7 +85,7 @@ pub struct HistogramBin {
 }
 
 /// Length-weighted statistics of one quantity over the cutting samples.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, ToSchema)]
 pub struct Stats {
     pub max: f64,
     pub mean: f64,
@@ -115,8 +118,9 @@ impl Accumulator {
     }
 }
 
-/// Per-sample series, downsampled.
-#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+/// Per-sample values downsampled by path distance (each point is the peak-α sample of
+/// its stretch), with the NC line of every point.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, ToSchema)]
 pub struct Series {
     pub s_mm: Vec<f64>,
     pub line: Vec<u32>,
@@ -132,8 +136,9 @@ pub struct Series {
     pub ad_mm: Vec<f64>,
     pub feed_mm_min: Vec<f64>,
     pub curvature_radius_mm: Vec<Option<f64>>,
-    /// Centre of curvature of the tool-centre path (null on straight stretches and at
-    /// sharp corners).
+    /// Centre of curvature `[x, y]` of the tool-centre path (null on straight stretches
+    /// and at sharp corners).
+    #[schema(value_type = Vec<Option<Vec<f64>>>)]
     pub curvature_center: Vec<Option<(f64, f64)>>,
     /// Turn direction: +1 left (counter-clockwise), −1 right, 0 straight.
     pub turn: Vec<i8>,

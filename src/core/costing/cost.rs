@@ -1,13 +1,13 @@
 //! The cost of a program (seed 002, Eq. 4): `C = c_m · T_m + c_t · L_t / L_f`.
 
 use crate::core::CoreError;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Minutes per hour.
 const MIN_PER_HOUR: f64 = 60.0;
 
 /// The shop's rates.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Rates {
     /// c_m: machine and operator, per hour.
     pub machine_rate_per_hour: f64,
@@ -17,9 +17,11 @@ pub struct Rates {
 }
 
 /// A cost and its two parts, in the rates' currency.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, utoipa::ToSchema)]
 pub struct Cost {
+    /// c_m · T_m.
     pub machine: f64,
+    /// c_t · L_t / L_f.
     pub tool: f64,
     pub total: f64,
     pub currency: String,

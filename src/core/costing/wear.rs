@@ -11,6 +11,7 @@ use crate::core::tool_life::{machined_surface_mm, Consumption, ToolLifeModel, We
 use crate::core::CoreError;
 use serde::Serialize;
 use std::collections::HashMap;
+use utoipa::ToSchema;
 
 /// The lines that wear the tool most are listed, at most this many.
 pub const MAX_WEAR_LINES: usize = 20;
@@ -18,7 +19,7 @@ pub const MAX_WEAR_LINES: usize = 20;
 const MAX_ALPHA_DEG: f64 = 180.0;
 
 /// Wear spent on one NC line.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
 pub struct LineWear {
     pub line: u32,
     /// Share of the path's wear, 0..1.
@@ -29,7 +30,7 @@ pub struct LineWear {
 }
 
 /// Wear spent at engagement angles in [from, to).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
 pub struct AlphaWear {
     pub from_deg: f64,
     pub to_deg: f64,

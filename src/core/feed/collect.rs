@@ -56,8 +56,8 @@ pub enum ShortfallKind {
     BelowMinimumFeed,
 }
 
-/// A run of samples where the target force could not be held.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// A run of the path where the target force cannot be held.
+#[derive(Debug, Clone, PartialEq, Serialize, utoipa::ToSchema)]
 pub struct Shortfall {
     pub kind: ShortfallKind,
     pub start: PathPoint,
@@ -66,14 +66,21 @@ pub struct Shortfall {
     pub max_alpha_deg: f64,
 }
 
-/// Path length per reason, mm.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+/// Path length by what set the feed, mm.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, utoipa::ToSchema)]
 pub struct ReasonLengths {
+    /// The strategy's feed, within the limits.
     pub target_mm: f64,
+    /// Capped at the maximum feed.
     pub clamped_max_mm: f64,
+    /// Raised to the minimum feed: the force stays above the target.
     pub clamped_min_mm: f64,
+    /// No feed reaches the target (constant_force: needs a trochoid or a z-cut
+    /// division), or none keeps the force under the limit (min_cost, min_time).
     pub infeasible_mm: f64,
+    /// Feed moves in the air, at the air-cut feed.
     pub air_mm: f64,
+    /// Kept at the programmed feed (plunges, no spindle speed).
     pub kept_mm: f64,
 }
 

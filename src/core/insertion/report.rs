@@ -22,7 +22,7 @@ const MAX_MOVES_IN_WARNING: usize = 8;
 const COVERAGE_TOLERANCE_CELLS: f64 = 2.0;
 
 /// What a region got.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, utoipa::ToSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum TreatmentKind {
     /// The contour-parallel (base) path as it is, trimmed where the trochoids cut first.
@@ -36,12 +36,12 @@ pub enum TreatmentKind {
     Opening,
 }
 
-/// One treatment and its figures over all levels.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// What one region got (seed 004 §2.2–2.3) and what it removes, over all levels.
+#[derive(Debug, Clone, PartialEq, Serialize, utoipa::ToSchema)]
 pub struct Treatment {
     pub kind: TreatmentKind,
     /// The medial-axis branch and the stretch of it (arc length from its first point, mm),
-    /// walked from `s_from_mm` to `s_to_mm`; `None` for the kept path.
+    /// walked from `s_from_mm` to `s_to_mm`; null for the kept path.
     pub branch: Option<usize>,
     pub s_from_mm: Option<f64>,
     pub s_to_mm: Option<f64>,

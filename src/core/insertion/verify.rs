@@ -23,12 +23,19 @@ pub const GOUGE_TOLERANCE_MM: f64 = 1e-3;
 pub const GOUGE_STEP_MM: f64 = 0.1;
 
 /// Where a check failed.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, utoipa::ToSchema)]
 pub struct Spot {
+    /// mm.
+    #[serde(rename = "x")]
     pub x_mm: f64,
+    /// mm.
+    #[serde(rename = "y")]
     pub y_mm: f64,
+    /// mm.
+    #[serde(rename = "z")]
     pub z_mm: f64,
     /// The program's move (1-based) there.
+    #[serde(rename = "move_index")]
     pub line: u32,
     /// α (deg) for an overload, the wall margin (mm, negative) for a gouge.
     pub value: f64,
@@ -71,7 +78,7 @@ impl Overload {
 }
 
 /// The engagement of one kind of sample.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, utoipa::ToSchema)]
 pub struct EngagementCheck {
     pub samples: usize,
     pub max_alpha_deg: f64,
@@ -89,8 +96,8 @@ impl EngagementCheck {
     }
 }
 
-/// The result of the checks.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// The checks of the new path by the full simulation.
+#[derive(Debug, Clone, PartialEq, Serialize, utoipa::ToSchema)]
 pub struct Verification {
     pub alpha_limit_deg: f64,
     /// Horizontal cutting samples outside the z-cut regions: must have no overload.
@@ -108,7 +115,8 @@ pub struct Verification {
     pub first_overload: Option<Spot>,
     /// Stretches of overloaded samples of the full-depth moves, outside the z-cut regions or
     /// crossing them, in program order (at most [`MAX_LISTED_OVERLOADS`]), and how many
-    /// there are.
+    /// there are (reported with the lines of the written program).
+    #[serde(skip)]
     pub overloads: Vec<Overload>,
     pub overload_stretches: usize,
     /// Test points where the tool comes closer to a wall than `r + allowance`.
@@ -118,6 +126,8 @@ pub struct Verification {
     pub first_gouge: Option<Spot>,
     /// Area the tool could reach but nothing removed, mm².
     pub uncleared_area_mm2: f64,
+    /// A point of the uncleared area (named in the candidate's reason).
+    #[serde(skip)]
     pub uncleared_at: Option<(f64, f64)>,
     /// `true` when all three checks pass.
     pub passed: bool,

@@ -19,7 +19,7 @@ pub struct AxisPoint {
 }
 
 /// What a node is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, utoipa::ToSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum NodeKind {
     /// Degree 1: a branch ends here (in a convex corner, or at the centre of an arc).

@@ -27,7 +27,7 @@ pub const CLASS_C_RATIO: f64 = 1.1;
 const MIN_INTERVAL_MM: f64 = 1e-9;
 
 /// The machining strategy class of a stretch of the medial axis (seed 004 §2.3).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, utoipa::ToSchema)]
 pub enum RadiusClass {
     /// R/r ≥ a: keep the contour-parallel paths.
     A,
@@ -38,7 +38,7 @@ pub enum RadiusClass {
 }
 
 /// One stretch of a branch in one class, by arc length from the branch's first point.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, utoipa::ToSchema)]
 pub struct ClassInterval {
     /// The class.
     pub class: RadiusClass,

@@ -7,8 +7,8 @@ use super::axis::{AxisBranch, MedialAxis};
 use crate::core::geometry::Point;
 use serde::Serialize;
 
-/// An overloaded stretch of one branch.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// A stretch of a branch where the base path overloads the tool.
+#[derive(Debug, Clone, PartialEq, Serialize, utoipa::ToSchema)]
 pub struct CriticalInterval {
     pub branch: usize,
     /// Arc length along the branch from its first point, mm.

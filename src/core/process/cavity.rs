@@ -25,7 +25,7 @@ impl CavityLayer {
 }
 
 /// How a layer is cut (seed 004 Table 1, MODEL.md §8).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, utoipa::ToSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum LayerRole {
     /// Rough side cutting at the full axial depth.

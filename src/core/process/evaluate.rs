@@ -22,8 +22,10 @@ use serde::Serialize;
 /// Seconds per minute.
 const S_PER_MIN: f64 = 60.0;
 
-/// Figures of a part of the job (a step of a layer, a layer, or the whole).
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+/// Lengths, times and tool consumption of a part of the job (a step of a layer, a layer,
+/// or the whole).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, utoipa::ToSchema)]
+#[schema(as = PlanFigures)]
 pub struct Figures {
     /// Length of the feed moves, mm.
     pub feed_length_mm: f64,
@@ -50,7 +52,7 @@ impl Figures {
 }
 
 /// The figures of one step of one layer.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, utoipa::ToSchema)]
 pub struct StepFigures {
     pub step: Step,
     #[serde(flatten)]
@@ -58,8 +60,10 @@ pub struct StepFigures {
 }
 
 /// One layer's figures.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, utoipa::ToSchema)]
 pub struct LayerFigures {
+    /// The layer's index (reported by its [`super::LayerReport`]).
+    #[serde(skip)]
     pub index: usize,
     #[serde(flatten)]
     pub figures: Figures,

@@ -14,7 +14,7 @@ use serde::Serialize;
 pub const UNCLEARED_TOLERANCE_MM2: f64 = 1.0;
 
 /// What became of a candidate.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, utoipa::ToSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum CandidateStatus {
     /// Planned and the cheapest: the job's tool.
@@ -32,8 +32,8 @@ pub enum CandidateStatus {
     ScreenedOut,
 }
 
-/// One row of the table of candidates.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// One row of the table of candidates: a candidate tool and what became of it.
+#[derive(Debug, Clone, PartialEq, Serialize, utoipa::ToSchema)]
 pub struct CandidateReport {
     pub name: String,
     pub diameter_mm: f64,
@@ -43,6 +43,7 @@ pub struct CandidateReport {
     pub unreachable_area_mm2: f64,
     /// At the standard force, before tuning.
     pub figures: Option<Figures>,
+    /// C = c_m·T_m + c_t·L_t/L_f (seed 002 Eq. 4) with the kinematic time, and its parts.
     pub cost: Option<f64>,
     pub machine_cost: Option<f64>,
     pub tool_cost: Option<f64>,
@@ -52,7 +53,8 @@ pub struct CandidateReport {
     pub openings: usize,
     /// Largest engagement left outside the z-cut regions, deg.
     pub max_alpha_deg: Option<f64>,
-    /// The cost estimated at the screening's coarse sample spacing (at the standard force).
+    /// The cost estimated at the screening's coarse sample spacing, at the standard force
+    /// (every candidate screened when more than one can reach the cavity).
     pub estimated_cost: Option<f64>,
     /// The screening's sample spacing, mm.
     pub screening_spacing_mm: Option<f64>,
@@ -117,11 +119,13 @@ impl CandidateReport {
 }
 
 /// One layer of the chosen plan.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, utoipa::ToSchema)]
 pub struct LayerReport {
     pub index: usize,
     pub role: LayerRole,
+    #[serde(rename = "z_top")]
     pub z_top_mm: f64,
+    #[serde(rename = "z_bottom")]
     pub z_bottom_mm: f64,
     /// The layer above whose plan this one repeats lower down, if any.
     pub copy_of: Option<usize>,
@@ -132,10 +136,12 @@ pub struct LayerReport {
     /// Engagement of the contour-parallel path before and after the treatments, deg.
     pub base_max_alpha_deg: f64,
     pub max_alpha_deg: f64,
+    /// No overload outside the z-cut regions, no gouge, nothing reachable left.
     pub verification_passed: bool,
     /// The stretches of samples of the full-depth moves above the limit (outside the z-cut
     /// regions, or short spikes where the wall pass crosses them), with the layer program's
-    /// moves, and how many.
+    /// moves, and how many (reported with the lines of the written program).
+    #[serde(skip)]
     pub overloads: Vec<Overload>,
     pub overload_stretches: usize,
     pub gouges: usize,
@@ -145,7 +151,7 @@ pub struct LayerReport {
 }
 
 /// The proposed plan against the baseline.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, utoipa::ToSchema)]
 pub struct Comparison {
     /// Proposed over baseline.
     pub kinematic_time_ratio: f64,

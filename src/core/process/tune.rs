@@ -17,7 +17,7 @@ use serde::Serialize;
 pub const MAX_TUNING_EVALUATIONS: usize = 6;
 
 /// How the tuning ended.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, utoipa::ToSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum TuningOutcome {
     /// The consumption is within the tolerance of the target.
@@ -33,8 +33,8 @@ pub enum TuningOutcome {
     Off,
 }
 
-/// What the tuning did.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+/// The tuning of the chosen tool (seed 002 §2.6).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, utoipa::ToSchema)]
 pub struct Tuning {
     pub outcome: TuningOutcome,
     pub target_consumption: f64,

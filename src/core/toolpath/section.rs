@@ -7,7 +7,7 @@
 use serde::{Deserialize, Serialize};
 
 /// A step of the process (seed 004 Table 1).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, utoipa::ToSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Step {
     /// The approach holes: helical entries and the full circle at their bottom (step 1).

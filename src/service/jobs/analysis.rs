@@ -55,9 +55,8 @@ pub struct AnalysisRequest {
     pub series_points: usize,
 }
 
-/// Checks the request (parsing the program and the stock) and resolves it.
-pub async fn prepare(pool: &Pool, request: AnalysisRequest) -> Result<PathSetup, ApiError> {
-    let mut v = Validator::new();
+/// Checks the values of the request that need no database.
+pub fn check_request(request: &AnalysisRequest, v: &mut Validator) {
     if let Some(a) = request.alpha_limit_deg {
         v.above_and_at_most("alpha_limit_deg", a, 0.0, MAX_ALPHA_LIMIT_DEG);
     }
@@ -77,8 +76,10 @@ pub async fn prepare(pool: &Pool, request: AnalysisRequest) -> Result<PathSetup,
         v.within("cell_mm", c, 1e-3, 5.0);
     }
     v.check(request.series_points <= MAX_SERIES_POINTS, "series_points", format!("at most {MAX_SERIES_POINTS}"));
-    v.finish()?;
+}
 
+/// Parses the program and the stock of a checked request and resolves it.
+pub async fn prepare(pool: &Pool, request: AnalysisRequest) -> Result<PathSetup, ApiError> {
     let Resolved { prepared, .. } = resolve(pool, &request.path_job()).await?;
     // Parse and check everything now, off the async runtime, so that bad input is a 4xx
     // at submission and never a job that fails later.
@@ -146,6 +147,10 @@ impl JobKindSpec for Analysis {
     type Request = AnalysisRequest;
     type Prepared = PathSetup;
     type Output = AnalysisResult;
+
+    fn check(request: &AnalysisRequest, v: &mut Validator) {
+        check_request(request, v)
+    }
 
     async fn prepare(submission: &Submission<'_>, request: AnalysisRequest) -> Result<PathSetup, ApiError> {
         prepare(submission.pool, request).await

@@ -58,9 +58,8 @@ pub struct ConditionsPrepared {
     pub force_model: Option<ForceModelRef>,
 }
 
-/// Checks the request and resolves it against the database.
-pub async fn prepare(pool: &Pool, request: ConditionsRequest) -> Result<ConditionsPrepared, ApiError> {
-    let mut v = Validator::new();
+/// Checks the values of the request that need no database.
+pub fn check_request(request: &ConditionsRequest, v: &mut Validator) {
     for (field, value) in [
         ("spindle_rpm", request.spindle_rpm),
         ("fz_mm", request.fz_mm),
@@ -78,8 +77,10 @@ pub async fn prepare(pool: &Pool, request: ConditionsRequest) -> Result<Conditio
     if request.material_id.is_some() && request.material.is_some() {
         v.fail("material_id", "give material_id or material, not both");
     }
-    v.finish()?;
+}
 
+/// Resolves a checked request against the database.
+pub async fn prepare(pool: &Pool, request: ConditionsRequest) -> Result<ConditionsPrepared, ApiError> {
     let material = lookup::material(pool, request.material_id, request.material.as_deref()).await?;
     let tool = lookup::tool(pool, request.tool_id, request.tool_type, request.diameter_mm).await?;
     let operation = request.operation.unwrap_or(DEFAULT_OPERATION);
@@ -257,6 +258,10 @@ impl JobKindSpec for Conditions {
     type Request = ConditionsRequest;
     type Prepared = ConditionsPrepared;
     type Output = ConditionsResult;
+
+    fn check(request: &ConditionsRequest, v: &mut Validator) {
+        check_request(request, v)
+    }
 
     async fn prepare(submission: &Submission<'_>, request: ConditionsRequest) -> Result<ConditionsPrepared, ApiError> {
         prepare(submission.pool, request).await

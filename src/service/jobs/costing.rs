@@ -93,11 +93,8 @@ impl CostingRequest {
     }
 }
 
-/// Checks the request and resolves it against the database; a `job_id` must name a job
-/// the caller may see (a planner's own).
-pub async fn prepare(submission: &Submission<'_>, request: CostingRequest) -> Result<CostingPrepared, ApiError> {
-    let pool = submission.pool;
-    let mut v = Validator::new();
+/// Checks the values of the request that need no database.
+pub fn check_request(request: &CostingRequest, v: &mut Validator) {
     v.check(request.program.is_some() != request.job_id.is_some(), "program", "give exactly one of program and job_id");
     if let Some(p) = request.tool_price {
         v.within("tool_price", p, 0.0, crate::service::resources::tools::MAX_PRICE);
@@ -111,7 +108,12 @@ pub async fn prepare(submission: &Submission<'_>, request: CostingRequest) -> Re
             v.positive(field, x);
         }
     }
-    v.finish()?;
+}
+
+/// Resolves a checked request against the database; a `job_id` must name a job the
+/// caller may see (a planner's own).
+pub async fn prepare(submission: &Submission<'_>, request: CostingRequest) -> Result<CostingPrepared, ApiError> {
+    let pool = submission.pool;
     let (job_program, job_program_options) = match &request.job_id {
         Some(id) => {
             let row = store::get_visible(pool, submission.caller, id).await.map_err(|e| match e {
@@ -179,6 +181,10 @@ impl JobKindSpec for Costing {
     type Request = CostingRequest;
     type Prepared = CostingPrepared;
     type Output = CostingResult;
+
+    fn check(request: &CostingRequest, v: &mut Validator) {
+        check_request(request, v)
+    }
 
     async fn prepare(submission: &Submission<'_>, request: CostingRequest) -> Result<CostingPrepared, ApiError> {
         prepare(submission, request).await

@@ -173,8 +173,8 @@ fn papers_rule() -> Objective {
     Objective::ConstantForce
 }
 
-fn validate(request: &FeedsRequest) -> Result<(), ApiError> {
-    let mut v = Validator::new();
+/// Checks the values of the request that need no database.
+pub fn check_request(request: &FeedsRequest, v: &mut Validator) {
     for (field, value) in [
         ("target_force_n", request.target_force_n),
         ("min_feed_mm_min", request.min_feed_mm_min),
@@ -234,13 +234,11 @@ fn validate(request: &FeedsRequest) -> Result<(), ApiError> {
             );
         }
     }
-    request.output.validate(&mut v);
-    v.finish()
+    request.output.validate(v);
 }
 
-/// Checks the request (parsing the program and the stock) and resolves it.
+/// Parses the program and the stock of a checked request and resolves it.
 pub async fn prepare(pool: &Pool, request: FeedsRequest) -> Result<FeedsPrepared, ApiError> {
-    validate(&request)?;
     let refs = PathJobRefs {
         tool_id: request.tool_id,
         tool_type: request.tool_type,
@@ -507,7 +505,7 @@ pub fn run(
             );
         }
         result.warnings.extend(edited.warnings.iter().cloned());
-        result.edit = Some(edited.into());
+        result.edit = Some(edited);
     }
     Ok((result, program, scene))
 }
@@ -525,6 +523,10 @@ impl JobKindSpec for Feeds {
     type Request = FeedsRequest;
     type Prepared = FeedsPrepared;
     type Output = FeedsResult;
+
+    fn check(request: &FeedsRequest, v: &mut Validator) {
+        check_request(request, v)
+    }
 
     async fn prepare(submission: &Submission<'_>, request: FeedsRequest) -> Result<FeedsPrepared, ApiError> {
         prepare(submission.pool, request).await

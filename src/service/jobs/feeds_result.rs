@@ -1,16 +1,18 @@
-//! The answer of a `feeds` job, as the API documents it.
+//! The answer of a `feeds` job: the core's feed plan, costs and analysis with the database
+//! rows and limits they were computed with.
 
-use super::analysis_result::{
-    summary, CriticalRegionDto, ForceOverloadDto, OutsideModelDto, PathPointDto, StatsDto, SummaryDto,
-};
-use super::costing_result::CostDto;
+use super::analysis_result::PathSummary;
+use super::costing_result::CostReport;
 use super::feeds::{CutMode, FeedsPrepared};
 use super::setup::CostSetup;
 use super::setup::{NamedRef, ToolRef};
+use crate::core::analysis::outside::{ForceOverload, OutsideModel};
+use crate::core::analysis::report::{CriticalRegion, Stats};
 use crate::core::analysis::Analysis;
 use crate::core::costing::estimate::Estimate;
-use crate::core::feed::collect::{ReasonLengths, Shortfall, ShortfallKind};
+use crate::core::feed::collect::{ReasonLengths, Shortfall};
 use crate::core::feed::costed::Costed;
+use crate::core::feed::edit::Edited;
 use crate::core::feed::objective::Objective;
 use crate::core::feed::plan::{FeedPlan, Figures};
 use crate::core::feed::rule::FeedStrategy;
@@ -22,11 +24,11 @@ use utoipa::ToSchema;
 /// Figures of a program: the optimiser's, and the costing's for the same tool, machine
 /// and cost rates (the costing job gives the same numbers for the same program).
 #[derive(Debug, Clone, Serialize, ToSchema)]
-pub struct FiguresDto {
+pub struct FeedFigures {
     /// Predicted XY force over the cutting samples, N (null without a force model).
-    pub force_n: Option<StatsDto>,
+    pub force_n: Option<Stats>,
     /// Feed over the feed moves, mm/min (length-weighted).
-    pub feed_mm_min: StatsDto,
+    pub feed_mm_min: Stats,
     /// Feed moves at their feeds plus rapids at the machine's rapid rate, min.
     pub time_min: f64,
     /// The costing's nominal time (feeds, rapids, tool changes, dwells), min.
@@ -38,18 +40,18 @@ pub struct FiguresDto {
     /// costing cannot run: surface finishing, no tool-life data).
     pub consumption: Option<f64>,
     /// The costing's cost, `C = c_m·T_m + c_t·L_t/L_f` (seed 002 Eq. 4).
-    pub cost: Option<CostDto>,
+    pub cost: Option<CostReport>,
     /// Where this program's forces leave the force model's experiments (null when not
     /// simulated or without a force model).
-    pub outside_model: Option<OutsideModelDto>,
+    pub outside_model: Option<OutsideModel>,
     /// Where this program's predicted force exceeds 3 × the standard force, by line.
-    pub force_overload: Option<ForceOverloadDto>,
+    pub force_overload: Option<ForceOverload>,
     /// `true` when force, consumption or cost rest on forces outside the force model's
     /// experiments: extrapolations.
     pub extrapolated: bool,
 }
 
-impl FiguresDto {
+impl FeedFigures {
     fn new(
         f: Figures,
         time: Option<&MachiningTime>,
@@ -63,16 +65,16 @@ impl FiguresDto {
         // The simulation's forces where the program was simulated (the optimiser's
         // prediction otherwise).
         let force_n = s.map_or(f.force_n, |s| s.force_n);
-        Ok(FiguresDto {
-            force_n: force_n.map(Into::into),
-            feed_mm_min: f.feed_mm_min.into(),
+        Ok(FeedFigures {
+            force_n,
+            feed_mm_min: f.feed_mm_min,
             time_min: f.time_min,
             nominal_time_min: time.map(|t| t.nominal_min),
             kinematic_time_min: time.map(|t| t.kinematic_min),
             consumption: estimate.map(|(_, e)| e.wear.consumption.ratio),
-            cost: estimate.map(|(setup, e)| CostDto::new(setup, e)).transpose()?,
-            outside_model: outside.map(Into::into),
-            force_overload: s.and_then(|s| s.force_overload.clone()).map(Into::into),
+            cost: estimate.map(|(setup, e)| CostReport::new(setup, e)).transpose()?,
+            outside_model: outside,
+            force_overload: s.and_then(|s| s.force_overload.clone()),
             extrapolated: force_extrapolated || wear_extrapolated,
         })
     }
@@ -80,7 +82,7 @@ impl FiguresDto {
 
 /// The limits the feeds were held to.
 #[derive(Debug, Clone, Copy, Serialize, ToSchema)]
-pub struct LimitsDto {
+pub struct FeedLimits {
     pub min_feed_mm_min: f64,
     pub max_feed_mm_min: f64,
     pub air_feed_mm_min: f64,
@@ -90,49 +92,16 @@ pub struct LimitsDto {
 
 /// Path length by what set the feed, mm.
 #[derive(Debug, Clone, Copy, Serialize, ToSchema)]
-pub struct ReasonLengthsDto {
-    /// The strategy's feed, within the limits.
-    pub target_mm: f64,
-    /// Capped at the maximum feed.
-    pub clamped_max_mm: f64,
-    /// Raised to the minimum feed: the force stays above the target.
-    pub clamped_min_mm: f64,
-    /// No feed reaches the target (constant_force: needs a trochoid or a z-cut
-    /// division), or none keeps the force under the limit (min_cost, min_time).
-    pub infeasible_mm: f64,
-    /// Feed moves in the air, at the air-cut feed.
-    pub air_mm: f64,
-    /// Kept at the programmed feed (plunges, no spindle speed).
-    pub kept_mm: f64,
+pub struct FeedLengths {
+    #[serde(flatten)]
+    pub reasons: ReasonLengths,
     /// Lowered further by the change-rate limit.
     pub rate_limited_mm: f64,
 }
 
-/// A run of the path where the target force cannot be held.
-#[derive(Debug, Clone, Serialize, ToSchema)]
-pub struct ShortfallDto {
-    pub kind: ShortfallKind,
-    pub start: PathPointDto,
-    pub end: PathPointDto,
-    pub length_mm: f64,
-    pub max_alpha_deg: f64,
-}
-
-impl From<Shortfall> for ShortfallDto {
-    fn from(s: Shortfall) -> Self {
-        ShortfallDto {
-            kind: s.kind,
-            start: s.start.into(),
-            end: s.end.into(),
-            length_mm: s.length_mm,
-            max_alpha_deg: s.max_alpha_deg,
-        }
-    }
-}
-
 /// One entry per block of the written program (rapids have no feed).
 #[derive(Debug, Clone, Default, Serialize, ToSchema)]
-pub struct BlocksDto {
+pub struct Blocks {
     /// Source line of the move the block comes from.
     pub line: Vec<u32>,
     pub length_mm: Vec<f64>,
@@ -142,12 +111,19 @@ pub struct BlocksDto {
 
 /// The written program in numbers (the text is at the job's `program` link).
 #[derive(Debug, Clone, Copy, Serialize, ToSchema)]
-pub struct ProgramInfoDto {
+pub struct ProgramInfo {
     /// Moves of the path the job started from.
     pub moves_in: usize,
     pub moves_out: usize,
     pub lines: usize,
     pub bytes: usize,
+}
+
+impl ProgramInfo {
+    /// `text`, written from `moves_out` moves of a path of `moves_in`, in numbers.
+    pub fn new(moves_in: usize, moves_out: usize, text: &str) -> Self {
+        ProgramInfo { moves_in, moves_out, lines: text.lines().count(), bytes: text.len() }
+    }
 }
 
 /// The answer of a `feeds` job.
@@ -166,61 +142,31 @@ pub struct FeedsResult {
     pub target_force_n: Option<f64>,
     /// The most force min_cost and min_time may ask of the tool, N.
     pub max_force_n: Option<f64>,
-    pub limits: LimitsDto,
+    pub limits: FeedLimits,
     /// The cost rates of the costs (null where there are no costs).
     pub cost_rates: Option<NamedRef>,
     /// The input program at its programmed feeds.
-    pub before: FiguresDto,
+    pub before: FeedFigures,
     /// The optimised program.
-    pub after: FiguresDto,
+    pub after: FeedFigures,
     /// min_cost found every new feed dearer than the program's own and returned it
     /// unchanged.
     pub kept_input: bool,
     /// Moves that keep their programmed feed because the new feeds would cost more
     /// (min_cost).
     pub kept_moves: usize,
-    pub lengths: ReasonLengthsDto,
-    pub shortfalls: Vec<ShortfallDto>,
+    pub lengths: FeedLengths,
+    /// Runs of the path where the target force cannot be held.
+    pub shortfalls: Vec<Shortfall>,
     /// The analysis of the input path (side milling).
-    pub analysis: Option<SummaryDto>,
-    pub critical_regions: Vec<CriticalRegionDto>,
-    pub program: ProgramInfoDto,
-    /// How the G-code sent was edited: only its F words changed, blocks split where the
-    /// feed changes inside them (null for JSON moves, whose program is written anew).
-    pub edit: Option<EditDto>,
-    pub blocks: BlocksDto,
+    pub analysis: Option<PathSummary>,
+    pub critical_regions: Vec<CriticalRegion>,
+    pub program: ProgramInfo,
+    /// How the G-code sent was edited (null for JSON moves, whose program is written
+    /// anew).
+    pub edit: Option<Edited>,
+    pub blocks: Blocks,
     pub warnings: Vec<String>,
-}
-
-/// The lines of the input program that the feed optimisation changed.
-#[derive(Debug, Clone, Serialize, ToSchema)]
-pub struct EditDto {
-    /// Every changed line, in order: its 1-based number in the input, the line as it was
-    /// and as it is now (several lines where the block was split).
-    pub changed_lines: Vec<ChangedLineDto>,
-    /// Blocks split into several.
-    pub split_blocks: u32,
-}
-
-/// One changed line.
-#[derive(Debug, Clone, Serialize, ToSchema)]
-pub struct ChangedLineDto {
-    pub line: u32,
-    pub before: String,
-    pub after: String,
-}
-
-impl From<crate::core::feed::edit::Edited> for EditDto {
-    fn from(e: crate::core::feed::edit::Edited) -> Self {
-        EditDto {
-            changed_lines: e
-                .changes
-                .into_iter()
-                .map(|c| ChangedLineDto { line: c.line, before: c.before, after: c.after })
-                .collect(),
-            split_blocks: e.split_blocks,
-        }
-    }
 }
 
 impl FeedsResult {
@@ -234,13 +180,13 @@ impl FeedsResult {
         times: Option<(MachiningTime, MachiningTime)>,
     ) -> Result<Self, CoreError> {
         let setup = prepared.cost.as_ref();
-        let before = FiguresDto::new(
+        let before = FeedFigures::new(
             plan.before,
             times.as_ref().map(|t| &t.0),
             setup.zip(costed.as_ref().map(|c| &c.before)),
             plan.analysis.as_ref(),
         )?;
-        let after = FiguresDto::new(
+        let after = FeedFigures::new(
             plan.after,
             times.as_ref().map(|t| &t.1),
             setup.zip(costed.as_ref().map(|c| &c.after)),
@@ -253,8 +199,7 @@ impl FeedsResult {
             let overload = a.summary.force_overload.as_ref().and_then(|o| o.warning());
             warnings.extend(overload.map(|w| format!("after: {w}")));
         }
-        let ReasonLengths { target_mm, clamped_max_mm, clamped_min_mm, infeasible_mm, air_mm, kept_mm } = plan.lengths;
-        let mut blocks = BlocksDto::default();
+        let mut blocks = Blocks::default();
         for b in &plan.blocks {
             blocks.line.push(b.line);
             blocks.length_mm.push(b.length_mm);
@@ -264,7 +209,7 @@ impl FeedsResult {
         let (analysis, critical_regions) = match plan.analysis {
             Some(a) => {
                 let n = a.critical_regions.len();
-                (Some(summary(moves_in, a.summary, n)), a.critical_regions.into_iter().map(Into::into).collect())
+                (Some(PathSummary::new(moves_in, a.summary, n)), a.critical_regions)
             }
             None => (None, vec![]),
         };
@@ -281,7 +226,7 @@ impl FeedsResult {
             target_force_n: prepared.target_force_n,
             max_force_n: prepared.max_force_n.filter(|_| prepared.strategy.needs_force_model()),
             cost_rates: prepared.cost.map(|c| c.cost_rates),
-            limits: LimitsDto {
+            limits: FeedLimits {
                 min_feed_mm_min: prepared.min_feed_mm_min,
                 max_feed_mm_min: prepared.max_feed_mm_min,
                 air_feed_mm_min: prepared.air_feed_mm_min,
@@ -291,24 +236,11 @@ impl FeedsResult {
             after,
             kept_input,
             kept_moves: plan.kept_moves,
-            lengths: ReasonLengthsDto {
-                target_mm,
-                clamped_max_mm,
-                clamped_min_mm,
-                infeasible_mm,
-                air_mm,
-                kept_mm,
-                rate_limited_mm: plan.rate_limited_mm,
-            },
-            shortfalls: plan.shortfalls.into_iter().map(Into::into).collect(),
+            lengths: FeedLengths { reasons: plan.lengths, rate_limited_mm: plan.rate_limited_mm },
+            shortfalls: plan.shortfalls,
             analysis,
             critical_regions,
-            program: ProgramInfoDto {
-                moves_in,
-                moves_out: plan.path.moves.len(),
-                lines: program.lines().count(),
-                bytes: program.len(),
-            },
+            program: ProgramInfo::new(moves_in, plan.path.moves.len(), program),
             edit: None,
             blocks,
             warnings,

@@ -8,7 +8,7 @@ use crate::core::drawing::scene::Scene;
 use crate::core::progress::Progress;
 use crate::core::CoreError;
 use crate::service::auth::Caller;
-use crate::service::error::ApiError;
+use crate::service::error::{ApiError, Validator};
 use crate::service::store::Pool;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
@@ -72,8 +72,14 @@ pub trait JobKindSpec: 'static {
     /// The finished job's `result`.
     type Output: Serialize + ToSchema + 'static;
 
-    /// Checks a request, reporting every refused field at once, and resolves it against
-    /// the database. CPU work of the check runs off the async runtime.
+    /// Checks the values of a request that need no database, adding every fault to `v`.
+    /// It also sees a request some of whose fields were refused by their schema (and set
+    /// aside), so that a problem names every fault at once.
+    fn check(request: &Self::Request, v: &mut Validator);
+
+    /// Resolves a checked request against the database, and parses and checks what needs
+    /// its rows (the program, the pocket, the tool's reach). CPU work runs off the async
+    /// runtime.
     fn prepare(
         submission: &Submission<'_>,
         request: Self::Request,

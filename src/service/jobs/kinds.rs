@@ -11,8 +11,8 @@ use super::plans::Plan;
 use super::trochoids::Trochoids;
 use crate::core::progress::Progress;
 use crate::core::CoreError;
-use crate::service::error::{ApiError, FieldError};
-use crate::service::extract::from_value;
+use crate::service::error::{ApiError, FieldError, Validator};
+use crate::service::extract::{read_all, Read};
 use std::borrow::Cow;
 use std::future::Future;
 use std::pin::Pin;
@@ -128,13 +128,40 @@ fn to_json<T: serde::Serialize>(value: &T) -> Result<String, ApiError> {
         .map_err(|e| ApiError::Internal(format!("serializing a job: {e}")))
 }
 
+/// Reads `input` as a `K` request and checks it in one stage: the fields its schema
+/// refuses and the values [`JobKindSpec::check`] refuses in the rest are one problem.
+fn read_request<K: JobKindSpec>(input: serde_json::Value) -> Result<K::Request, ApiError> {
+    let Read { value, refused } = read_all::<K::Request>(input);
+    let mut checked = Validator::new();
+    if let Some(request) = &value {
+        K::check(request, &mut checked);
+    }
+    let faults = together(refused, checked.into_errors());
+    match value {
+        Some(request) if faults.is_empty() => Ok(request),
+        _ => Err(ApiError::Validation(faults)),
+    }
+}
+
+/// The schema's refusals, then the checks' faults that are not about a refused field (a
+/// check of a field set aside sees it missing, which is no news).
+fn together(mut refused: Vec<FieldError>, checked: Vec<FieldError>) -> Vec<FieldError> {
+    let related = |a: &str, b: &str| a == b || [".", "["].iter().any(|s| a.starts_with(&format!("{b}{s}")));
+    let new: Vec<FieldError> = checked
+        .into_iter()
+        .filter(|c| !refused.iter().any(|r| related(&c.field, &r.field) || related(&r.field, &c.field)))
+        .collect();
+    refused.extend(new);
+    refused
+}
+
 /// Reads `input` as a `K` request, checks and resolves it; the reading and writing of
 /// JSON run off the async runtime.
 fn accept_kind<'a, K: JobKindSpec>(submission: &'a Submission<'a>, input: serde_json::Value) -> Pending<'a, Accepted> {
     Box::pin(async move {
         let (request, text) = off_runtime(move || {
             let text = input.to_string();
-            Ok((from_value::<K::Request>(input)?, text))
+            Ok((read_request::<K>(input)?, text))
         })
         .await?;
         let prepared = K::prepare(submission, request).await?;

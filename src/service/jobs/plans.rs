@@ -163,8 +163,8 @@ pub const MAX_PLAN_CANDIDATES: usize = 16;
 /// Diameters closer than this are the same candidate, mm.
 const DIAMETER_TOLERANCE_MM: f64 = 1e-6;
 
-fn validate(r: &PlanRequest) -> Result<(), ApiError> {
-    let mut v = Validator::new();
+/// Checks the values of the request that need no database.
+pub fn check_request(r: &PlanRequest, v: &mut Validator) {
     let single = r.contour.is_some() || r.dxf.is_some();
     v.check(single != r.layers.is_some(), "layers", "give either layers, or contour (or dxf) with z_top and z_bottom");
     v.check(!(r.contour.is_some() && r.dxf.is_some()), "contour", "give exactly one of contour and dxf");
@@ -237,8 +237,7 @@ fn validate(r: &PlanRequest) -> Result<(), ApiError> {
     if let Some(k) = r.max_force_factor {
         v.within("max_force_factor", k, 1.0, 4.0);
     }
-    r.output.validate(&mut v);
-    v.finish()
+    r.output.validate(v);
 }
 
 /// The cavity of the request: its layers, or its contour and depth.
@@ -265,9 +264,9 @@ fn read_cavity(r: &PlanRequest) -> Result<CavityInput, ApiError> {
     Ok(CavityInput::Depth { pocket, z_top_mm: r.z_top.unwrap_or(0.0), z_bottom_mm: r.z_bottom.unwrap_or(0.0) })
 }
 
-/// Checks the request and resolves the candidates, the baseline, the machine and the rates.
+/// Resolves a checked request: the candidates, the baseline, the machine and the rates;
+/// then checks the cavity against them.
 pub async fn prepare(pool: &Pool, request: PlanRequest) -> Result<PlanPrepared, ApiError> {
-    validate(&request)?;
     let material = lookup::material(pool, request.material_id, request.material.as_deref()).await?;
     let tool_type = request.tool_type.unwrap_or(ToolType::Square);
     let picks = plan_tools::pick(pool, &request, tool_type).await?;
@@ -491,6 +490,10 @@ impl JobKindSpec for Plan {
     type Request = PlanRequest;
     type Prepared = PlanPrepared;
     type Output = PlanResult;
+
+    fn check(request: &PlanRequest, v: &mut Validator) {
+        check_request(request, v)
+    }
 
     async fn prepare(submission: &Submission<'_>, request: PlanRequest) -> Result<PlanPrepared, ApiError> {
         prepare(submission.pool, request).await

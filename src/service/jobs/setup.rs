@@ -262,16 +262,13 @@ pub async fn resolve(pool: &Pool, refs: &PathJobRefs<'_>) -> Result<Resolved, Ap
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct CostSetup {
     pub tool_life_id: i64,
-    pub life_m: f64,
-    pub gamma_table: Vec<(f64, f64)>,
-    pub force_exponent: f64,
-    pub standard_arc_length_mm: f64,
-    pub standard_fz_mm: f64,
-    pub standard_force_n: Option<f64>,
+    /// The tool's life in the material (stored flat, as jobs stored before kept it).
+    #[serde(flatten)]
+    pub life: ToolLifeModel,
     pub cost_rates: NamedRef,
-    pub machine_rate_per_hour: f64,
-    pub tool_price: f64,
-    pub currency: String,
+    /// The rates and the tool's price (flat, likewise).
+    #[serde(flatten)]
+    pub rates: Rates,
     /// The machine's limits for the kinematic time.
     pub limits: MachineLimits,
 }
@@ -306,19 +303,23 @@ pub async fn resolve_cost(
         .await?;
     let setup = CostSetup {
         tool_life_id: life.id,
-        life_m: life.data.life_m,
-        gamma_table: life.data.gamma_table.iter().map(|g| (g.0, g.1)).collect(),
-        force_exponent: life.data.force_exponent,
-        standard_arc_length_mm: arc_mm,
-        standard_fz_mm: standard.data.fz_mm,
-        standard_force_n,
+        life: ToolLifeModel {
+            life_m: life.data.life_m,
+            gamma_table: life.data.gamma_table.iter().map(|g| (g.0, g.1)).collect(),
+            force_exponent: life.data.force_exponent,
+            standard_arc_length_mm: arc_mm,
+            standard_fz_mm: standard.data.fz_mm,
+            standard_force_n,
+        },
         cost_rates: NamedRef { id: rates.id, name: rates.data.name.clone() },
-        machine_rate_per_hour: rates.data.machine_rate_per_hour,
-        tool_price: tool_price.or(price).unwrap_or(rates.data.default_tool_price),
-        currency: rates.data.currency.clone(),
+        rates: Rates {
+            machine_rate_per_hour: rates.data.machine_rate_per_hour,
+            tool_price: tool_price.or(price).unwrap_or(rates.data.default_tool_price),
+            currency: rates.data.currency.clone(),
+        },
         limits: machine_limits(pool, base.machine.id).await?,
     };
-    setup.life_model().validate()?;
+    setup.life.validate()?;
     Ok(setup)
 }
 
@@ -338,27 +339,8 @@ pub async fn machine_limits(pool: &Pool, id: i64) -> Result<MachineLimits, ApiEr
 }
 
 impl CostSetup {
-    fn life_model(&self) -> ToolLifeModel {
-        ToolLifeModel {
-            life_m: self.life_m,
-            gamma_table: self.gamma_table.clone(),
-            force_exponent: self.force_exponent,
-            standard_arc_length_mm: self.standard_arc_length_mm,
-            standard_fz_mm: self.standard_fz_mm,
-            standard_force_n: self.standard_force_n,
-        }
-    }
-
-    pub fn rates(&self) -> Rates {
-        Rates {
-            machine_rate_per_hour: self.machine_rate_per_hour,
-            tool_price: self.tool_price,
-            currency: self.currency.clone(),
-        }
-    }
-
     /// The costing's model.
     pub fn cost_model(&self) -> CostModel {
-        CostModel { life: self.life_model(), machine: self.limits, rates: self.rates() }
+        CostModel { life: self.life.clone(), machine: self.limits, rates: self.rates.clone() }
     }
 }

@@ -131,8 +131,8 @@ pub struct TrochoidsPrepared {
     pub grooving_source: String,
 }
 
-fn validate(request: &TrochoidsRequest) -> Result<(), ApiError> {
-    let mut v = Validator::new();
+/// Checks the values of the request that need no database.
+pub fn check_request(request: &TrochoidsRequest, v: &mut Validator) {
     v.finite("z_top", request.z_top);
     v.finite("z_bottom", request.z_bottom);
     v.check(request.z_bottom < request.z_top, "z_bottom", "must be below z_top");
@@ -177,8 +177,7 @@ fn validate(request: &TrochoidsRequest) -> Result<(), ApiError> {
             }
         }
     }
-    request.output.validate(&mut v);
-    v.finish()
+    request.output.validate(v);
 }
 
 /// Reads the pocket; errors name `contour.outer[i]`, `contour.islands[k][i]` or `dxf`.
@@ -190,9 +189,9 @@ fn read_pocket(request: &TrochoidsRequest) -> Result<Pocket, ApiError> {
     }
 }
 
-/// Checks the request and resolves the tool, material, machine and conditions.
+/// Resolves a checked request: the tool, material, machine and conditions; then parses and
+/// checks the pocket and the program against them.
 pub async fn prepare(pool: &Pool, request: TrochoidsRequest) -> Result<TrochoidsPrepared, ApiError> {
-    validate(&request)?;
     let refs = PathJobRefs {
         tool_id: request.tool_id,
         tool_type: request.tool_type,
@@ -234,7 +233,7 @@ pub async fn prepare(pool: &Pool, request: TrochoidsRequest) -> Result<Trochoids
     let checked = prepared.clone();
     tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
         let (pocket, spec, path) = build(&request, &checked)?;
-        check_plan(&pocket, &spec, path.as_ref()).map_err(request_field)?;
+        check_plan(&pocket, &spec, path.as_ref())?;
         Ok(())
     })
     .await
@@ -263,22 +262,6 @@ fn within_machine(
         return Err(ApiError::field(format!("{name}.fz_mm"), reason));
     }
     Ok(())
-}
-
-/// The core's error under the request's name of its field (`z_bottom_mm` is `z_bottom`).
-fn request_field(e: CoreError) -> ApiError {
-    match e {
-        CoreError::InvalidInput { field, reason } | CoreError::Unsolvable { field, reason } => {
-            let renamed = match field.as_str() {
-                "z_top_mm" => "z_top",
-                "z_bottom_mm" => "z_bottom",
-                "safe_z_mm" => "safe_z",
-                other => other,
-            };
-            ApiError::field(renamed, reason)
-        }
-        other => other.into(),
-    }
 }
 
 type Built = (Pocket, InsertionSpec, Option<crate::core::toolpath::Toolpath>);
@@ -350,6 +333,10 @@ impl JobKindSpec for Trochoids {
     type Request = TrochoidsRequest;
     type Prepared = TrochoidsPrepared;
     type Output = TrochoidsResult;
+
+    fn check(request: &TrochoidsRequest, v: &mut Validator) {
+        check_request(request, v)
+    }
 
     async fn prepare(submission: &Submission<'_>, request: TrochoidsRequest) -> Result<TrochoidsPrepared, ApiError> {
         prepare(submission.pool, request).await

@@ -42,7 +42,7 @@ pub(crate) struct Program<'a> {
 }
 
 /// One changed line of the program.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, utoipa::ToSchema)]
 pub struct LineChange {
     /// 1-based line of the input program.
     pub line: u32,
@@ -52,13 +52,21 @@ pub struct LineChange {
     pub after: String,
 }
 
-/// The edited program.
-#[derive(Debug, Clone, PartialEq, Default)]
+/// The edited program: only its F words changed, blocks split where the feed changes
+/// inside them.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, utoipa::ToSchema)]
 pub struct Edited {
+    /// The program itself (served as the job's program, not in its report).
+    #[serde(skip)]
     pub text: String,
+    /// Every changed line, in order: its 1-based number in the input, the line as it was
+    /// and as it is now (several lines where the block was split).
+    #[serde(rename = "changed_lines")]
     pub changes: Vec<LineChange>,
     /// Blocks split into several.
     pub split_blocks: u32,
+    /// Reported with the warnings of the job.
+    #[serde(skip)]
     pub warnings: Vec<String>,
 }
 
