@@ -45,7 +45,7 @@ use crate::core::progress::Progress;
 use crate::core::toolpath::{section_events, Event, EventKind, Section, Toolpath, Units};
 use crate::core::CoreError;
 use cleared::ClearedZone as Zone;
-use std::collections::HashMap;
+use std::collections::hash_map::{Entry, HashMap};
 use treatments::Stretch;
 
 /// How much longer than its base path a plan may be, for the size check at submission (the
@@ -295,12 +295,14 @@ fn plan_rounds(
                 |u: &CriticalInterval| u.branch == c.branch && u.s_start_mm <= c.s_end_mm && c.s_start_mm <= u.s_end_mm;
             let widened = uncapped.iter().any(overlaps);
             let key = (c.branch, c.s_start_mm.to_bits(), c.s_end_mm.to_bits(), widened);
-            if !treated.contains_key(&key) {
-                let spec_here = if widened { &wide } else { spec };
-                let found = treatments::treat_interval(&axis.branches[c.branch], c, &boundary, pocket, spec_here)?;
-                treated.insert(key, found);
-            }
-            stretches.extend(treated[&key].iter().cloned());
+            let found = match treated.entry(key) {
+                Entry::Occupied(kept) => kept.into_mut(),
+                Entry::Vacant(slot) => {
+                    let spec_here = if widened { &wide } else { spec };
+                    slot.insert(treatments::treat_interval(&axis.branches[c.branch], c, &boundary, pocket, spec_here)?)
+                }
+            };
+            stretches.extend(found.iter().cloned());
         }
         let (air, zcut) = zones(&stretches, r);
         let composed = compose::compose(&base.moves, &stretches, &air, spec)?;
