@@ -26,6 +26,7 @@ use dieplan::service::jobs::kind::Submission;
 use dieplan::service::jobs::kinds;
 use dieplan::service::jobs::model::JobKind;
 use serde_json::{json, Value};
+use sha2::{Digest, Sha256};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
@@ -178,10 +179,9 @@ fn one_candidates_samples_mb(kind: JobKind, input: &str, result: &Value) -> Opti
     Some(bytes / (1024.0 * 1024.0))
 }
 
-/// The program's length and a 64-bit FNV-1a hash of its text.
+/// The program's length and the first 8 bytes of its SHA-256, in hex.
 fn fingerprint(program: &str) -> String {
-    let hash = program.bytes().fold(0xcbf2_9ce4_8422_2325_u64, |h, b| (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3));
-    format!("program {} bytes, {hash:016x}", program.len())
+    format!("program {} bytes, {}", program.len(), hex::encode(&Sha256::digest(program.as_bytes())[..8]))
 }
 
 /// The key figures of a job's result, to see that speed did not change them.
