@@ -31,6 +31,8 @@ static ASSETS: &[Asset] = &[
     Asset { path: "/drawing.js", content_type: JS, body: include_str!("web/drawing.js") },
     Asset { path: "/jobs.js", content_type: JS, body: include_str!("web/jobs.js") },
     Asset { path: "/database.js", content_type: JS, body: include_str!("web/database.js") },
+    Asset { path: "/savings.js", content_type: JS, body: include_str!("web/savings.js") },
+    Asset { path: "/units.js", content_type: JS, body: include_str!("web/units.js") },
 ];
 
 fn etag(body: &str) -> String {

@@ -55,6 +55,7 @@ try {
   page.on('console', (msg) => { if (msg.type() === 'error') consoleErrors.push(`${msg.text()} (${msg.location().url || 'page'})`); });
   page.on('pageerror', (err) => consoleErrors.push(`uncaught: ${err.message}`));
   let jobId;
+  let feedsJobId;
 
   await step('the page loads at / with its form filled from the API', async () => {
     const response = await page.goto(`${BASE}/`);
@@ -88,6 +89,33 @@ try {
     await page.waitForSelector('.figures');
     const text = await page.locator('.job-body').innerText();
     check(/Verification\s*passed/i.test(text), `no passed verification in the summary: ${text.slice(0, 400)}`);
+  });
+
+  await step('the trochoids job shows what the change saves, before → after', async () => {
+    await page.waitForSelector('#savings .saving');
+    const cards = await page.$$eval('#savings .saving', (els) => els.map((e) => ({
+      id: e.dataset.figure, before: e.querySelector('.before')?.textContent, after: e.querySelector('.after')?.textContent,
+      change: e.querySelector('.saving-change')?.textContent || '' })));
+    const ids = cards.map((c) => c.id);
+    for (const id of ['nominal-time', 'kinematic-time', 'length', 'rapid-length', 'max-alpha']) {
+      check(ids.includes(id), `no "${id}" card: ${JSON.stringify(cards)}`);
+    }
+    const job = await page.evaluate(async (id) => (await (await fetch(`/v1/jobs/${id}`)).json()).result, jobId);
+    check(job.figures?.before?.kinematic_time_min > 0 && job.figures?.after?.kinematic_time_min > 0, `the result has no figures: ${JSON.stringify(job.figures)}`);
+    const alpha = cards.find((c) => c.id === 'max-alpha');
+    check(alpha.before.startsWith('180') && /^−/.test(alpha.change), `max α does not drop from 180°: ${JSON.stringify(alpha)}`);
+    await shot(page, 'desktop-job-savings');
+  });
+
+  await step('a running job’s time left is estimated from its progress and elapsed time', async () => {
+    const texts = await page.evaluate(async () => {
+      const { remaining } = await import('/savings.js');
+      const start = new Date(Date.now() - 30_000).toISOString();
+      return [remaining(0.25, start), remaining(0.5, new Date(Date.now() - 600_000).toISOString()), remaining(0.001, start), remaining(0.5, null)];
+    });
+    check(texts[0] === 'about 1.5 min left', `25 % after 30 s should leave about 90 s: ${texts[0]}`);
+    check(texts[1] === 'about 10 min left', `50 % after 10 min should leave about 10 min: ${texts[1]}`);
+    check(texts[2] === null && texts[3] === null, `too little progress or no start gives no estimate: ${texts}`);
   });
 
   await step('the NC program link downloads G-code', async () => {
@@ -171,6 +199,37 @@ try {
     await page.waitForFunction((t) => (document.querySelector('#drawing svg .subtitle')?.textContent || '') !== t, before);
     check((await subtitle()).startsWith(other), `the drawing is not of the ${other} path: ${await subtitle()}`);
     check(await page.locator('#drawing svg path').count() > 0, `the ${other} path draws nothing`);
+  });
+
+  await step('a feeds job: its before-and-after strip is coloured by feed on one scale, and it shows what it saves', async () => {
+    const made = await page.evaluate(async () => {
+      const examples = (await (await fetch('/v1/examples')).json()).items;
+      const feeds = examples.find((e) => e.kind === 'feeds');
+      const r = await fetch('/v1/jobs', { method: 'POST', headers: { 'content-type': 'application/json', prefer: 'wait=60' },
+        body: JSON.stringify({ kind: 'feeds', input: feeds.input }) });
+      return r.json();
+    });
+    check(made.status === 'succeeded', `the feeds example ended ${made.status}`);
+    feedsJobId = made.id;
+    await page.goto(`${BASE}/#/jobs/${feedsJobId}`);
+    await page.waitForSelector('#savings .saving');
+    await page.waitForSelector('.compare img');
+    check(await page.$eval('.compare', (e) => e.dataset.color) === 'feed', 'the feeds strip is not coloured by feed');
+    const srcs = await page.$$eval('.compare img', (imgs) => imgs.map((i) => i.getAttribute('src')));
+    check(srcs.every((src) => src.includes('color=feed')), `the strip's drawings are not coloured by feed: ${srcs}`);
+    // The two drawings differ (the feeds changed) and share the legend's range.
+    const svgs = await page.evaluate(async (list) => Promise.all(list.map(async (u) => (await fetch(u)).text())), srcs);
+    check(svgs[0] !== svgs[1], 'the before and after drawings are identical');
+    const range = (svg) => [...svg.matchAll(/<text[^>]*class="legend-(min|max)"[^>]*>([^<]+)</g)].map((m) => m[2]).join(' – ');
+    check(range(svgs[0]) && range(svgs[0]) === range(svgs[1]), `the two legends differ: ${range(svgs[0])} vs ${range(svgs[1])}`);
+    check(svgs[0].includes('data-quantity="feed"') && svgs[0].includes('#'), 'no feed legend');
+    const ids = await page.$$eval('#savings .saving', (els) => els.map((e) => e.dataset.figure));
+    for (const id of ['nominal-time', 'kinematic-time', 'length', 'air-cut', 'tool-use', 'cost']) {
+      check(ids.includes(id), `the feeds job has no "${id}" card: ${ids}`);
+    }
+    await shot(page, 'desktop-feeds-job');
+    await page.goto(`${BASE}/#/jobs/${jobId}`);
+    await page.waitForSelector('#drawing svg path', { state: 'attached', timeout: 30_000 });
   });
 
   await step('the charts are drawn', async () => {

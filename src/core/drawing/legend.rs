@@ -1,7 +1,7 @@
 //! The legend of a plan view: the colour ramp with its ticks, the entries for what else
 //! is drawn, and the scale bar.
 
-use super::palette::{bin_color, Rgb, ValueScale, BINS, INK};
+use super::palette::{quantity_bin_color, Rgb, ValueScale, BINS, INK};
 use super::scene::Quantity;
 use super::svg::{text_width, Anchor, Attrs, Svg};
 use super::ticks::{round_down, value_label};
@@ -31,6 +31,8 @@ pub enum Swatch {
     Line { color: Rgb, width: f64, dashed: bool },
     /// A translucent band.
     Band { color: Rgb, opacity: f64 },
+    /// A filled area with its outline, dashed or solid.
+    Area { stroke: Rgb, fill: Rgb, dashed: bool },
 }
 
 /// One legend entry.
@@ -55,7 +57,13 @@ pub fn draw_ramp(svg: &mut Svg, at: (f64, f64), width: f64, k: f64, scale: &Valu
     for bin in 0..BINS {
         // Overlap by a pixel fraction so no hairline gaps show between bins.
         let w = if bin + 1 < BINS { bin_w + 0.5 } else { bin_w };
-        svg.rect(x + bin as f64 * bin_w, ramp_top, w, ramp_h, Attrs::new().show("fill", bin_color(bin)));
+        svg.rect(
+            x + bin as f64 * bin_w,
+            ramp_top,
+            w,
+            ramp_h,
+            Attrs::new().show("fill", quantity_bin_color(quantity, bin)),
+        );
     }
     svg.rect(x, ramp_top, width, ramp_h, Attrs::new().str("fill", "none").show("stroke", INK).num("stroke-width", 0.5));
     let tick_top = ramp_top + ramp_h;
@@ -121,6 +129,14 @@ pub fn draw_entries(svg: &mut Svg, entries: &[Entry], at: (f64, f64), max_x: f64
             Swatch::Band { color, opacity } => {
                 let h = ENTRY_ROW * k * 0.5;
                 svg.rect(x, mid - h / 2.0, SWATCH_WIDTH * k, h, attrs.show("fill", color).num("fill-opacity", opacity));
+            }
+            Swatch::Area { stroke, fill, dashed } => {
+                let h = ENTRY_ROW * k * 0.6;
+                let mut a = attrs.show("fill", fill).show("stroke", stroke).num("stroke-width", k);
+                if dashed {
+                    a = a.str("stroke-dasharray", &format!("{:.1} {:.1}", 4.0 * k, 2.0 * k));
+                }
+                svg.rect(x, mid - h / 2.0, SWATCH_WIDTH * k, h, a);
             }
         }
         let tx = x + (SWATCH_WIDTH + SWATCH_GAP) * k;

@@ -1,14 +1,16 @@
-//! Colours of the drawings: a perceptually ordered heat ramp for values (deep blue →
-//! teal → green → yellow, then orange → red for the hot end), a distinct grey for "no
-//! value", and fixed colours for outlines, medial classes, critical regions, trochoids and
-//! chart series.
+//! Colours of the drawings: one ramp per quantity, so that a colour means the same thing
+//! wherever it is drawn: engagement α from safe to danger (green → yellow up to the limit,
+//! then orange → dark red above it), feed sequential in one hue (light → dark blue: faster
+//! is darker, never "hot"), tool wear as heat (pale yellow → orange → dark red) and force
+//! in purples; a distinct grey for "no value", and fixed colours for outlines, medial
+//! classes, critical regions, trochoids and chart series.
 //!
 //! Values are drawn in [`BINS`] colour bins so that consecutive segments of one bin can be
 //! grouped into one SVG element. When a limit is given (the α limit), the cool part of the
 //! ramp covers `min..=limit` and the hot part (orange → red) covers `limit..max`: anything
 //! above the limit is visibly hot, whatever the range.
 
-use super::scene::{MedialClass, OutlineRole};
+use super::scene::{MedialClass, OutlineRole, Quantity};
 use std::fmt;
 
 /// An sRGB colour, written `#rrggbb`.
@@ -33,21 +35,21 @@ pub const HOT_BINS: usize = BINS - COOL_BINS;
 /// Values within this of the limit count as at the limit (not above).
 const LIMIT_TOLERANCE: f64 = 1e-6;
 
-/// The coldest value: deep blue.
-pub const RAMP_COLD: Rgb = Rgb(0x2c, 0x3e, 0x9e);
-/// Teal.
-pub const RAMP_TEAL: Rgb = Rgb(0x1f, 0x8f, 0x9a);
+/// The safest engagement: deep green.
+pub const RAMP_COLD: Rgb = Rgb(0x1a, 0x7f, 0x4b);
 /// Green.
-pub const RAMP_GREEN: Rgb = Rgb(0x5d, 0xb3, 0x4f);
-/// The warmest cool value (at the limit): yellow.
+pub const RAMP_TEAL: Rgb = Rgb(0x4c, 0xa8, 0x4f);
+/// Yellow-green.
+pub const RAMP_GREEN: Rgb = Rgb(0xa6, 0xc9, 0x3a);
+/// The most engagement still safe (at the limit): yellow.
 pub const RAMP_YELLOW: Rgb = Rgb(0xe8, 0xd2, 0x2e);
 /// Just above the limit: orange.
 pub const RAMP_ORANGE: Rgb = Rgb(0xf3, 0x8b, 0x1c);
 /// The hottest value: dark red.
 pub const RAMP_HOT: Rgb = Rgb(0xb3, 0x12, 0x1f);
 
-/// Stops of the ramp: (position 0..1, colour). The jump from yellow to orange at
-/// [`HOT_START`] marks the limit.
+/// Stops of α's ramp, safe → danger: (position 0..1, colour). The jump from yellow to
+/// orange at [`HOT_START`] marks the limit.
 pub const RAMP_STOPS: [(f64, Rgb); 6] = [
     (0.0, RAMP_COLD),
     (0.3, RAMP_TEAL),
@@ -56,6 +58,27 @@ pub const RAMP_STOPS: [(f64, Rgb); 6] = [
     (HOT_START, RAMP_ORANGE),
     (1.0, RAMP_HOT),
 ];
+
+/// Feed, sequential in one hue (ColorBrewer Blues, its palest stops left out so that the
+/// slowest feed still shows on white): slow light, fast dark.
+pub const FEED_STOPS: [(f64, Rgb); 3] =
+    [(0.0, Rgb(0x9e, 0xca, 0xe1)), (0.5, Rgb(0x31, 0x82, 0xbd)), (1.0, Rgb(0x08, 0x30, 0x6b))];
+/// Tool wear as heat (ColorBrewer YlOrRd): little wear pale yellow, much dark red.
+pub const WEAR_STOPS: [(f64, Rgb); 3] =
+    [(0.0, Rgb(0xfe, 0xd9, 0x76)), (0.5, Rgb(0xfd, 0x8d, 0x3c)), (1.0, Rgb(0x80, 0x00, 0x26))];
+/// Cutting force (ColorBrewer Purples): small light, large deep purple.
+pub const FORCE_STOPS: [(f64, Rgb); 3] =
+    [(0.0, Rgb(0xbc, 0xbd, 0xdc)), (0.5, Rgb(0x80, 0x7d, 0xba)), (1.0, Rgb(0x3f, 0x00, 0x7d))];
+
+/// The stops of `quantity`'s ramp.
+pub fn stops(quantity: Quantity) -> &'static [(f64, Rgb)] {
+    match quantity {
+        Quantity::Alpha => &RAMP_STOPS,
+        Quantity::Feed => &FEED_STOPS,
+        Quantity::Wear => &WEAR_STOPS,
+        Quantity::Force => &FORCE_STOPS,
+    }
+}
 
 /// A vertex or segment without a value (air, rapid): neutral grey.
 pub const NO_VALUE: Rgb = Rgb(0xa8, 0xa8, 0xa8);
@@ -134,16 +157,22 @@ pub fn medial_color(class: MedialClass) -> Rgb {
     }
 }
 
-/// The ramp's colour at `t` ∈ [0, 1] (clamped). At [`HOT_START`] itself the hot colour.
+/// α's ramp at `t` ∈ [0, 1] (clamped). At [`HOT_START`] itself the hot colour.
 pub fn ramp(t: f64) -> Rgb {
+    ramp_of(Quantity::Alpha, t)
+}
+
+/// `quantity`'s ramp at `t` ∈ [0, 1] (clamped).
+pub fn ramp_of(quantity: Quantity, t: f64) -> Rgb {
     let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 0.0 };
-    for pair in RAMP_STOPS.windows(2) {
+    let stops = stops(quantity);
+    for pair in stops.windows(2) {
         let ((t0, c0), (t1, c1)) = (pair[0], pair[1]);
         if t < t1 && t1 - t0 > f64::EPSILON {
             return mix(c0, c1, (t - t0) / (t1 - t0));
         }
     }
-    RAMP_HOT
+    stops[stops.len() - 1].1
 }
 
 fn mix(a: Rgb, b: Rgb, f: f64) -> Rgb {
@@ -180,7 +209,7 @@ impl ValueScale {
         }
     }
 
-    /// The colour of `value`: the colour of its bin.
+    /// The colour of `value` on α's ramp: the colour of its bin.
     pub fn color(&self, value: f64) -> Rgb {
         bin_color(self.bin(value))
     }
@@ -210,9 +239,14 @@ fn bin_of(fraction: f64, bins: usize) -> usize {
     ((fraction * bins as f64) as usize).min(bins - 1)
 }
 
-/// The colour of bin `bin`: the ramp at the bin's centre.
+/// The colour of bin `bin` of α's ramp: the ramp at the bin's centre.
 pub fn bin_color(bin: usize) -> Rgb {
-    ramp((bin.min(BINS - 1) as f64 + 0.5) / BINS as f64)
+    quantity_bin_color(Quantity::Alpha, bin)
+}
+
+/// The colour of bin `bin` of `quantity`'s ramp: the ramp at the bin's centre.
+pub fn quantity_bin_color(quantity: Quantity, bin: usize) -> Rgb {
+    ramp_of(quantity, (bin.min(BINS - 1) as f64 + 0.5) / BINS as f64)
 }
 
 /// `#rrggbb` of `value` on a plain ramp over `min..=max` (no limit); `None` → the "no
@@ -264,6 +298,28 @@ mod tests {
     fn a_range_below_the_limit_stays_cool() {
         let scale = ValueScale { min: 0.0, max: 30.0, limit: Some(40.0), top_clipped: false };
         assert!(scale.bin(30.0) < COOL_BINS);
+    }
+
+    #[test]
+    fn each_quantity_has_its_own_ramp_and_only_alpha_and_wear_end_in_red() {
+        let top = |q| quantity_bin_color(q, BINS - 1);
+        let reddish = |c: Rgb| c.0 > c.2 && c.0 > c.1;
+        assert!(reddish(top(Quantity::Alpha)) && reddish(top(Quantity::Wear)));
+        assert!(!reddish(top(Quantity::Feed)), "fast feed must not look hot");
+        assert!(!reddish(top(Quantity::Force)));
+        let bottoms: Vec<Rgb> = Quantity::ALL.iter().map(|&q| quantity_bin_color(q, 0)).collect();
+        for (i, a) in bottoms.iter().enumerate() {
+            assert!(bottoms[i + 1..].iter().all(|b| b != a), "two quantities share their first colour");
+        }
+    }
+
+    #[test]
+    fn a_sequential_ramp_darkens_from_its_first_bin_to_its_last() {
+        let lightness = |c: Rgb| u32::from(c.0) + u32::from(c.1) + u32::from(c.2);
+        for q in [Quantity::Feed, Quantity::Force] {
+            let l: Vec<u32> = (0..BINS).map(|b| lightness(quantity_bin_color(q, b))).collect();
+            assert!(l.windows(2).all(|w| w[1] <= w[0]), "{q:?}: {l:?}");
+        }
     }
 
     #[test]

@@ -9,7 +9,7 @@ use super::draw_options::resolve;
 pub use super::draw_options::{DrawError, DrawOptions, DEFAULT_WIDTH_PX, MAX_WIDTH_PX, MIN_WIDTH_PX};
 use super::frame::{Extent, Frame};
 use super::legend::{draw_entries, draw_ramp, draw_scale_bar, Entry, Swatch, LEGEND_FONT};
-use super::palette::{self, bin_color, Rgb, ValueScale};
+use super::palette::{self, quantity_bin_color, Rgb, ValueScale};
 use super::scene::{MedialClass, OutlineRole, Quantity, Run, Scene, ScenePath};
 use super::svg::{text_width, Anchor, Attrs, PathData, Svg};
 use super::ticks::value_label;
@@ -76,11 +76,10 @@ pub fn render_drawing(scene: &Scene, options: &DrawOptions) -> Result<String, Dr
         .copied()
         .collect::<Vec<_>>()
         .join(" — ");
-    let scale = resolved.path.zip(resolved.color_by).map(|(p, q)| value_scale(scene, p, q));
+    let scale = resolved.path.and(resolved.color_by).map(|q| value_scale(scene, q));
 
     let mut body = Svg::fragment();
-    let mut entries: Vec<Entry> = Vec::new();
-    draw_outlines(&mut body, scene, &frame, k);
+    let mut entries: Vec<Entry> = draw_outlines(&mut body, scene, &frame, k);
     if options.medial {
         let classes = draw_medial(&mut body, scene, &frame, k, &layer_ok);
         for class in classes {
@@ -199,12 +198,14 @@ fn scene_extent(scene: &Scene) -> Extent {
 /// washing the rest of the drawing into one colour.
 pub const SCALE_TOP_SHARE: f64 = 0.99;
 
-/// The colour scale of quantity `q` over the whole path (all layers: colours compare
-/// across layers), with the α limit when colouring by α. α's scale runs to its largest
-/// value; the others to the value below which [`SCALE_TOP_SHARE`] of the length lies.
-fn value_scale(scene: &Scene, path: &ScenePath, q: Quantity) -> ValueScale {
+/// The colour scale of quantity `q` over every path of the scene that has it (all
+/// layers and both sides of a change: the same colour is the same value in the drawing of
+/// the path before and after), with the α limit when colouring by α. α's scale runs to
+/// its largest value; the others to the value below which [`SCALE_TOP_SHARE`] of the
+/// length lies.
+fn value_scale(scene: &Scene, q: Quantity) -> ValueScale {
     let mut weighted: Vec<(f64, f64)> = Vec::new();
-    for run in path.runs.iter().filter(|r| !r.rapid) {
+    for run in scene.paths.iter().flat_map(|p| p.runs.iter()).filter(|r| !r.rapid) {
         let Some(values) = run.values.get(&q) else { continue };
         for (k, v) in values.iter().enumerate() {
             let Some(v) = v.map(f64::from).filter(|v| v.is_finite()) else { continue };
@@ -239,9 +240,19 @@ fn value_scale(scene: &Scene, path: &ScenePath, q: Quantity) -> ValueScale {
     ValueScale { min, max: if top_clipped { top } else { max }, limit, top_clipped }
 }
 
-fn draw_outlines(svg: &mut Svg, scene: &Scene, frame: &Frame, k: f64) {
+/// Draws the outlines, stock first; returns the legend entries of the roles drawn.
+fn draw_outlines(svg: &mut Svg, scene: &Scene, frame: &Frame, k: f64) -> Vec<Entry> {
     const ORDER: [OutlineRole; 4] = [OutlineRole::Stock, OutlineRole::Pocket, OutlineRole::Open, OutlineRole::Island];
+    let mut entries = Vec::new();
     for role in ORDER {
+        if scene.outlines.iter().any(|o| o.role == role) {
+            let (stroke, fill) = palette::outline_colors(role);
+            entries.push(Entry {
+                class: "legend-outline",
+                swatch: Swatch::Area { stroke, fill, dashed: role == OutlineRole::Stock },
+                label: outline_label(role).into(),
+            });
+        }
         for outline in scene.outlines.iter().filter(|o| o.role == role) {
             let (stroke, fill) = palette::outline_colors(role);
             let mut attrs = Attrs::new()
@@ -255,6 +266,17 @@ fn draw_outlines(svg: &mut Svg, scene: &Scene, frame: &Frame, k: f64) {
             }
             svg.polygon(outline.points.iter().map(|p| frame.px(*p)), attrs);
         }
+    }
+    entries
+}
+
+/// What an outline is, in the legend.
+fn outline_label(role: OutlineRole) -> &'static str {
+    match role {
+        OutlineRole::Stock => "stock",
+        OutlineRole::Pocket => "pocket wall",
+        OutlineRole::Island => "island",
+        OutlineRole::Open => "open at the start",
     }
 }
 
@@ -396,7 +418,7 @@ fn draw_feed(
         let color: Rgb = match (coloring, bin) {
             (None, _) => palette::PLAIN_FEED,
             (Some(_), None) => palette::NO_VALUE,
-            (Some(_), Some(b)) => bin_color(*b),
+            (Some((q, _)), Some(b)) => quantity_bin_color(q, *b),
         };
         let mut attrs = Attrs::new().class("feed");
         if let (Some(_), Some(b)) = (coloring, bin) {

@@ -159,3 +159,41 @@ fn a_short_outlier_takes_the_top_colour_without_stretching_the_wear_scale() {
     let svg = draw(&scene, &DrawOptions { color_by: Some(Quantity::Wear), ..DrawOptions::default() });
     assert!(svg.contains("≥ 1.98"), "the scale tops out below the outlier and says so");
 }
+
+#[test]
+fn every_outline_drawn_has_a_legend_entry() {
+    let svg = draw(&small_scene(), &DrawOptions::default());
+    assert_eq!(count(&svg, "class=\"legend-outline\""), 3, "stock, pocket wall and island");
+    for label in [">stock<", ">pocket wall<", ">island<"] {
+        assert!(svg.contains(label), "no legend entry {label}");
+    }
+}
+
+#[test]
+fn two_paths_coloured_by_feed_share_one_scale_so_an_unchanged_feed_keeps_its_colour() {
+    // "before" at 1200 mm/min throughout, "after" slowed to 600 and sped up to 2400.
+    let mut scene = small_scene();
+    let mut after = scene.paths[0].clone();
+    after.name = "after".into();
+    for run in after.runs.iter_mut().filter(|r| !r.rapid) {
+        let n = run.points.len();
+        let feeds = (0..n).map(|i| Some(if i < n / 2 { 600.0 } else { 2400.0 })).collect();
+        run.values.insert(Quantity::Feed, feeds);
+    }
+    for run in scene.paths[0].runs.iter_mut().filter(|r| !r.rapid) {
+        let n = run.points.len();
+        run.values.insert(Quantity::Feed, vec![Some(1200.0); n]);
+    }
+    scene.paths.push(after);
+    let options =
+        |path: &str| DrawOptions { path: Some(path.into()), color_by: Some(Quantity::Feed), ..DrawOptions::default() };
+    let before = draw(&scene, &options("planned"));
+    let after = draw(&scene, &options("after"));
+    // Both legends run from 600 to 2400; the constant feed is in the ramp's middle, not
+    // at its bottom as it would be on a scale of its own.
+    for svg in [&before, &after] {
+        assert!(svg.contains(">600<") && svg.contains(">2400<"), "{svg}");
+    }
+    let middle = palette::quantity_bin_color(Quantity::Feed, 10).to_string();
+    assert!(before.contains(&format!("data-bin=\"10\" fill=\"none\" stroke=\"{middle}\"")), "{before}");
+}

@@ -6,8 +6,8 @@
 use super::inputs::{read_contour, read_dxf, ContourInput};
 use super::output::{OutputOptions, DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM};
 use super::program_input::{read_program, ProgramContext, ProgramInput};
-use super::setup::{resolve, PathJobRefs, PathSetup, Resolved};
-use super::trochoids_result::TrochoidsResult;
+use super::setup::{machine_limits, resolve, PathJobRefs, PathSetup, Resolved};
+use super::trochoids_result::{ChangeFigures, TrochoidsResult};
 use crate::core::conditions::{feed_mm_min, CuttingConditions};
 use crate::core::cycles::trochoid::default_loop_radius_mm;
 use crate::core::cycles::CutDirection;
@@ -15,6 +15,7 @@ use crate::core::drawing::insertion_scene::insertion_scene;
 use crate::core::drawing::scene::Scene;
 use crate::core::geometry::Pocket;
 use crate::core::insertion::{check_plan, plan_insertion, InsertionSpec, LoopSize};
+use crate::core::kinematics::MachineLimits;
 use crate::core::medial::{CLASS_A_RATIO_MAX, CLASS_A_RATIO_MIN};
 use crate::core::nc::write_program_mapped;
 use crate::core::operation::Operation;
@@ -129,6 +130,10 @@ pub struct TrochoidsPrepared {
     pub roughing_source: String,
     pub grooving: CuttingConditions,
     pub grooving_source: String,
+    /// The machine's kinematic limits, for the figures before and after (absent in jobs
+    /// queued before they were kept).
+    #[serde(default)]
+    pub limits: Option<MachineLimits>,
 }
 
 /// Checks the values of the request that need no database.
@@ -229,7 +234,8 @@ pub async fn prepare(pool: &Pool, request: TrochoidsRequest) -> Result<Trochoids
     for (name, c, source) in [("roughing", roughing, &roughing_source), ("grooving", grooving, &grooving_source)] {
         within_machine(name, &c, source, flutes, (machine_max_spindle_rpm, machine_max_feed_mm_min))?;
     }
-    let prepared = TrochoidsPrepared { base, roughing, roughing_source, grooving, grooving_source };
+    let limits = Some(machine_limits(pool, base.machine.id).await?);
+    let prepared = TrochoidsPrepared { base, roughing, roughing_source, grooving, grooving_source, limits };
     let checked = prepared.clone();
     tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
         let (pocket, spec, path) = build(&request, &checked)?;
@@ -316,7 +322,8 @@ pub fn run(
     let options = request.output.to_writer(&prepared.base);
     let written = write_program_mapped(&plan.toolpath, &options);
     let scene = insertion_scene(&pocket, &spec, &plan);
-    Ok((TrochoidsResult::new(prepared, path.is_some(), &written, plan), written.text, scene))
+    let figures = prepared.limits.as_ref().map(|l| ChangeFigures::of(&plan, l)).transpose()?;
+    Ok((TrochoidsResult::new(prepared, path.is_some(), &written, plan, figures), written.text, scene))
 }
 
 /// The `trochoids` job kind.

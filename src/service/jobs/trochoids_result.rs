@@ -8,8 +8,11 @@ use super::setup::{NamedRef, ToolRef};
 use super::trochoids::TrochoidsPrepared;
 use crate::core::conditions::CuttingConditions;
 use crate::core::insertion::{InsertionPlan, Overload, Treatment, Verification};
+use crate::core::kinematics::{machining_time, MachineLimits, TimeOptions};
 use crate::core::medial::{ClassInterval, CriticalInterval, NodeKind};
 use crate::core::nc::{toolpath_to_json, JsonProgram, WrittenProgram};
+use crate::core::toolpath::Toolpath;
+use crate::core::CoreError;
 use serde::Serialize;
 use utoipa::ToSchema;
 
@@ -139,6 +142,52 @@ pub struct VerificationReport {
     pub overloads: Vec<OverloadReport>,
 }
 
+/// Lengths and times of one program, as the costing's kinematics gives them (MODEL.md §10).
+#[derive(Debug, Clone, Copy, Serialize, ToSchema)]
+pub struct ProgramFigures {
+    /// Length of the feed moves, mm.
+    pub feed_length_mm: f64,
+    /// Length of the rapid moves, mm.
+    pub rapid_length_mm: f64,
+    /// Feed moves at their programmed feeds, rapids at the rapid rate, tool changes and
+    /// dwells, min.
+    pub nominal_time_min: f64,
+    /// With the machine's feed, acceleration and jerk limits, min.
+    pub kinematic_time_min: f64,
+}
+
+impl ProgramFigures {
+    /// The figures of `path` on a machine of `limits`.
+    pub fn of(path: &Toolpath, limits: &MachineLimits) -> Result<Self, CoreError> {
+        let t = machining_time(path, limits, &TimeOptions::default())?;
+        Ok(ProgramFigures {
+            feed_length_mm: t.feed_length_mm,
+            rapid_length_mm: t.rapid_length_mm,
+            nominal_time_min: t.nominal_min,
+            kinematic_time_min: t.kinematic_min,
+        })
+    }
+}
+
+/// What the insertion changes: the base path's figures and the planned path's.
+#[derive(Debug, Clone, Copy, Serialize, ToSchema)]
+pub struct ChangeFigures {
+    /// The base path (generated or given), before the insertion.
+    pub before: ProgramFigures,
+    /// The planned path, with its trochoids and z-cut passes.
+    pub after: ProgramFigures,
+}
+
+impl ChangeFigures {
+    /// The figures of `plan`'s base path and planned path on a machine of `limits`.
+    pub fn of(plan: &InsertionPlan, limits: &MachineLimits) -> Result<Self, CoreError> {
+        Ok(ChangeFigures {
+            before: ProgramFigures::of(&plan.drawing.base_path, limits)?,
+            after: ProgramFigures::of(&plan.toolpath, limits)?,
+        })
+    }
+}
+
 /// The answer of a `trochoids` job.
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct TrochoidsResult {
@@ -169,6 +218,9 @@ pub struct TrochoidsResult {
     pub rounds: usize,
     pub pocket_area_mm2: f64,
     pub program: ProgramInfo,
+    /// Lengths and times before and after the insertion, on the job's machine (null in
+    /// jobs queued before it was kept).
+    pub figures: Option<ChangeFigures>,
     /// The new path as JSON moves (the form `program.moves` of other jobs accepts).
     #[schema(value_type = Object)]
     pub path: JsonProgram,
@@ -176,7 +228,13 @@ pub struct TrochoidsResult {
 }
 
 impl TrochoidsResult {
-    pub fn new(prepared: TrochoidsPrepared, given: bool, program: &WrittenProgram, plan: InsertionPlan) -> Self {
+    pub fn new(
+        prepared: TrochoidsPrepared,
+        given: bool,
+        program: &WrittenProgram,
+        plan: InsertionPlan,
+        figures: Option<ChangeFigures>,
+    ) -> Self {
         let overloads = plan
             .verification
             .overloads
@@ -208,6 +266,7 @@ impl TrochoidsResult {
             rounds: plan.rounds,
             pocket_area_mm2: plan.pocket_area_mm2,
             program: ProgramInfo::new(plan.base_moves, plan.toolpath.moves.len(), &program.text),
+            figures,
             path: toolpath_to_json(&plan.toolpath),
             warnings: plan.warnings,
         }

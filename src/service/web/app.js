@@ -8,6 +8,7 @@ import { newJobView } from './new-job.js';
 import { jobView } from './job-view.js';
 import { jobsView } from './jobs.js';
 import { databaseView } from './database.js';
+import { unitsSwitch } from './units.js';
 
 const main = document.getElementById('main');
 let cleanup = null;
@@ -79,6 +80,9 @@ window.addEventListener('hashchange', () => route(false));
 window.addEventListener('dieplan:refresh', () => route(true));
 if (!location.hash) history.replaceState(null, '', '#/new');
 route(false);
+
+// mm or inch: what the page shows (the API stays in mm).
+document.getElementById('units-slot')?.replaceChildren(unitsSwitch());
 
 // "API key" in the header: enter, change or forget the key this browser sends.
 document.getElementById('api-key-button')?.addEventListener('click', async () => {

@@ -102,21 +102,29 @@ export function drawingPanel(job) {
   return wrap;
 }
 
+/** What a job changes, by kind: the quantity both sides of its before-and-after strip are coloured by. */
+const CHANGED = { feeds: 'feed', trochoids: 'alpha', plan: 'alpha' };
+
 // Before and after side by side (the first and the last path, e.g. the base path with
 // its overloads and the planned one with its trochoids), as images: the job at a glance.
-function compareStrip(views, paths) {
+// Both are coloured by what the job changes (a feeds job the feed, the others α), on one
+// scale for both, so that a colour is the same value on either side.
+function compareStrip(views, paths, kind) {
   if (paths.length < 2) return [];
   const [first, last] = [paths[0], paths.at(-1)];
+  const wanted = CHANGED[kind] || 'alpha';
+  const common = [wanted, 'alpha'].find((q) => first.quantities.includes(q) && last.quantities.includes(q));
   const figure = (path, caption) => {
     const q = new URLSearchParams({ path: path.name, width: String(COMPARE_WIDTH_PX), rapids: 'false' });
-    if (path.quantities.includes('alpha')) q.set('color', 'alpha');
+    if (common) q.set('color', common);
     const src = `${views.drawing}?${q}`;
     return h('figure', { class: 'compare-item' },
       h('a', { href: src, target: '_blank', rel: 'noopener' },
         h('img', { src, alt: `${caption}: ${pathLabel(path.name)}`, loading: 'lazy' })),
       h('figcaption', {}, h('strong', {}, caption), ` · ${pathLabel(path.name)}`));
   };
-  return [h('div', { class: 'compare' }, figure(first, 'Before'), figure(last, 'After'))];
+  return [h('div', { class: 'compare', dataset: { color: common || '' } }, figure(first, 'Before'), figure(last, 'After')),
+    common ? h('p', { class: 'hint' }, `Both coloured by ${QUANTITIES[common] || common}, on one scale.`) : null];
 }
 
 function renderDrawing(views, body, kind) {
@@ -172,7 +180,7 @@ function renderDrawing(views, body, kind) {
     ].filter(Boolean));
   }
   renderControls();
-  body.replaceChildren(...compareStrip(views, paths), controls, canvas, h('p', { class: 'hint' }, 'Scroll to zoom, drag to pan. ', openLink));
+  body.replaceChildren(...compareStrip(views, paths, kind).filter(Boolean), controls, canvas, h('p', { class: 'hint' }, 'Scroll to zoom, drag to pan. ', openLink));
   requestAnimationFrame(draw);
 }
 

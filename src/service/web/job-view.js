@@ -2,6 +2,8 @@
 // its controls, the charts, the NC program download and the raw result.
 import { h, api, downloadLink, problemBox, pretty, num, minutes, when, duration, figures, table, badge, KIND_NAMES } from './ui.js';
 import { drawingPanel } from './drawing.js';
+import { savingsPanel, remaining } from './savings.js';
+import { length, area, feed, coordinate } from './units.js';
 
 const POLL_MS = 1000;
 const line = (p) => (p && p.line !== undefined ? String(p.line) : '–');
@@ -18,11 +20,11 @@ const SUMMARIES = {
     return [
       figures([
         ['Tool', r.tool?.name], ['Material', r.material?.name],
-        ['Cutting length', num(s.cutting_length_mm, 1, 'mm')], ['Air-cut length', num(s.air_cut_length_mm, 1, 'mm')],
+        ['Cutting length', length(s.cutting_length_mm)], ['Air-cut length', length(s.air_cut_length_mm)],
         ['Time at programmed feeds', minutes(s.time_at_programmed_feeds_min)],
         ['Engagement α', stats(s.alpha_deg, 1, '°'), s.alpha_deg?.max > s.alpha_limit_deg ? 'bad' : 'good'],
         ['Chip thickness t_m', stats(s.t_m_um, 1, 'µm')], ['Force', stats(s.force_n, 0, 'N')],
-        ['Critical regions', `${s.critical_regions ?? 0} (${num(s.critical_length_mm, 1, 'mm')}) above ${num(s.alpha_limit_deg, 0)}°`, s.critical_regions ? 'bad' : 'good'],
+        ['Critical regions', `${s.critical_regions ?? 0} (${length(s.critical_length_mm)}) above ${num(s.alpha_limit_deg, 0)}°`, s.critical_regions ? 'bad' : 'good'],
       ]),
       regionsTable(r.critical_regions || []),
     ];
@@ -31,11 +33,11 @@ const SUMMARIES = {
     const v = r.verification || {};
     return [
       figures([
-        ['Tool', r.tool?.name], ['Pocket area', num(r.pocket_area_mm2, 0, 'mm²')],
+        ['Tool', r.tool?.name], ['Pocket area', area(r.pocket_area_mm2)],
         ['Before: max α', num(r.base_max_alpha_deg, 1, '°'), r.base_max_alpha_deg > (v.alpha_limit_deg ?? 40) ? 'bad' : 'good'],
         ['After: max α outside z-cuts', num(v.outside_zcut?.max_alpha_deg, 1, '°'), v.outside_zcut?.overloaded ? 'bad' : 'good'],
         ['Verification', v.passed ? 'passed' : 'FAILED', v.passed ? 'good' : 'bad'],
-        ['Gouges', num(v.gouges, 0), v.gouges ? 'bad' : 'good'], ['Uncleared area', num(v.uncleared_area_mm2, 1, 'mm²')],
+        ['Gouges', num(v.gouges, 0), v.gouges ? 'bad' : 'good'], ['Uncleared area', area(v.uncleared_area_mm2, 1)],
         ['Trochoids', String((r.treatments || []).filter((t) => t.kind === 'trochoid').length)],
         ['Program', `${num(r.program?.lines, 0)} lines`],
       ]),
@@ -56,13 +58,13 @@ const SUMMARIES = {
         ['Target force', num(r.target_force_n, 1, 'N')],
         ['Time before → after', `${minutes(b.time_min)} → ${minutes(a.time_min)}`],
         ['Force before', stats(b.force_n, 0, 'N')], ['Force after', stats(a.force_n, 0, 'N')],
-        ['Feed after', `${num(a.feed_mm_min?.mean, 0)} mean (${num(r.limits?.min_feed_mm_min, 0)}–${num(r.limits?.max_feed_mm_min, 0)} mm/min allowed)`],
+        ['Feed after', `${feed(a.feed_mm_min?.mean)} mean (${feed(r.limits?.min_feed_mm_min)} to ${feed(r.limits?.max_feed_mm_min)} allowed)`],
         ['Shortfalls', String((r.shortfalls || []).length), (r.shortfalls || []).length ? 'warn' : 'good'],
         ['Program', `${num(r.program?.moves_in, 0)} → ${num(r.program?.moves_out, 0)} moves, ${num(r.program?.lines, 0)} lines`],
       ]),
       (r.shortfalls || []).length ? h('h3', {}, 'Where the target cannot be held') : null,
       (r.shortfalls || []).length ? table([
-        ['Kind', (s) => words(s.kind)], ['NC lines', (s) => lines(s.start, s.end)], ['Length', (s) => num(s.length_mm, 1, 'mm')],
+        ['Kind', (s) => words(s.kind)], ['NC lines', (s) => lines(s.start, s.end)], ['Length', (s) => length(s.length_mm)],
         ['Max α', (s) => num(s.max_alpha_deg, 1, '°')]], r.shortfalls, { limit: 15 }) : null,
     ];
   },
@@ -88,7 +90,7 @@ const SUMMARIES = {
     return [
       figures([
         ['Chosen tool', chosen?.name || String(r.chosen_tool_id)], ['Layers', String((r.layers || []).length)],
-        ['Cutting length', num(tot.cutting_length_mm, 0, 'mm')], ['Time (kinematic)', minutes(tot.kinematic_time_min)],
+        ['Cutting length', length(tot.cutting_length_mm, 0)], ['Time (kinematic)', minutes(tot.kinematic_time_min)],
         ['Cost', `${num(tot.cost, 2)} ${tot.currency || ''}`], ['Tool life used', `${num((tu.consumption ?? 0) * 100, 1)} % (force × ${num(tu.force_factor, 2)}, ${words(tu.outcome)})`],
         cmp ? ['Vs. ball-end baseline', `time × ${num(cmp.kinematic_time_ratio, 2)}, cost × ${num(cmp.cost_ratio, 2)}, saves ${minutes(cmp.time_saved_min)}`] : null,
       ]),
@@ -106,9 +108,9 @@ const SUMMARIES = {
 function regionsTable(regions) {
   if (!regions.length) return h('p', { class: 'muted' }, 'No critical regions: the engagement stays below the limit.');
   return h('div', {}, h('h3', {}, 'Critical regions'), table([
-    ['Kind', (c) => words(c.kind)], ['NC lines', (c) => lines(c.start, c.end)], ['Length', (c) => num(c.length_mm, 1, 'mm')],
+    ['Kind', (c) => words(c.kind)], ['NC lines', (c) => lines(c.start, c.end)], ['Length', (c) => length(c.length_mm)],
     ['Max α', (c) => num(c.max_alpha_deg, 1, '°')], ['Max force', (c) => num(c.max_force_n, 0, 'N')],
-    ['At', (c) => (c.at_max ? `X${num(c.at_max.x, 2)} Y${num(c.at_max.y, 2)} Z${num(c.at_max.z, 2)}` : '–')]], regions, { limit: 15 }));
+    ['At', (c) => (c.at_max ? `X${coordinate(c.at_max.x)} Y${coordinate(c.at_max.y)} Z${coordinate(c.at_max.z)}` : '–')]], regions, { limit: 15 }));
 }
 
 function warnings(list) {
@@ -139,7 +141,7 @@ export async function jobView(id) {
     status.replaceChildren(...[
       h('div', { class: 'status-line' }, badge(job.status),
         h('span', {}, running
-          ? `${pct} %${job.started_at ? ` · running for ${duration(job.started_at)}` : ' · waiting for a worker'}${job.kind === 'plan' ? ' · a plan takes a minute or more' : ''}`
+          ? `${pct} %${job.started_at ? ` · running for ${duration(job.started_at)} · ${remaining(job.progress, job.started_at) || 'estimating the time left'}` : ' · waiting for a worker'}`
           : `finished ${when(job.finished_at)} · ran ${duration(job.started_at, job.finished_at)}`),
         running ? cancel : h('span', { class: 'actions tight' },
           job.status === 'succeeded' && job.kind === 'feeds' ? h('a', { class: 'button', href: `#/new?cost=${job.id}` }, 'Cost this program') : null,
@@ -178,10 +180,11 @@ export async function jobView(id) {
       parts.push(h('p', { class: 'actions' }, downloadLink(job.links.program, `dieplan-${job.kind}-${job.id.slice(0, 8)}.nc`, { class: 'button primary', id: 'download-program' }, 'Download NC program'), baseline));
     }
     parts.push(h('section', { class: 'card' }, h('h2', {}, 'Result'), ...(SUMMARIES[job.kind]?.(r) || [h('p', { class: 'muted' }, 'See the raw result below.')]), warnings(r.warnings)));
+    parts.push(savingsPanel(job.kind, r));
     parts.push(drawingPanel(job));
     parts.push(h('details', { class: 'card raw' }, h('summary', {}, 'Raw result (JSON)'), h('pre', { class: 'code' }, pretty(job.result))));
     parts.push(inputPanel(job));
-    body.replaceChildren(...parts);
+    body.replaceChildren(...parts.filter(Boolean));
   }
 
   async function poll() {
