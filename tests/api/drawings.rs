@@ -72,6 +72,9 @@ async fn bad_drawing_requests_are_refused_naming_the_parameter() {
         ("width=10", 422, Some("width")),
         ("width=wide", 400, None),
         ("zoom=2", 400, None),
+        ("x_min=0&y_min=0&x_max=10", 422, Some("x_min")),
+        ("x_min=10&y_min=0&x_max=5&y_max=10", 422, Some("x_min")),
+        ("x_min=0&y_min=0&x_max=10&y_max=abc", 400, None),
     ] {
         assert_problem(&app.get(&format!("/v1/jobs/{id}/drawing.svg?{query}")).await, status, field);
     }
@@ -118,6 +121,28 @@ async fn a_trochoid_insertion_draws_the_base_path_overloaded_and_the_planned_one
     assert_svg(&planned);
     assert!(planned.text.contains("class=\"trochoid"), "the trochoids are marked");
     assert_svg(&app.get(&format!("/v1/jobs/{id}/charts/alpha")).await);
+
+    // A window is drawn anew at its own scale, clipped to it.
+    let zoomed = app.get(&format!("/v1/jobs/{id}/drawing.svg?path=planned&x_min=90&y_min=20&x_max=120&y_max=40")).await;
+    assert_svg(&zoomed);
+    assert!(zoomed.text.contains("data-windowed=\"true\"") && zoomed.text.contains("clip-path"), "not a window");
+
+    // The base program is served; the overloads of the base path name its lines, and
+    // the result says what the insertion costs in time and length.
+    let base_program = app.get(&format!("/v1/jobs/{id}/program?part=base")).await;
+    assert_eq!(base_program.status, 200, "{}", base_program.text);
+    let lines = base_program.text.lines().count() as u64;
+    let label = base.text.split("class=\"region-label\"").nth(1).expect("a labelled overload");
+    let last: u64 = label.split("data-lines=\"").nth(1).unwrap().split(['-', '"']).nth(1).unwrap().parse().unwrap();
+    assert!(last <= lines, "the overload names line {last} of a base program of {lines} lines");
+    let job = app.get(&format!("/v1/jobs/{id}")).await;
+    let figures = &job.body["result"]["figures"];
+    for side in ["before", "after"] {
+        for field in ["feed_length_mm", "rapid_length_mm", "nominal_time_min", "kinematic_time_min"] {
+            assert!(figures[side][field].as_f64().is_some_and(|v| v > 0.0), "{side}.{field}: {figures}");
+        }
+    }
+    assert_problem(&app.get(&format!("/v1/jobs/{id}/program?part=baseline")).await, 404, None);
     app.stop().await;
 }
 

@@ -181,13 +181,39 @@ try {
     check(await page.locator('#drawing svg').isVisible(), 'the drawing SVG is not visible');
     // The legend's elements: class "legend" or "legend-…" (caption, entries, ramp).
     check(await page.locator('#drawing svg [class|="legend"]').count() > 0, 'the drawing has no legend');
-    // Zoom in narrows the view box; Fit restores it.
+    // Zoom in narrows the view box at once, then the drawing is drawn again for the
+    // window in view: a larger scale, with its labels and legend at their usual size.
+    // The drawing is drawn for the width it is shown at (again, after the phone's).
+    await page.waitForFunction(() => {
+      const svg = document.querySelector('#drawing svg');
+      const shown = svg?.getBoundingClientRect().width || 0;
+      return svg && !document.querySelector('#drawing.loading') && Math.abs(svg.viewBox.baseVal.width - shown) < 0.2 * shown;
+    });
     const viewBox = () => page.$eval('#drawing svg', (svg) => svg.viewBox.baseVal.width);
+    const frame = () => page.$eval('#drawing svg .frame', (f) => ({ scale: Number(f.dataset.scale), windowed: f.dataset.windowed }));
+    // The size of the text on the screen, px.
+    const fonts = () => page.$$eval('#drawing svg .legend-caption, #drawing svg .subtitle', (t) => t.map((e) => {
+      const svg = e.ownerSVGElement;
+      return (Number(e.getAttribute('font-size')) * svg.getBoundingClientRect().width / svg.viewBox.baseVal.width).toFixed(1);
+    }).join(' '));
     const whole = await viewBox();
+    const homeFrame = await frame();
+    const fontsBefore = await fonts();
     await page.click('button[aria-label="Zoom in"]');
     check(await viewBox() < whole, 'Zoom in did not zoom');
+    await page.waitForSelector('#drawing svg .frame[data-windowed="true"]', { state: 'attached' });
+    const zoomed = await frame();
+    check(zoomed.scale > 1.4 * homeFrame.scale, `the zoomed drawing is not drawn at a larger scale: ${homeFrame.scale} → ${zoomed.scale}`);
+    check(await fonts() === fontsBefore, `the text changed size when zoomed: ${fontsBefore} → ${await fonts()}`);
+    check(Math.abs((await viewBox()) - whole) < 1e-6 * whole, 'the zoomed drawing is not shown whole');
+    // The hover read-out gives the position (and what is under the pointer).
+    const box = await page.locator('#drawing svg').boundingBox();
+    await page.mouse.move(box.x + box.width / 2, box.y + box.height / 3);
+    check(/^X -?[\d.,]+ {2}Y -?[\d.,]+ mm/.test(await page.locator('#drawing-readout').innerText()), `no read-out: ${await page.locator('#drawing-readout').innerText()}`);
+    await shot(page, 'desktop-drawing-zoomed');
     await page.click('button:has-text("Fit")');
-    check(Math.abs((await viewBox()) - whole) < 1e-6 * whole, 'Fit did not show the whole drawing again');
+    await page.waitForSelector('#drawing svg .frame[data-windowed="false"]', { state: 'attached' });
+    check(Math.abs((await frame()).scale - homeFrame.scale) < 1e-6 * homeFrame.scale, 'Fit did not show the whole drawing again');
     // A trochoids job has the base path (before) and the planned one: the before-and-after
     // strip shows both, and choosing the other path redraws the drawing with it.
     check(await page.locator('.compare img').count() === 2, 'no before-and-after strip');
@@ -227,9 +253,67 @@ try {
     for (const id of ['nominal-time', 'kinematic-time', 'length', 'air-cut', 'tool-use', 'cost']) {
       check(ids.includes(id), `the feeds job has no "${id}" card: ${ids}`);
     }
+    // The changed lines, before and after.
+    await page.selectOption('#program-part', 'diff');
+    await page.waitForSelector('#program .nc-diff');
+    const diff = await page.$$eval('#program .nc-diff', (rows) => rows.slice(0, 3).map((r) => r.innerText));
+    check(diff.length > 0 && diff.every((t) => /F/.test(t)), `the changed lines show no feeds: ${diff}`);
     await shot(page, 'desktop-feeds-job');
     await page.goto(`${BASE}/#/jobs/${jobId}`);
     await page.waitForSelector('#drawing svg path', { state: 'attached', timeout: 30_000 });
+  });
+
+  await step('the program view: the NC text with line numbers, the base program, and links both ways with the drawing', async () => {
+    await page.waitForSelector('#program .nc-row');
+    const options = await page.$$eval('#program-part option', (o) => o.map((x) => x.value));
+    check(options.includes('main') && options.includes('base'), `a trochoids job shows its program and its base program: ${options}`);
+    const first = await page.$eval('#program .nc-row', (r) => ({ line: r.dataset.line, ln: r.querySelector('.nc-ln').textContent }));
+    check(first.line === '1' && first.ln === '1', `the first row is not line 1: ${JSON.stringify(first)}`);
+    // The base program is downloadable and is G-code.
+    const base = page.locator('#download-base');
+    check(await base.count() === 1, 'no download of the base program');
+    const text = await page.evaluate(async (url) => (await fetch(url)).text(), await base.getAttribute('href'));
+    check(/\bG0?1\b/.test(text), `the base program is not G-code: ${text.slice(0, 200)}`);
+    // An overload's NC lines in the table lead to them in the program.
+    const link = page.locator('button.line-link[data-part="main"]').first();
+    check(await link.count() === 1, 'the overloads table has no links to NC lines');
+    const from = await link.getAttribute('data-from');
+    await link.click();
+    await page.waitForSelector(`#program .nc-row.selected[data-line="${from}"]`);
+    check((await page.locator('#program .nc-status').innerText()).includes(from), 'the status does not name the selected line');
+    // A critical region of the base path in the drawing leads to its lines of the base program.
+    await page.selectOption('#draw-path', 'base');
+    await page.waitForFunction(() => (document.querySelector('#drawing svg .subtitle')?.textContent || '').startsWith('base'));
+    const label = page.locator('#drawing svg .region-label').first();
+    const lines = (await label.getAttribute('data-lines')).split('-');
+    await label.click();
+    await page.waitForFunction(() => document.querySelector('#program-part').value === 'base');
+    await page.waitForSelector(`#program .nc-row.selected[data-line="${lines[0]}"]`);
+    // Selected lines mark the regions on them.
+    check(await page.locator('#drawing svg .region-label.linked').count() > 0, 'the region of the selected lines is not marked');
+    await shot(page, 'desktop-job-program');
+  });
+
+  await step('the program view stays small and quick for a program of 200 000 lines', async () => {
+    const made = await page.evaluate(async () => {
+      const { virtualList } = await import('/program-view.js');
+      const n = 200_000;
+      const list = virtualList(n, (i) => { const d = document.createElement('div'); d.className = 'nc-row'; d.dataset.line = String(i + 1); d.textContent = `N${i + 1} G1 X${i} Y0 F1000`; return d; }, { label: 'test' });
+      document.body.append(list.node);
+      const t0 = performance.now();
+      list.draw(true);
+      list.reveal(149_999);
+      const ms = performance.now() - t0;
+      const rows = list.node.querySelectorAll('.nc-row').length;
+      const shown = Boolean(list.node.querySelector('[data-line="150000"]'));
+      const height = list.node.scrollHeight;
+      list.node.remove();
+      return { ms, rows, shown, height };
+    });
+    check(made.shown, 'line 150000 is not shown after revealing it');
+    check(made.rows < 100, `${made.rows} rows in the DOM for 200 000 lines`);
+    check(made.height >= 200_000 * 20, `the list is not as tall as its lines: ${made.height}`);
+    check(made.ms < 100, `revealing a line took ${made.ms} ms`);
   });
 
   await step('the charts are drawn', async () => {

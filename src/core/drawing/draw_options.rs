@@ -1,6 +1,7 @@
 //! What a plan view shows ([`DrawOptions`]) and why a request for one is refused
 //! ([`DrawError`]), with the checks that resolve the options against a scene.
 
+use super::frame::Extent;
 use super::scene::{Quantity, Scene, ScenePath};
 
 /// Default drawing width, px.
@@ -11,7 +12,7 @@ pub const MIN_WIDTH_PX: u32 = 200;
 pub const MAX_WIDTH_PX: u32 = 4000;
 
 /// What to draw.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct DrawOptions {
     /// The path to draw; `None`: the scene's last path.
     pub path: Option<String>,
@@ -26,6 +27,9 @@ pub struct DrawOptions {
     pub trochoids: bool,
     /// Width of the drawing, px ([`MIN_WIDTH_PX`]..=[`MAX_WIDTH_PX`]).
     pub width_px: u32,
+    /// The part of the plane to draw, mm (a zoomed view: drawn anew at this scale, its
+    /// labels and strokes at their usual size); `None`: the whole scene.
+    pub window: Option<Extent>,
 }
 
 impl Default for DrawOptions {
@@ -39,6 +43,7 @@ impl Default for DrawOptions {
             regions: true,
             trochoids: true,
             width_px: DEFAULT_WIDTH_PX,
+            window: None,
         }
     }
 }
@@ -54,7 +59,15 @@ pub enum DrawError {
     QuantityUnavailable { quantity: String, path: String, available: Vec<String> },
     #[error("width {width} px is out of bounds: {min}..={max} px")]
     WidthOutOfBounds { width: u32, min: u32, max: u32 },
+    #[error(
+        "the window must be finite, with x_min < x_max and y_min < y_max, at least {MIN_WINDOW_MM} mm wide and high"
+    )]
+    BadWindow,
 }
+
+/// The smallest window a drawing shows, mm (a micrometre: below it the simplified path
+/// shows nothing more).
+pub const MIN_WINDOW_MM: f64 = 1e-3;
 
 impl DrawError {
     /// The query parameter at fault: `path`, `layer`, `color` or `width`.
@@ -64,6 +77,7 @@ impl DrawError {
             DrawError::LayerOutOfRange { .. } => "layer",
             DrawError::QuantityUnavailable { .. } => "color",
             DrawError::WidthOutOfBounds { .. } => "width",
+            DrawError::BadWindow => "x_min",
         }
     }
 }
@@ -113,6 +127,12 @@ pub fn resolve<'a>(scene: &'a Scene, options: &DrawOptions) -> Result<Resolved<'
         })?),
         None => scene.paths.last(),
     };
+    if let Some(w) = options.window {
+        let finite = [w.x_min, w.y_min, w.x_max, w.y_max].iter().all(|v| v.is_finite());
+        if !finite || w.width() < MIN_WINDOW_MM || w.height() < MIN_WINDOW_MM {
+            return Err(DrawError::BadWindow);
+        }
+    }
     if let Some(layer) = options.layer {
         if layer >= scene.layers.len() {
             return Err(DrawError::LayerOutOfRange { layer, count: scene.layers.len() });

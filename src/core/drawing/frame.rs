@@ -88,6 +88,11 @@ impl Frame {
         )
     }
 
+    /// The extent drawn, mm.
+    pub fn extent(&self) -> Extent {
+        self.extent
+    }
+
     /// A length in mm as px.
     pub fn len_px(&self, mm: f64) -> f64 {
         mm * self.scale

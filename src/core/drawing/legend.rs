@@ -49,7 +49,16 @@ pub struct Entry {
 pub fn draw_ramp(svg: &mut Svg, at: (f64, f64), width: f64, k: f64, scale: &ValueScale, quantity: Quantity) -> f64 {
     let font = LEGEND_FONT * k;
     let (x, y) = at;
-    svg.group(Attrs::new().class("legend-ramp").str("data-quantity", quantity.as_str()));
+    // The scale in data attributes: the page reads a colour bin's values from them.
+    let mut group = Attrs::new()
+        .class("legend-ramp")
+        .str("data-quantity", quantity.as_str())
+        .show("data-min", scale.min)
+        .show("data-max", scale.max);
+    if let Some(limit) = scale.limit {
+        group = group.show("data-limit", limit);
+    }
+    svg.group(group);
     svg.text((x, y + font), font, Anchor::Start, quantity.caption(), Attrs::new().class("legend-caption"));
     let ramp_top = y + font * 1.5;
     let ramp_h = RAMP_HEIGHT * k;

@@ -8,6 +8,7 @@
 use super::draw_options::resolve;
 pub use super::draw_options::{DrawError, DrawOptions, DEFAULT_WIDTH_PX, MAX_WIDTH_PX, MIN_WIDTH_PX};
 use super::frame::{Extent, Frame};
+use super::labels::draw_region_labels;
 use super::legend::{draw_entries, draw_ramp, draw_scale_bar, Entry, Swatch, LEGEND_FONT};
 use super::palette::{self, quantity_bin_color, Rgb, ValueScale};
 use super::scene::{MedialClass, OutlineRole, Quantity, Run, Scene, ScenePath};
@@ -17,8 +18,9 @@ use std::collections::BTreeMap;
 
 /// Size unit: fonts and strokes scale with the width relative to this, px.
 const REFERENCE_WIDTH_PX: f64 = 1000.0;
-/// Bounds of the size unit.
-const MIN_UNIT: f64 = 0.6;
+/// Bounds of the size unit: never below 1, so that text keeps its size on a narrow
+/// drawing (a phone) and stays readable.
+const MIN_UNIT: f64 = 1.0;
 const MAX_UNIT: f64 = 2.5;
 /// Margin around everything, in size units.
 const MARGIN: f64 = 16.0;
@@ -42,10 +44,6 @@ const MIN_REGION_BAND: f64 = 6.0;
 const MAX_REGION_BAND: f64 = 24.0;
 /// Narrowest trochoid band, px.
 const MIN_TROCHOID_BAND_PX: f64 = 3.0;
-/// Regions labelled at most (those of the highest α whose labels do not overlap).
-const MAX_REGION_LABELS: usize = 12;
-/// Font of region labels, in size units.
-const REGION_FONT: f64 = 11.0;
 /// The colour ramp's share of the inner width.
 const RAMP_FRACTION: f64 = 0.45;
 
@@ -58,7 +56,7 @@ pub fn render_drawing(scene: &Scene, options: &DrawOptions) -> Result<String, Dr
     let layer_ok = |l: Option<usize>| resolved.layer.is_none() || l.is_none() || l == resolved.layer;
     let run_ok = |r: &Run| resolved.layer.is_none() || r.layer == resolved.layer;
 
-    let extent = scene_extent(scene);
+    let extent = options.window.unwrap_or_else(|| scene_extent(scene));
     let title_bottom = margin + (TITLE_FONT + SUBTITLE_FONT * 1.6) * k;
     let inner = width - 2.0 * margin;
     let frame = Frame::fit(extent, (margin, title_bottom + margin * 0.5), inner, inner * MAX_ASPECT);
@@ -177,9 +175,41 @@ pub fn render_drawing(scene: &Scene, options: &DrawOptions) -> Result<String, Dr
     let subtitle = format!("{path_name} — {layer_name} — {coloured}");
     let sub_y = margin + (TITLE_FONT + SUBTITLE_FONT * 1.4) * k;
     svg.text((margin, sub_y), SUBTITLE_FONT * k, Anchor::Start, &subtitle, Attrs::new().class("subtitle"));
+    draw_frame(&mut svg, &frame, options.window.is_some());
     svg.insert(&body.finish_fragment());
+    svg.end_group();
     svg.insert(&legend.finish_fragment());
     Ok(svg.finish())
+}
+
+/// Opens the drawing area: a `frame` element telling the page how mm map onto px
+/// (`px = left + (x − x_min)·scale`, `py = top + (y_max − y)·scale`) and, for a window,
+/// a group clipped to the area (closed after the body).
+fn draw_frame(svg: &mut Svg, frame: &Frame, windowed: bool) {
+    let e = frame.extent();
+    let (left, top) = frame.px([e.x_min, e.y_max]);
+    let attrs = Attrs::new()
+        .class("frame")
+        .show("data-x-min", e.x_min)
+        .show("data-y-min", e.y_min)
+        .show("data-x-max", e.x_max)
+        .show("data-y-max", e.y_max)
+        .show("data-scale", frame.scale)
+        .show("data-left", left)
+        .show("data-top", top)
+        .show("data-windowed", windowed);
+    svg.group(attrs);
+    svg.end_group();
+    let mut area = Attrs::new().class("drawing-area");
+    if windowed {
+        svg.insert(&format!(
+            "<clipPath id=\"drawing-area\"><rect x=\"{left:.2}\" y=\"{top:.2}\" width=\"{:.2}\" height=\"{:.2}\"/></clipPath>\n",
+            e.width() * frame.scale,
+            frame.height_px
+        ));
+        area = area.str("clip-path", "url(#drawing-area)");
+    }
+    svg.group(area);
 }
 
 /// The scene's extent: outlines, paths and the medial axis, padded.
@@ -435,45 +465,6 @@ fn draw_feed(
         );
     }
     no_value
-}
-
-/// Labels the regions of the highest α: "α 112° · N120–N180" on a light background, beside
-/// the middle of the region.
-fn draw_region_labels(svg: &mut Svg, scene: &Scene, regions: &[usize], frame: &Frame, k: f64, band: f64) {
-    let mut order: Vec<usize> = regions.iter().copied().filter(|&i| !scene.regions[i].points.is_empty()).collect();
-    order.sort_by(|&a, &b| scene.regions[b].max_alpha_deg.total_cmp(&scene.regions[a].max_alpha_deg).then(a.cmp(&b)));
-    let font = REGION_FONT * k;
-    // Boxes of the labels placed so far: a label that would overlap one is left out.
-    let mut placed: Vec<(f64, f64, f64, f64)> = Vec::new();
-    for &i in &order {
-        if placed.len() >= MAX_REGION_LABELS {
-            break;
-        }
-        let r = &scene.regions[i];
-        let (x, y) = frame.px(r.points[r.points.len() / 2]);
-        let text = format!("α {}° · N{}–N{}", value_label(r.max_alpha_deg), r.start_line, r.end_line);
-        let w = text_width(&text, font);
-        let (lx, ly) = (x + band / 2.0 + 2.0 * k, y - band / 2.0 - 2.0 * k);
-        let bx = (lx - 2.0 * k, ly - font, lx + w + 2.0 * k, ly + 0.3 * font);
-        if placed.iter().any(|p| bx.0 < p.2 && p.0 < bx.2 && bx.1 < p.3 && p.1 < bx.3) {
-            continue;
-        }
-        placed.push(bx);
-        svg.group(Attrs::new().class("region-label").str("data-kind", &r.kind));
-        svg.rect(
-            lx - 2.0 * k,
-            ly - font,
-            w + 4.0 * k,
-            font * 1.3,
-            Attrs::new()
-                .str("fill", "#ffffff")
-                .num("fill-opacity", 0.8)
-                .show("stroke", palette::REGION)
-                .num("stroke-width", 0.6 * k),
-        );
-        svg.text((lx, ly), font, Anchor::Start, &text, Attrs::new().show("fill", palette::REGION));
-        svg.end_group();
-    }
 }
 
 #[cfg(test)]

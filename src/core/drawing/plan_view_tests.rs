@@ -197,3 +197,55 @@ fn two_paths_coloured_by_feed_share_one_scale_so_an_unchanged_feed_keeps_its_col
     let middle = palette::quantity_bin_color(Quantity::Feed, 10).to_string();
     assert!(before.contains(&format!("data-bin=\"10\" fill=\"none\" stroke=\"{middle}\"")), "{before}");
 }
+
+#[test]
+fn a_window_is_drawn_anew_at_its_own_scale_clipped_with_labels_at_their_usual_size() {
+    use crate::core::drawing::frame::Extent;
+    let whole = draw(&small_scene(), &DrawOptions::default());
+    let window = Extent { x_min: 35.0, y_min: 35.0, x_max: 50.0, y_max: 50.0 };
+    let zoomed = draw(&small_scene(), &DrawOptions { window: Some(window), ..DrawOptions::default() });
+    let scale = |svg: &str| -> f64 {
+        let at = svg.find("data-scale=\"").expect("a frame") + 12;
+        svg[at..].split('"').next().unwrap().parse().unwrap()
+    };
+    assert!(scale(&zoomed) > 4.0 * scale(&whole), "{} vs {}", scale(&zoomed), scale(&whole));
+    assert!(zoomed.contains("clip-path=\"url(#drawing-area)\"") && zoomed.contains("data-windowed=\"true\""));
+    assert!(!whole.contains("clip-path"));
+    // The region's label and the legend keep their font size.
+    for svg in [&whole, &zoomed] {
+        assert!(svg.contains("font-size=\"11.00\""), "region label font");
+        assert!(svg.contains("α 95° · N120–N124"));
+    }
+}
+
+#[test]
+fn a_window_that_is_not_a_box_is_refused_naming_x_min() {
+    use crate::core::drawing::frame::Extent;
+    for window in [
+        Extent { x_min: 10.0, y_min: 0.0, x_max: 5.0, y_max: 10.0 },
+        Extent { x_min: 0.0, y_min: 0.0, x_max: f64::NAN, y_max: 10.0 },
+        Extent { x_min: 0.0, y_min: 0.0, x_max: 10.0, y_max: 0.0 },
+    ] {
+        let e = render_drawing(&small_scene(), &DrawOptions { window: Some(window), ..DrawOptions::default() });
+        assert_eq!(e.unwrap_err().field(), "x_min");
+    }
+}
+
+#[test]
+fn dense_regions_share_one_label_that_counts_them_and_spans_their_lines() {
+    let mut scene = small_scene();
+    let first = scene.regions[0].clone();
+    for k in 1..4u32 {
+        let mut r = first.clone();
+        r.points = r.points.iter().map(|p| [p[0] - 0.2 * f64::from(k), p[1]]).collect();
+        r.max_alpha_deg = 90.0 - f64::from(k);
+        r.start_line = 120 + 10 * k;
+        r.end_line = 124 + 10 * k;
+        scene.regions.push(r);
+    }
+    let svg = draw(&scene, &DrawOptions::default());
+    assert_eq!(count(&svg, "class=\"region-label\""), 1, "one label for four close regions");
+    assert!(svg.contains("data-cluster=\"4\""));
+    assert!(svg.contains("α 95° · N120–N154 · +3 more"), "{svg}");
+    assert_eq!(count(&svg, "class=\"region\""), 4, "every region is still drawn");
+}

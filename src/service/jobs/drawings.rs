@@ -4,6 +4,7 @@
 use super::model::{JobId, JobKind, JobStatus};
 use super::store;
 use crate::core::drawing::chart::render_chart;
+use crate::core::drawing::frame::Extent;
 use crate::core::drawing::plan_view::{render_drawing, DrawOptions};
 use crate::core::drawing::scene::{Quantity, Scene};
 use crate::service::auth::Caller;
@@ -95,6 +96,25 @@ pub struct DrawingQuery {
     /// Width of the drawing, px (200 to 4000, default 1000).
     #[param(minimum = 200, maximum = 4000)]
     pub width: Option<u32>,
+    /// A window to draw, mm: give all four of `x_min`, `y_min`, `x_max`, `y_max` to draw
+    /// that part of the plane anew at its own scale (a zoomed view: more detail, labels
+    /// and strokes at their usual size); default the whole job. The drawing's `frame`
+    /// element says how mm map onto its px.
+    pub x_min: Option<f64>,
+    pub y_min: Option<f64>,
+    pub x_max: Option<f64>,
+    pub y_max: Option<f64>,
+}
+
+impl DrawingQuery {
+    /// The window asked for: all four bounds, or none.
+    fn window(&self) -> Result<Option<Extent>, ApiError> {
+        match (self.x_min, self.y_min, self.x_max, self.y_max) {
+            (Some(x_min), Some(y_min), Some(x_max), Some(y_max)) => Ok(Some(Extent { x_min, y_min, x_max, y_max })),
+            (None, None, None, None) => Ok(None),
+            _ => Err(ApiError::field("x_min", "give all four of x_min, y_min, x_max and y_max, or none")),
+        }
+    }
 }
 
 /// Query of `GET /v1/jobs/{id}/charts/{chart}`.
@@ -196,7 +216,7 @@ pub async fn get_views(
         (status = 400, description = "A malformed job id or query parameter", body = Problem, content_type = "application/problem+json"),
         (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json"),
         (status = 409, description = "Not finished, or a kind of job without drawings", body = Problem, content_type = "application/problem+json"),
-        (status = 422, description = "An unknown path, layer or quantity, or a width out of bounds", body = Problem, content_type = "application/problem+json")))]
+        (status = 422, description = "An unknown path, layer or quantity, a width out of bounds, or a window that is not a box", body = Problem, content_type = "application/problem+json")))]
 pub async fn get_drawing(
     State(state): State<AppState>,
     caller: Caller,
@@ -210,6 +230,7 @@ pub async fn get_drawing(
         None => None,
     };
     let defaults = DrawOptions::default();
+    let window = query.window()?;
     let options = DrawOptions {
         path: query.path,
         color_by: color,
@@ -219,6 +240,7 @@ pub async fn get_drawing(
         regions: query.regions.unwrap_or(defaults.regions),
         trochoids: query.trochoids.unwrap_or(defaults.trochoids),
         width_px: query.width.unwrap_or(defaults.width_px),
+        window,
     };
     let scene = scene_of(&state, &caller, &id).await?;
     let body = tokio::task::spawn_blocking(move || render_drawing(&scene, &options))

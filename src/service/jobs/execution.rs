@@ -51,6 +51,7 @@ struct Serialized {
     summary: String,
     program: Option<String>,
     baseline: Option<String>,
+    base: Option<String>,
     scene: Option<String>,
 }
 
@@ -88,11 +89,11 @@ pub async fn execute(
     };
     let worker_control = control.clone();
     let mut task = tokio::task::spawn_blocking(move || {
-        let kinds::JobOutput { result: value, program, baseline_program: baseline, scene } =
+        let kinds::JobOutput { result: value, program, baseline_program: baseline, base_program: base, scene } =
             kinds::run(kind, &input, &prepared, worker_control.as_ref())?;
         let result = serde_json::to_string(&value).unwrap_or_default();
         let summary = super::model::headline(&value).to_string();
-        Ok::<_, CoreError>(Serialized { result, summary, program, baseline, scene })
+        Ok::<_, CoreError>(Serialized { result, summary, program, baseline, base, scene })
     });
     let mut tick = tokio::time::interval(PROGRESS_FLUSH);
     let mut last = 0.0;
@@ -113,16 +114,18 @@ pub async fn execute(
         Ok(Ok(done)) => {
             let Serialized { result, summary, .. } = &done;
             let (program, baseline, scene) = (done.program.as_deref(), done.baseline.as_deref(), done.scene.as_deref());
+            let base = done.base.as_deref();
             let sizes = [
                 ("result", result.len()),
                 ("program", program.map_or(0, str::len)),
                 ("baseline program", baseline.map_or(0, str::len)),
+                ("base program", base.map_or(0, str::len)),
                 ("scene", scene.map_or(0, str::len)),
             ];
             if let Some(problem) = oversized(&sizes) {
                 return store::fail(pool, lease, id, &problem).await;
             }
-            let programs = [(ProgramPart::Main, program), (ProgramPart::Baseline, baseline)]
+            let programs = [(ProgramPart::Main, program), (ProgramPart::Baseline, baseline), (ProgramPart::Base, base)]
                 .into_iter()
                 .filter_map(|(part, text)| Some((part, text?)))
                 .collect();

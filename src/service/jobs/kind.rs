@@ -29,6 +29,8 @@ pub struct Produced<R> {
     pub program: Option<String>,
     /// A plan's baseline program (`GET /v1/jobs/{id}/program?part=baseline`).
     pub baseline_program: Option<String>,
+    /// The program a job changed: a trochoids job's base path (`?part=base`).
+    pub base_program: Option<String>,
     /// What can be drawn of the job.
     pub scene: Option<Scene>,
 }
@@ -36,7 +38,7 @@ pub struct Produced<R> {
 impl<R> Produced<R> {
     /// A result alone.
     pub fn result(result: R) -> Self {
-        Produced { result, program: None, baseline_program: None, scene: None }
+        Produced { result, program: None, baseline_program: None, base_program: None, scene: None }
     }
 
     /// A result with its drawing.

@@ -225,6 +225,9 @@ pub enum ProgramPart {
     Main,
     /// A plan's conventional baseline: the R5 ball's thin contour-parallel levels.
     Baseline,
+    /// The program a trochoids job changed: its base path (the program sent, or the
+    /// generated contour-parallel path), whose lines the base path's overloads name.
+    Base,
 }
 
 impl ProgramPart {
@@ -232,6 +235,7 @@ impl ProgramPart {
         match self {
             ProgramPart::Main => "main",
             ProgramPart::Baseline => "baseline",
+            ProgramPart::Base => "base",
         }
     }
 }

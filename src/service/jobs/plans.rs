@@ -509,6 +509,7 @@ impl JobKindSpec for Plan {
             result: out.result,
             program: Some(out.program),
             baseline_program: out.baseline_program,
+            base_program: None,
             scene: Some(out.scene),
         })
     }

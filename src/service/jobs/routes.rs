@@ -307,20 +307,23 @@ pub async fn cancel_job(
 pub struct ProgramQuery {
     /// Which program: `main` (default), the job's own (a feeds job's edited program, the
     /// trochoids', the plan's chosen tool's); `baseline`, a plan's conventional ball-end
-    /// baseline.
+    /// baseline; `base`, the program a trochoids job changed (the program sent, or the
+    /// generated contour-parallel path), whose lines its base path's overloads name.
     pub part: Option<ProgramPart>,
 }
 
 /// An NC program a finished job produced, as plain text.
 ///
 /// `part=baseline` gives a plan's conventional baseline (the R5 ball in thin levels, at its
-/// `conventional_ball_roughing` conditions), written with the plan's output options.
+/// `conventional_ball_roughing` conditions), written with the plan's output options;
+/// `part=base` a trochoids job's base program, before the insertion (the G-code sent, or
+/// the path sent or generated written with the job's output options).
 #[utoipa::path(get, path = "/v1/jobs/{id}/program", tag = "jobs", operation_id = "getJobProgram",
     params(("id" = JobId, Path, description = "Job id (a UUID)"), ProgramQuery),
     responses(
         (status = 200, description = "The NC program", body = String, content_type = "text/plain"),
         (status = 400, description = "A malformed job id, or an unknown part or query parameter", body = Problem, content_type = "application/problem+json"),
-        (status = 404, description = "No such job, or this job makes no such program (a baseline only comes with a plan that has one)", body = Problem, content_type = "application/problem+json"),
+        (status = 404, description = "No such job, or this job makes no such program (a baseline only comes with a plan that has one, a base program with a trochoids job)", body = Problem, content_type = "application/problem+json"),
         (status = 409, description = "Not finished yet", body = Problem, content_type = "application/problem+json")))]
 pub async fn get_program(
     State(state): State<AppState>,
@@ -348,6 +351,7 @@ fn makes(kind: JobKind, part: ProgramPart) -> bool {
     match part {
         ProgramPart::Main => true,
         ProgramPart::Baseline => kind == JobKind::Plan,
+        ProgramPart::Base => kind == JobKind::Trochoids,
     }
 }
 

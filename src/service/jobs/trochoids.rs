@@ -14,10 +14,10 @@ use crate::core::cycles::CutDirection;
 use crate::core::drawing::insertion_scene::insertion_scene;
 use crate::core::drawing::scene::Scene;
 use crate::core::geometry::Pocket;
-use crate::core::insertion::{check_plan, plan_insertion, InsertionSpec, LoopSize};
+use crate::core::insertion::{check_plan, plan_insertion, InsertionPlan, InsertionSpec, LoopSize};
 use crate::core::kinematics::MachineLimits;
 use crate::core::medial::{CLASS_A_RATIO_MAX, CLASS_A_RATIO_MIN};
-use crate::core::nc::write_program_mapped;
+use crate::core::nc::{write_program_mapped, WriterOptions};
 use crate::core::operation::Operation;
 use crate::core::progress::Progress;
 use crate::core::CoreError;
@@ -310,20 +310,47 @@ fn build(request: &TrochoidsRequest, prepared: &TrochoidsPrepared) -> Result<Bui
     Ok((pocket, spec, path))
 }
 
-/// Plans the insertion and writes the program.
-pub fn run(
-    request: TrochoidsRequest,
-    prepared: TrochoidsPrepared,
-    progress: &dyn Progress,
-) -> Result<(TrochoidsResult, String, Scene), CoreError> {
+/// Replaces the move numbers (1-based) of `lines` by the lines of the text written from
+/// those moves (`move_lines`).
+fn to_written_lines(lines: &mut [u32], move_lines: &[u32]) {
+    for line in lines {
+        if let Some(&written) = (*line as usize).checked_sub(1).and_then(|i| move_lines.get(i)) {
+            *line = written;
+        }
+    }
+}
+
+/// The program the insertion changed, with the base path's samples relabelled by its
+/// lines (so that the drawing's overloads of the base path name them): the G-code sent,
+/// as it was (its moves carry its lines already); else the path sent as moves or
+/// generated, written with the job's output options (its samples carry move numbers,
+/// which become the written lines).
+fn base_program(request: &TrochoidsRequest, plan: &mut InsertionPlan, options: &WriterOptions) -> String {
+    if let Some(text) = request.program.as_ref().and_then(|p| p.gcode.clone()) {
+        return text;
+    }
+    let written = write_program_mapped(&plan.drawing.base_path, options);
+    to_written_lines(&mut plan.drawing.base_samples.line, &written.move_lines);
+    written.text
+}
+
+/// What a run makes: the result, the program, the base program and the drawing.
+pub type Run = (TrochoidsResult, String, String, Scene);
+
+/// Plans the insertion and writes the program (and the base program).
+pub fn run(request: TrochoidsRequest, prepared: TrochoidsPrepared, progress: &dyn Progress) -> Result<Run, CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
     let (pocket, spec, path) = build(&request, &prepared).map_err(reread)?;
-    let plan = plan_insertion(&pocket, &spec, path.as_ref(), progress)?;
+    let mut plan = plan_insertion(&pocket, &spec, path.as_ref(), progress)?;
     let options = request.output.to_writer(&prepared.base);
     let written = write_program_mapped(&plan.toolpath, &options);
+    let base = base_program(&request, &mut plan, &options);
+    // The planned path's samples carry its move numbers: the drawing names the lines of
+    // the job's program.
+    to_written_lines(&mut plan.drawing.planned_samples.line, &written.move_lines);
     let scene = insertion_scene(&pocket, &spec, &plan);
     let figures = prepared.limits.as_ref().map(|l| ChangeFigures::of(&plan, l)).transpose()?;
-    Ok((TrochoidsResult::new(prepared, path.is_some(), &written, plan, figures), written.text, scene))
+    Ok((TrochoidsResult::new(prepared, path.is_some(), &written, plan, figures), written.text, base, scene))
 }
 
 /// The `trochoids` job kind.
@@ -354,7 +381,7 @@ impl JobKindSpec for Trochoids {
         prepared: TrochoidsPrepared,
         progress: &dyn Progress,
     ) -> Result<Produced<TrochoidsResult>, CoreError> {
-        let (result, program, scene) = run(request, prepared, progress)?;
-        Ok(Produced::programmed(result, program, scene))
+        let (result, program, base, scene) = run(request, prepared, progress)?;
+        Ok(Produced { base_program: Some(base), ..Produced::programmed(result, program, scene) })
     }
 }

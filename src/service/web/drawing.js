@@ -1,6 +1,7 @@
 // The drawing of a finished job (GET /v1/jobs/{id}/views, then drawing.svg with the chosen
 // path, colour quantity, layer and layers of detail) with zoom and pan, and its charts.
 import { h, api, problemBox, svgNode } from './ui.js';
+import { zoomable, readoutLine } from './zoom.js';
 
 const QUANTITIES = {
   alpha: 'Engagement angle α (°)',
@@ -28,46 +29,6 @@ const CHART_MAX_PX = 4000;
 const CHART_REDRAW_RATIO = 0.2;
 const CHART_REDRAW_DELAY_MS = 250;
 
-/** Zoom with the wheel or the buttons, pan by dragging; "Fit" restores the whole drawing. */
-function zoomable(svg, canvas) {
-  const vb = svg.viewBox.baseVal;
-  if (!vb || !vb.width) return () => {};
-  const home = { x: vb.x, y: vb.y, width: vb.width, height: vb.height };
-  const set = (x, y, width, height) => svg.setAttribute('viewBox', `${x} ${y} ${width} ${height}`);
-  const zoom = (factor, cx = vb.x + vb.width / 2, cy = vb.y + vb.height / 2) => {
-    const width = Math.min(home.width * 4, Math.max(home.width / 200, vb.width * factor));
-    const f = width / vb.width;
-    set(cx - (cx - vb.x) * f, cy - (cy - vb.y) * f, vb.width * f, vb.height * f);
-  };
-  const toSvg = (event) => {
-    const r = svg.getBoundingClientRect();
-    return [vb.x + ((event.clientX - r.left) / r.width) * vb.width, vb.y + ((event.clientY - r.top) / r.height) * vb.height];
-  };
-  svg.addEventListener('wheel', (event) => {
-    event.preventDefault();
-    zoom(event.deltaY > 0 ? 1.2 : 1 / 1.2, ...toSvg(event));
-  }, { passive: false });
-  let drag = null;
-  svg.addEventListener('pointerdown', (event) => {
-    drag = { x: event.clientX, y: event.clientY, vx: vb.x, vy: vb.y };
-    svg.setPointerCapture(event.pointerId);
-    canvas.classList.add('dragging');
-  });
-  svg.addEventListener('pointermove', (event) => {
-    if (!drag) return;
-    const r = svg.getBoundingClientRect();
-    set(drag.vx - ((event.clientX - drag.x) / r.width) * vb.width, drag.vy - ((event.clientY - drag.y) / r.height) * vb.height, vb.width, vb.height);
-  });
-  const end = () => { drag = null; canvas.classList.remove('dragging'); };
-  svg.addEventListener('pointerup', end);
-  svg.addEventListener('pointercancel', end);
-  return (action) => {
-    if (action === 'in') zoom(1 / 1.5);
-    else if (action === 'out') zoom(1.5);
-    else set(home.x, home.y, home.width, home.height);
-  };
-}
-
 async function loadSvg(href, target) {
   try {
     const svg = svgNode(await api('GET', href, undefined, { text: true }));
@@ -81,7 +42,38 @@ async function loadSvg(href, target) {
   }
 }
 
-export function drawingPanel(job) {
+/** Pointer travel below which a press on the drawing is a click, not a pan, px. */
+const CLICK_SLOP_PX = 4;
+
+/**
+ * Links the drawing with the program panel: a click on a critical region (its band or
+ * its label) shows its NC lines; lines selected in the program mark the regions on them.
+ */
+function linkToProgram(canvas, program, pathName) {
+  if (!program) return;
+  let press = null;
+  canvas.addEventListener('pointerdown', (event) => {
+    const mark = event.target.closest?.('.region, .region-label');
+    press = mark ? { mark, x: event.clientX, y: event.clientY } : null;
+  }, { capture: true });
+  canvas.addEventListener('pointerup', (event) => {
+    if (!press || Math.hypot(event.clientX - press.x, event.clientY - press.y) > CLICK_SLOP_PX) return;
+    const [from, to] = (press.mark.getAttribute('data-lines') || '').split('-').map(Number);
+    press = null;
+    if (Number.isFinite(from)) program.show(program.partFor(pathName()), from, Number.isFinite(to) ? to : from);
+  });
+  program.onSelect((selection) => {
+    const svg = canvas.querySelector('svg');
+    if (!svg) return;
+    const same = selection && program.partFor(pathName()) === selection.part;
+    for (const mark of svg.querySelectorAll('.region, .region-label')) {
+      const [from, to] = (mark.getAttribute('data-lines') || '').split('-').map(Number);
+      mark.classList.toggle('linked', Boolean(same && from <= selection.to && to >= selection.from));
+    }
+  });
+}
+
+export function drawingPanel(job, program) {
   const section = h('section', { class: 'card drawing-card' }, h('h2', {}, 'Drawing'));
   const chartsSection = h('section', { class: 'card charts-card' }, h('h2', {}, 'Charts'));
   const wrap = h('div', {}, section, chartsSection);
@@ -93,7 +85,7 @@ export function drawingPanel(job) {
   const body = h('div', {}, h('p', { class: 'muted' }, 'Loading the drawing…'));
   section.append(body);
   api('GET', job.links.views).then((views) => {
-    renderDrawing(views, body, job.kind);
+    renderDrawing(views, body, job.kind, program);
     renderCharts(views, chartsSection);
   }).catch((err) => {
     body.replaceChildren(problemBox(err, 'No drawing'));
@@ -127,15 +119,17 @@ function compareStrip(views, paths, kind) {
     common ? h('p', { class: 'hint' }, `Both coloured by ${QUANTITIES[common] || common}, on one scale.`) : null];
 }
 
-function renderDrawing(views, body, kind) {
+function renderDrawing(views, body, kind, program) {
   const paths = views.paths || [];
   const toggles = TOGGLES.filter(([, , , kinds]) => !kinds || kinds.includes(kind));
-  const state = { path: paths.at(-1)?.name, color: null, layer: '', toggles: Object.fromEntries(toggles.map(([k, , v]) => [k, v])) };
+  const state = { path: paths.at(-1)?.name, color: null, layer: '', window: null, toggles: Object.fromEntries(toggles.map(([k, , v]) => [k, v])) };
+  const info = readoutLine();
   const canvas = h('div', { class: 'drawing-canvas', id: 'drawing' });
   const controls = h('div', { class: 'drawing-controls' });
   const openLink = h('a', { target: '_blank', rel: 'noopener' }, 'Open the SVG');
   let zoom = () => {};
   let request = 0;
+  linkToProgram(canvas, program, () => state.path);
 
   const url = () => {
     const q = new URLSearchParams();
@@ -144,10 +138,13 @@ function renderDrawing(views, body, kind) {
     if (state.layer !== '') q.set('layer', state.layer);
     for (const [k, v] of Object.entries(state.toggles)) q.set(k, String(v));
     q.set('width', String(Math.max(320, Math.min(2400, Math.round(canvas.clientWidth || 900)))));
+    if (state.window) for (const k of ['x_min', 'y_min', 'x_max', 'y_max']) q.set(k, String(state.window[k]));
     return `${views.drawing}?${q}`;
   };
+  let drawnWidth = 0;
   async function draw() {
     const mine = ++request;
+    drawnWidth = canvas.clientWidth;
     canvas.classList.add('loading');
     const href = url();
     openLink.href = href;
@@ -156,7 +153,7 @@ function renderDrawing(views, body, kind) {
     canvas.classList.remove('loading');
     if (svg) {
       canvas.replaceChildren(svg);
-      zoom = zoomable(svg, canvas);
+      zoom = zoomable(svg, canvas, { window: state.window, info, redraw: (window) => { state.window = window; draw(); } });
     } else {
       canvas.replaceChildren(problemBox({ message: 'The drawing could not be loaded.' }));
     }
@@ -180,8 +177,24 @@ function renderDrawing(views, body, kind) {
     ].filter(Boolean));
   }
   renderControls();
-  body.replaceChildren(...compareStrip(views, paths, kind).filter(Boolean), controls, canvas, h('p', { class: 'hint' }, 'Scroll to zoom, drag to pan. ', openLink));
+  body.replaceChildren(...compareStrip(views, paths, kind).filter(Boolean), controls, canvas, info, h('p', { class: 'hint' }, 'Scroll to zoom, drag to pan: the drawing is drawn again for what is in view. ', openLink));
   requestAnimationFrame(draw);
+  // Drawn at the width it is shown at, so its text keeps its size: drawn again when the
+  // window makes it much wider or narrower (a phone turned, a window resized).
+  if (typeof ResizeObserver === 'function') {
+    let pending = null;
+    const observer = new ResizeObserver(() => {
+      if (!canvas.isConnected) {
+        if (drawnWidth) observer.disconnect();
+        return;
+      }
+      clearTimeout(pending);
+      pending = setTimeout(() => {
+        if (drawnWidth && Math.abs(canvas.clientWidth - drawnWidth) > CHART_REDRAW_RATIO * drawnWidth) draw();
+      }, CHART_REDRAW_DELAY_MS);
+    });
+    observer.observe(canvas);
+  }
 }
 
 function renderCharts(views, section) {

@@ -1,13 +1,23 @@
 // One job: progress (polled), cancel, and once succeeded the key figures, the drawing with
 // its controls, the charts, the NC program download and the raw result.
-import { h, api, downloadLink, problemBox, pretty, num, minutes, when, duration, figures, table, badge, KIND_NAMES } from './ui.js';
+import { h, api, problemBox, pretty, num, minutes, when, duration, figures, table, badge, KIND_NAMES } from './ui.js';
 import { drawingPanel } from './drawing.js';
 import { savingsPanel, remaining } from './savings.js';
+import { programPanel } from './program-view.js';
 import { length, area, feed, coordinate } from './units.js';
 
 const POLL_MS = 1000;
 const line = (p) => (p && p.line !== undefined ? String(p.line) : '–');
-const lines = (a, b) => (line(a) === line(b) ? line(a) : `${line(a)}–${line(b)}`);
+// The program panel of the job shown: NC lines in the tables lead to it.
+let program = null;
+/** NC lines `from`–`to` of program `part` as a link to them in the program panel. */
+function lineLink(part, from, to = from) {
+  const text = from === to ? String(from) : `${from}–${to}`;
+  if (from == null) return '–';
+  return h('button', { type: 'button', class: 'link line-link', dataset: { part, from, to }, title: 'Show in the NC program',
+    onclick: () => program?.show(part, from, to) }, text);
+}
+const lines = (a, b, part = 'input') => (a?.line == null ? '–' : lineLink(part, a.line, b?.line ?? a.line));
 const words = (s) => (s == null ? '–' : String(s).replace(/_/g, ' '));
 const stats = (s, digits, unit) => (s ? `${num(s.max, digits, unit)} max · ${num(s.mean, digits)} mean` : '–');
 
@@ -41,6 +51,7 @@ const SUMMARIES = {
         ['Trochoids', String((r.treatments || []).filter((t) => t.kind === 'trochoid').length)],
         ['Program', `${num(r.program?.lines, 0)} lines`],
       ]),
+      overloadsTable(r.verification?.overloads || [], r.verification?.overload_stretches),
       table([
         ['Treatment', (t) => TREATMENTS[t.kind] || t.kind], ['Class', (t) => t.class ?? '–'],
         ['Loops / passes', (t) => (t.kind === 'z_cut' ? `${num(t.passes_per_level, 0)} passes` : t.loops ? num(t.loops, 0) : '–')],
@@ -80,7 +91,7 @@ const SUMMARIES = {
         ['Removed', `${num((r.removed_volume_mm3 ?? 0) / 1000, 2)} cm³ at ${num(r.removal_rate_cm3_min, 2)} cm³/min`],
       ]),
       h('h3', {}, 'Where the tool wears'),
-      table([['NC line', (w) => w.line], ['Share of wear', (w) => `${num(w.share * 100, 1)} %`],
+      table([['NC line', (w) => lineLink('input', w.line)], ['Share of wear', (w) => `${num(w.share * 100, 1)} %`],
         ['Cut (mm)', (w) => num(w.cutting_length_mm, 1)], ['Max α (°)', (w) => num(w.max_alpha_deg, 1)]], (l.by_line || []).slice(0, 8)),
     ];
   },
@@ -101,6 +112,7 @@ const SUMMARIES = {
       table([['Layer', (l) => l.index + 1], ['Role', (l) => words(l.role)], ['z (mm)', (l) => `${num(l.z_top, 2)} → ${num(l.z_bottom, 2)}`],
         ['Trochoids', (l) => num(l.trochoids, 0)], ['Max α before → after (°)', (l) => `${num(l.base_max_alpha_deg, 1)} → ${num(l.max_alpha_deg, 1)}`],
         ['Checked', (l) => (l.verification_passed ? 'passed' : 'failed')]], r.layers || [], { limit: 15 }),
+      overloadsTable((r.layers || []).flatMap((l) => l.overloads || [])),
     ];
   },
 };
@@ -111,6 +123,16 @@ function regionsTable(regions) {
     ['Kind', (c) => words(c.kind)], ['NC lines', (c) => lines(c.start, c.end)], ['Length', (c) => length(c.length_mm)],
     ['Max α', (c) => num(c.max_alpha_deg, 1, '°')], ['Max force', (c) => num(c.max_force_n, 0, 'N')],
     ['At', (c) => (c.at_max ? `X${coordinate(c.at_max.x)} Y${coordinate(c.at_max.y)} Z${coordinate(c.at_max.z)}` : '–')]], regions, { limit: 15 }));
+}
+
+/** The overloads a check left (trochoids, plans), each with its lines of the job's program. */
+function overloadsTable(list, count) {
+  if (!list.length) return null;
+  return h('div', {}, h('h3', {}, `Overloads left (${num(count ?? list.length, 0)})`), table([
+    ['NC lines', (o) => (o.program_lines ? lineLink('main', o.program_lines[0], o.program_lines[1]) : '–')],
+    ['Length', (o) => length(o.length_mm)], ['Max α', (o) => num(o.max_alpha_deg, 1, '°')],
+    ['At', (o) => `X${coordinate(o.x)} Y${coordinate(o.y)} Z${coordinate(o.z)}`],
+    ['Where', (o) => (o.in_zcut_region ? 'crossing a z-cut region' : 'outside the z-cut regions')]], list, { limit: 15 }));
 }
 
 function warnings(list) {
@@ -173,15 +195,11 @@ export async function jobView(id) {
   function renderResult() {
     const r = job.result || {};
     const parts = [];
-    if (job.links?.program) {
-      const baseline = job.kind === 'plan' && job.result?.baseline
-        ? downloadLink(`${job.links.program}?part=baseline`, `dieplan-baseline-${job.id.slice(0, 8)}.nc`, { class: 'button', id: 'download-baseline' }, 'Download the baseline’s NC program')
-        : null;
-      parts.push(h('p', { class: 'actions' }, downloadLink(job.links.program, `dieplan-${job.kind}-${job.id.slice(0, 8)}.nc`, { class: 'button primary', id: 'download-program' }, 'Download NC program'), baseline));
-    }
+    program = programPanel(job);
     parts.push(h('section', { class: 'card' }, h('h2', {}, 'Result'), ...(SUMMARIES[job.kind]?.(r) || [h('p', { class: 'muted' }, 'See the raw result below.')]), warnings(r.warnings)));
     parts.push(savingsPanel(job.kind, r));
-    parts.push(drawingPanel(job));
+    parts.push(drawingPanel(job, program));
+    parts.push(program?.node);
     parts.push(h('details', { class: 'card raw' }, h('summary', {}, 'Raw result (JSON)'), h('pre', { class: 'code' }, pretty(job.result))));
     parts.push(inputPanel(job));
     body.replaceChildren(...parts.filter(Boolean));
