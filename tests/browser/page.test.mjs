@@ -105,6 +105,15 @@ try {
     const alpha = cards.find((c) => c.id === 'max-alpha');
     check(alpha.before.startsWith('180') && /^−/.test(alpha.change), `max α does not drop from 180°: ${JSON.stringify(alpha)}`);
     await shot(page, 'desktop-job-savings');
+    // Display units: inch on the page; the API stays in mm.
+    await page.selectOption('#units', 'inch');
+    await page.waitForFunction(() => / in$/.test(document.querySelector('#savings [data-figure="length"] .after')?.textContent || ''));
+    const mm = cards.find((c) => c.id === 'length').after;
+    const inch = await page.locator('#savings [data-figure="length"] .after').innerText();
+    const value = (t) => Number(t.replace(/[^\d.]/g, ''));
+    check(Math.abs(value(inch) * 25.4 - value(mm)) < 0.01 * value(mm), `${mm} is not ${inch}`);
+    await page.selectOption('#units', 'mm');
+    await page.waitForFunction(() => / mm$/.test(document.querySelector('#savings [data-figure="length"] .after')?.textContent || ''));
   });
 
   await step('a running job’s time left is estimated from its progress and elapsed time', async () => {

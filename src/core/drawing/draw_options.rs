@@ -60,7 +60,7 @@ pub enum DrawError {
     #[error("width {width} px is out of bounds: {min}..={max} px")]
     WidthOutOfBounds { width: u32, min: u32, max: u32 },
     #[error(
-        "the window must be finite, with x_min < x_max and y_min < y_max, at least {MIN_WINDOW_MM} mm wide and high"
+        "the window must have x_min < x_max and y_min < y_max, be at least {MIN_WINDOW_MM} mm wide and high, and lie within ±{MAX_WINDOW_COORD_MM} mm"
     )]
     BadWindow,
 }
@@ -68,6 +68,9 @@ pub enum DrawError {
 /// The smallest window a drawing shows, mm (a micrometre: below it the simplified path
 /// shows nothing more).
 pub const MIN_WINDOW_MM: f64 = 1e-3;
+/// The farthest a window's bounds may lie from the origin, mm (a kilometre: beyond any
+/// machine, and far from where the drawing's arithmetic loses its precision).
+pub const MAX_WINDOW_COORD_MM: f64 = 1e6;
 
 impl DrawError {
     /// The query parameter at fault: `path`, `layer`, `color` or `width`.
@@ -128,8 +131,8 @@ pub fn resolve<'a>(scene: &'a Scene, options: &DrawOptions) -> Result<Resolved<'
         None => scene.paths.last(),
     };
     if let Some(w) = options.window {
-        let finite = [w.x_min, w.y_min, w.x_max, w.y_max].iter().all(|v| v.is_finite());
-        if !finite || w.width() < MIN_WINDOW_MM || w.height() < MIN_WINDOW_MM {
+        let within = [w.x_min, w.y_min, w.x_max, w.y_max].iter().all(|v| v.abs() <= MAX_WINDOW_COORD_MM);
+        if !within || w.width() < MIN_WINDOW_MM || w.height() < MIN_WINDOW_MM {
             return Err(DrawError::BadWindow);
         }
     }

@@ -225,6 +225,8 @@ fn a_window_that_is_not_a_box_is_refused_naming_x_min() {
         Extent { x_min: 10.0, y_min: 0.0, x_max: 5.0, y_max: 10.0 },
         Extent { x_min: 0.0, y_min: 0.0, x_max: f64::NAN, y_max: 10.0 },
         Extent { x_min: 0.0, y_min: 0.0, x_max: 10.0, y_max: 0.0 },
+        Extent { x_min: -1e300, y_min: 0.0, x_max: 1e300, y_max: 10.0 },
+        Extent { x_min: 0.0, y_min: f64::NEG_INFINITY, x_max: 10.0, y_max: 10.0 },
     ] {
         let e = render_drawing(&small_scene(), &DrawOptions { window: Some(window), ..DrawOptions::default() });
         assert_eq!(e.unwrap_err().field(), "x_min");

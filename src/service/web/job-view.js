@@ -4,7 +4,7 @@ import { h, api, problemBox, pretty, num, minutes, when, duration, figures, tabl
 import { drawingPanel } from './drawing.js';
 import { savingsPanel, remaining } from './savings.js';
 import { programPanel } from './program-view.js';
-import { length, area, feed, coordinate } from './units.js';
+import { length, area, feed, coordinate, lengthUnit } from './units.js';
 
 const POLL_MS = 1000;
 const line = (p) => (p && p.line !== undefined ? String(p.line) : '–');
@@ -22,7 +22,8 @@ const words = (s) => (s == null ? '–' : String(s).replace(/_/g, ' '));
 const stats = (s, digits, unit) => (s ? `${num(s.max, digits, unit)} max · ${num(s.mean, digits)} mean` : '–');
 
 const TREATMENTS = { kept: 'kept (contour-parallel)', trochoid: 'trochoid', z_cut: 'z-cut division', opening: 'opening (helix + spiral)' };
-const range = (lo, hi, digits = 2) => (lo == null ? '–' : Math.abs(lo - hi) < 10 ** -digits ? num(lo, digits) : `${num(lo, digits)}–${num(hi, digits)}`);
+/** A range of lengths in mm, in the display unit. */
+const range = (lo, hi, digits = 2) => (lo == null ? '–' : Math.abs(lo - hi) < 10 ** -digits ? length(lo, digits) : `${coordinate(lo, digits)}–${length(hi, digits)}`);
 
 const SUMMARIES = {
   analysis(r) {
@@ -55,9 +56,9 @@ const SUMMARIES = {
       table([
         ['Treatment', (t) => TREATMENTS[t.kind] || t.kind], ['Class', (t) => t.class ?? '–'],
         ['Loops / passes', (t) => (t.kind === 'z_cut' ? `${num(t.passes_per_level, 0)} passes` : t.loops ? num(t.loops, 0) : '–')],
-        ['Pitch (mm)', (t) => range(t.pitch_min_mm, t.pitch_max_mm)],
-        ['Loop radius (mm)', (t) => range(t.loop_radius_min_mm, t.loop_radius_max_mm)],
-        ['Area (mm²)', (t) => num(t.area_mm2, 0)], ['Time', (t) => minutes(t.time_min)],
+        ['Pitch', (t) => range(t.pitch_min_mm, t.pitch_max_mm)],
+        ['Loop radius', (t) => range(t.loop_radius_min_mm, t.loop_radius_max_mm)],
+        ['Area', (t) => area(t.area_mm2)], ['Time', (t) => minutes(t.time_min)],
       ], r.treatments || [], { limit: 15 }),
     ];
   },
@@ -92,7 +93,7 @@ const SUMMARIES = {
       ]),
       h('h3', {}, 'Where the tool wears'),
       table([['NC line', (w) => lineLink('input', w.line)], ['Share of wear', (w) => `${num(w.share * 100, 1)} %`],
-        ['Cut (mm)', (w) => num(w.cutting_length_mm, 1)], ['Max α (°)', (w) => num(w.max_alpha_deg, 1)]], (l.by_line || []).slice(0, 8)),
+        ['Cut', (w) => length(w.cutting_length_mm)], ['Max α (°)', (w) => num(w.max_alpha_deg, 1)]], (l.by_line || []).slice(0, 8)),
     ];
   },
   plan(r) {
@@ -109,7 +110,7 @@ const SUMMARIES = {
       table([['Tool', (c) => c.name], ['Status', (c) => words(c.status)], [`Cost (${tot.currency || ''})`, (c) => num(c.cost, 2)],
         ['Trochoids', (c) => num(c.trochoids, 0)], ['Max α (°)', (c) => num(c.max_alpha_deg, 1)], ['Why not', (c) => c.reason || '']], r.candidates || [], { limit: 15 }),
       h('h3', {}, 'Layers'),
-      table([['Layer', (l) => l.index + 1], ['Role', (l) => words(l.role)], ['z (mm)', (l) => `${num(l.z_top, 2)} → ${num(l.z_bottom, 2)}`],
+      table([['Layer', (l) => l.index + 1], ['Role', (l) => words(l.role)], [`z (${lengthUnit()})`, (l) => `${coordinate(l.z_top)} → ${coordinate(l.z_bottom)}`],
         ['Trochoids', (l) => num(l.trochoids, 0)], ['Max α before → after (°)', (l) => `${num(l.base_max_alpha_deg, 1)} → ${num(l.max_alpha_deg, 1)}`],
         ['Checked', (l) => (l.verification_passed ? 'passed' : 'failed')]], r.layers || [], { limit: 15 }),
       overloadsTable((r.layers || []).flatMap((l) => l.overloads || [])),
