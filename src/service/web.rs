@@ -33,6 +33,8 @@ static ASSETS: &[Asset] = &[
     Asset { path: "/database.js", content_type: JS, body: include_str!("web/database.js") },
     Asset { path: "/savings.js", content_type: JS, body: include_str!("web/savings.js") },
     Asset { path: "/units.js", content_type: JS, body: include_str!("web/units.js") },
+    Asset { path: "/program-view.js", content_type: JS, body: include_str!("web/program-view.js") },
+    Asset { path: "/zoom.js", content_type: JS, body: include_str!("web/zoom.js") },
 ];
 
 fn etag(body: &str) -> String {
