@@ -260,3 +260,26 @@ async fn nothing_is_stored_or_queued_when_a_request_has_a_fault_and_a_valid_one_
     assert_eq!(stored_jobs(&app).await, 6);
     app.stop().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_pockets_fault_and_a_costings_unknown_job_are_named_beside_the_other_unknown_rows() {
+    let app = TestApp::start_with(|c| c.workers = Some(0)).await;
+    let bowtie = json!({"outer": [[0, 0], [10, 10], [10, 0], [0, 10]]});
+    let trochoids = json!({"contour": bowtie, "z_top": 0, "z_bottom": -10, "tool_id": 9999});
+    let plan = json!({"contour": bowtie, "z_top": 0, "z_bottom": -10, "diameters_mm": [10.37]});
+    for (path, body, first) in [("/v1/trochoids", trochoids, "tool_id"), ("/v1/plans", plan, "diameters_mm[0]")] {
+        let a = app.post(path, body).await;
+        assert_problem(&a, 422, None);
+        let named = fields(&a.body);
+        assert_eq!(named.len(), 2, "{path}: {}", a.text);
+        assert_eq!(named[0], first, "{path}: {}", a.text);
+        assert!(named[1].starts_with("contour"), "{path}: {}", a.text);
+    }
+    let costing = json!({"job_id": "00000000-0000-4000-8000-000000000000", "material": "Unobtainium",
+        "tool_type": "square", "diameter_mm": 10, "stock": stock()});
+    let a = app.post("/v1/costing", costing).await;
+    assert_problem(&a, 422, None);
+    assert_eq!(fields(&a.body), ["job_id", "material"], "{}", a.text);
+    assert_eq!(stored_jobs(&app).await, 0);
+    app.stop().await;
+}

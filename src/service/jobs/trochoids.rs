@@ -200,14 +200,15 @@ pub async fn prepare(
     faults: &mut Validator,
 ) -> Result<Option<TrochoidsPrepared>, ApiError> {
     let refs = path_job_refs!(request, request.machine_id, None);
-    let prepared = match resolve(pool, &refs, faults).await? {
+    let resolved = resolve(pool, &refs, faults).await?;
+    // An unknown tool's radius is not the program's fault: it is read by radius 0.
+    let radius_mm = resolved.as_ref().map_or(0.0, |r| r.prepared.tool.geometry.diameter_mm / 2.0);
+    let prepared = match resolved {
         Some(resolved) => resolve_conditions(pool, &request, resolved, faults).await?,
         None => None,
     };
     let checked = prepared.clone();
     off_runtime_with(faults, move |faults| {
-        // An unknown tool's radius is not the program's fault: it is read by radius 0.
-        let radius_mm = checked.as_ref().map_or(0.0, |p| p.base.tool.geometry.diameter_mm / 2.0);
         let read = read_inputs(&request, radius_mm, faults)?;
         if let (Some(prepared), Some((pocket, path))) = (&checked, read) {
             if !faults.has_errors() {
