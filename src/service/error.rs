@@ -193,10 +193,29 @@ impl From<sqlx::Error> for ApiError {
     }
 }
 
-/// Collects field errors and turns them into one [`ApiError::Validation`].
+/// Collects the faults of a request, stage after stage (its schema, the checks that need no
+/// database, the look-ups and parsing that resolve it), and turns them into one
+/// [`ApiError::Validation`]: every fault of a request comes in one problem, each field
+/// named once.
+///
+/// A later stage sees what earlier ones refused: a fault about a field an earlier stage
+/// refused (or about a part of it, or its parent) is no news and is not added, and a stage
+/// asks [`Validator::refused`] before a look-up or a check that needs a refused field, so
+/// that no field is blamed for another's fault.
 #[derive(Debug, Default)]
 pub struct Validator {
     errors: Vec<FieldError>,
+    /// How many of `errors` earlier stages found.
+    earlier: usize,
+}
+
+/// Whether two field paths name the same field, or one a part of the other
+/// (`stock` and `stock.box.x_min`, `layers` and `layers[2].z_top`).
+fn related(a: &str, b: &str) -> bool {
+    let within = |inner: &str, outer: &str| {
+        inner.strip_prefix(outer).is_some_and(|rest| rest.is_empty() || rest.starts_with(['.', '[']))
+    };
+    within(a, b) || within(b, a)
 }
 
 impl Validator {
@@ -204,12 +223,73 @@ impl Validator {
         Self::default()
     }
 
+    /// A validator that goes on after an earlier stage refused `faults`.
+    pub fn after(faults: Vec<FieldError>) -> Self {
+        Validator { earlier: faults.len(), errors: faults }
+    }
+
+    /// Ends a stage: the faults found so far are an earlier stage's.
+    pub fn next_stage(&mut self) {
+        self.earlier = self.errors.len();
+    }
+
     /// Refuses `field` for `reason`. A field is named once, with its first fault (a
-    /// negative cell is not also said to be out of range).
+    /// negative cell is not also said to be out of range), and not at all when an earlier
+    /// stage refused it, a part of it or its parent.
     pub fn fail(&mut self, field: impl Into<String>, reason: impl Into<String>) {
         let field = field.into();
-        if !self.errors.iter().any(|e| e.field == field) {
+        let known = self.errors.iter().any(|e| e.field == field)
+            || self.errors[..self.earlier].iter().any(|e| related(&e.field, &field));
+        if !known {
             self.errors.push(FieldError { field, reason: reason.into() });
+        }
+    }
+
+    /// Whether `field` (or what it is part of) has been refused: a look-up or check that
+    /// needs it is skipped, since it would fail for that fault or, worse, blame another
+    /// field for it.
+    pub fn refused(&self, field: &str) -> bool {
+        self.errors.iter().any(|e| {
+            field.strip_prefix(e.field.as_str()).is_some_and(|rest| rest.is_empty() || rest.starts_with(['.', '[']))
+        })
+    }
+
+    /// Whether a fault names `field`, a part of it or its parent.
+    pub fn touched(&self, field: &str) -> bool {
+        self.errors.iter().any(|e| related(&e.field, field))
+    }
+
+    /// Runs `work`, which adds its faults to a new validator: its value when it found
+    /// none, else one [`ApiError::Validation`] with all of them.
+    pub fn collect<T>(work: impl FnOnce(&mut Validator) -> Result<Option<T>, ApiError>) -> Result<T, ApiError> {
+        let mut faults = Validator::new();
+        let value = work(&mut faults)?;
+        faults.finish()?;
+        value.ok_or_else(|| ApiError::Internal("a step found no fault and gave no value".to_string()))
+    }
+
+    /// Whether any of `fields` has been refused ([`Validator::refused`]).
+    pub fn refused_any(&self, fields: &[&str]) -> bool {
+        fields.iter().any(|f| self.refused(f))
+    }
+
+    /// The value of a step that resolves part of a request, or `None` with its faults
+    /// added: all of them (a program's faults are its lines, under one field), except
+    /// those about a field already named, a part of one or its parent. An error that is
+    /// not the request's fault (the database failed) is returned.
+    pub fn take<T, E: Into<ApiError>>(&mut self, step: Result<T, E>) -> Result<Option<T>, ApiError> {
+        match step.map_err(Into::into) {
+            Ok(value) => Ok(Some(value)),
+            Err(ApiError::Validation(faults)) => {
+                let named = self.errors.len();
+                for fault in faults {
+                    if !self.errors[..named].iter().any(|e| related(&e.field, &fault.field)) {
+                        self.errors.push(fault);
+                    }
+                }
+                Ok(None)
+            }
+            Err(other) => Err(other),
         }
     }
 
@@ -336,6 +416,46 @@ mod tests {
         let Err(ApiError::Validation(errors)) = v.finish() else { panic!("no errors") };
         assert_eq!(errors.len(), 1);
         assert_eq!(errors[0].reason, "must be a finite number > 0, got -1");
+    }
+
+    fn fault(field: &str, reason: &str) -> FieldError {
+        FieldError { field: field.into(), reason: reason.into() }
+    }
+
+    #[test]
+    fn a_later_stage_names_no_field_an_earlier_one_refused_nor_a_part_or_parent_of_it() {
+        let mut v = Validator::after(vec![fault("program", "must be an object"), fault("stock.z_top", "not a number")]);
+        v.fail("program", "give exactly one of program and job_id");
+        v.fail("program.gcode", "line 3: bad word");
+        v.fail("stock", "give exactly one of box, contour and dxf");
+        v.fail("programs", "a field of its own");
+        v.fail("tool_price", "must be between 0 and 1000000, got -5");
+        let fields: Vec<String> = v.into_errors().into_iter().map(|e| e.field).collect();
+        assert_eq!(fields, ["program", "stock.z_top", "programs", "tool_price"]);
+    }
+
+    #[test]
+    fn a_resolving_step_keeps_every_line_of_its_program_and_not_a_field_already_named() {
+        let mut v = Validator::after(vec![fault("diameter_mm", "must be a number")]);
+        v.next_stage();
+        let lines = vec![fault("program.gcode", "line 3: bad word"), fault("program.gcode", "line 9: bad word")];
+        assert_eq!(v.take::<(), _>(Err(ApiError::Validation(lines))).unwrap(), None);
+        assert_eq!(v.take::<(), _>(Err(ApiError::field("diameter_mm", "no such tool"))).unwrap(), None);
+        assert_eq!(v.take::<(), _>(Err(ApiError::field("program", "has no moves"))).unwrap(), None);
+        assert_eq!(v.take(Ok::<_, ApiError>(7)).unwrap(), Some(7));
+        assert!(v.take::<(), _>(Err(ApiError::Internal("the disk failed".into()))).is_err());
+        let reasons: Vec<String> = v.into_errors().into_iter().map(|e| e.reason).collect();
+        assert_eq!(reasons, ["must be a number", "line 3: bad word", "line 9: bad word"]);
+    }
+
+    #[test]
+    fn a_field_is_refused_when_it_or_what_it_is_part_of_has_a_fault() {
+        let v = Validator::after(vec![fault("stock", "required"), fault("layers[1].contour", "not a list")]);
+        assert!(v.refused("stock") && v.refused("stock.box"));
+        assert!(v.refused("layers[1].contour.outer"));
+        assert!(!v.refused("layers") && !v.refused("layers[10].contour") && !v.refused("stocks"));
+        assert!(v.refused_any(&["tool_id", "stock"]) && !v.refused_any(&["tool_id", "diameter_mm"]));
+        assert!(v.touched("layers") && !v.touched("layer"));
     }
 
     #[test]

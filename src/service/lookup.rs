@@ -6,6 +6,7 @@ use crate::core::tool::ToolType;
 use crate::service::error::{excerpt, shown, ApiError};
 use crate::service::resources::cost_rates::CostRates;
 use crate::service::resources::force_models::ForceModelRecord;
+use crate::service::resources::machines::Machine;
 use crate::service::resources::materials::Material;
 use crate::service::resources::standard_conditions::StandardConditions;
 use crate::service::resources::tool_life::ToolLife;
@@ -168,4 +169,18 @@ pub async fn cost_rates(pool: &Pool, id: Option<i64>) -> Result<CostRates, ApiEr
         }
     };
     found.ok_or_else(|| ApiError::field("cost_rates_id", "no such cost rates (add some at /v1/cost-rates)"))
+}
+
+/// The machine with `id`, or the first one.
+pub async fn machine(pool: &Pool, id: Option<i64>) -> Result<Machine, ApiError> {
+    let found = match id {
+        Some(id) => {
+            sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = $1").bind(id).fetch_optional(pool).await?
+        }
+        None => sqlx::query_as::<_, Machine>("SELECT * FROM machines ORDER BY id LIMIT 1").fetch_optional(pool).await?,
+    };
+    found.ok_or_else(|| match id {
+        Some(id) => ApiError::field("machine_id", format!("no machine with id {id} (add one at /v1/machines)")),
+        None => ApiError::field("machine_id", "no machine in the database (add one at /v1/machines)"),
+    })
 }

@@ -166,3 +166,54 @@ fn a_pass_below_a_roughed_layer_cuts_the_material_the_roughing_left() {
     let i = series.s_mm.iter().position(|&v| v >= middle).unwrap();
     assert!((series.ad_mm[i] - 0.5).abs() < 1e-9, "Ad {} mm", series.ad_mm[i]);
 }
+
+#[test]
+fn loops_written_as_arcs_engage_as_the_same_loops_written_as_fine_chords() {
+    // Loops tighter than the tool (a trochoid's) and wider.
+    for rho in [3.0, 8.0] {
+        loops_of_radius_engage_alike_as_arcs_and_as_chords(rho);
+    }
+}
+
+fn loops_of_radius_engage_alike_as_arcs_and_as_chords(rho: f64) {
+    // Loops through the block: full circles of `rho` about centres 1 mm apart, once as G3
+    // circles (applied along the arc) and once as chords ending at the very samples of the
+    // arcs (applied as capsules): one sample per chord, at its end.
+    let chords_per_loop = (std::f64::consts::TAU * rho / 0.05).ceil() as usize;
+    let z = -5.0;
+    let (mut arcs, mut chords) = (Vec::new(), Vec::new());
+    for k in 0..6 {
+        let c = P3::new(f64::from(k), 0.0, z);
+        let start = P3::new(c.x, -rho, z);
+        if k > 0 {
+            let link = feed(Motion::Linear, P3::new(c.x - 1.0, -rho, z), start);
+            arcs.push(link);
+            chords.push(link);
+        }
+        arcs.push(feed(Motion::Arc { center: c, clockwise: false, plane: Plane::Xy, turns: 0 }, start, start));
+        let at = |n: usize| {
+            let t = -std::f64::consts::FRAC_PI_2 + std::f64::consts::TAU * n as f64 / chords_per_loop as f64;
+            P3::new(c.x + rho * t.cos(), c.y + rho * t.sin(), z)
+        };
+        chords.extend((0..chords_per_loop).map(|n| feed(Motion::Linear, at(n), at(n + 1))));
+    }
+    let alphas = |p: &Toolpath| {
+        let mut out = Vec::new();
+        analyze_with(p, &spec(vec![big_block()], vec![]), &NoProgress, |s| out.push(s.contact.alpha_rad.to_degrees()))
+            .expect("analyses");
+        out
+    };
+    let (along_arcs, along_chords) = (alphas(&path(arcs)), alphas(&path(chords)));
+    assert_eq!(along_arcs.len(), along_chords.len());
+    // The chords' headings turn from the arc's tangent by half a chord's angle (≤ 0.48°),
+    // and the chunks of chords sag from the arc by up to 0.05 cells. Where the tool grazes
+    // an earlier cut (a loop closing on its start, a link leaving a circle) α hangs on
+    // slivers of a few micrometres that this moves: those few samples are left out.
+    let close = along_arcs.iter().zip(&along_chords).filter(|(a, b)| (*a - *b).abs() < 2.0 * TOLERANCE_DEG).count();
+    assert!(close as f64 > 0.99 * along_arcs.len() as f64, "{close} of {} samples agree", along_arcs.len());
+    // The steady loops, after the first (which starts buried in the block).
+    let largest = |v: &[f64]| v[chords_per_loop + 1..].iter().copied().fold(0.0, f64::max);
+    let (a, b) = (largest(&along_arcs), largest(&along_chords));
+    assert!((a - b).abs() < TOLERANCE_DEG, "largest α {a:.2}° along arcs, {b:.2}° along chords");
+    assert!(a > 30.0 && a < 170.0, "the loops cut, up to {a:.1}°");
+}

@@ -1,12 +1,16 @@
 //! The stretch of path swept since the rasters were last updated (MODEL.md §6). Its
 //! tool centres are checked exactly by the probe; when it is applied, one capsule (its
 //! chord swept by the tool) stands for it, so a chunk ends before the path turns or bows
-//! away from its chord.
+//! away from its chord. Along an arc move in XY a chunk follows the arc instead: the area
+//! swept along it stands for the chunk, and the probe tests that area (see
+//! [`Chunk::swept`]), so a tight arc, a trochoid's loop, is applied a quarter turn at a
+//! time instead of every few samples.
 
+use super::arcs::ArcGuide;
 use super::recent::Corridor;
 use super::sampling::has_heading;
 use super::slices::Slice;
-use crate::core::stock::CapsuleRows;
+use crate::core::stock::{ArcRows, ArcSweep, CapsuleRows, MAX_ARC_SWEEP_RAD};
 
 /// A chunk holds at most this many steps: straight stretches are applied in capsules
 /// this long (the search for recent centres that reach the leading half stops early on
@@ -24,6 +28,20 @@ const KINK_DEVIATION_PER_TURN: f64 = 4.0;
 
 /// Centres closer than this in x and in y are one XY point, mm.
 const SAME_XY_MM: f64 = 1e-9;
+/// A chunk follows an arc from a start this close to the arc's circle, mm.
+const ON_CIRCLE_MM: f64 = 1e-6;
+/// Along an arc of a radius below the tool's plus this, the discs swept since the start
+/// of the chunk reach the tool's leading half (see [`Chunk::swept`]), mm.
+const ARC_REACH_MARGIN_MM: f64 = 1e-6;
+
+/// What stands for the area a chunk swept, for the probe (see [`Chunk::swept`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Swept {
+    /// The discs about the recent centres.
+    Centres,
+    /// The arc the chunk follows, when it can reach the leading half.
+    Arc(Option<ArcSweep>),
+}
 
 /// The centres swept since the last update of the rasters.
 pub struct Chunk {
@@ -50,6 +68,10 @@ pub struct Chunk {
     capsules: u64,
     /// The rows of the capsule last applied (kept to reuse its memory).
     rows: Option<CapsuleRows>,
+    /// The arc the chunk follows, if it does, and the angle swept along it so far, rad.
+    arc: Option<(ArcGuide, f64)>,
+    /// The rows of the arc last applied (kept to reuse its memory).
+    arc_rows: Option<ArcRows>,
 }
 
 impl Chunk {
@@ -69,6 +91,51 @@ impl Chunk {
             max_deviation_mm: CHORD_DEVIATION_CELLS * cell_mm,
             capsules: 0,
             rows: None,
+            arc: None,
+            arc_rows: None,
+        }
+    }
+
+    /// Makes the chunk follow the arc of the next sample's move, `guide` (None: that move
+    /// is no arc in XY), before the sample is probed. A chunk along another arc, or along
+    /// a line, is applied first; a chunk follows an arc only from a start on its circle
+    /// (otherwise the sample joins the line chunk, and the arc is followed from it on).
+    pub fn follow(&mut self, slices: &mut [Slice], radius: f64, guide: Option<&ArcGuide>) {
+        let same = matches!((&self.arc, guide), (Some((a, _)), Some(g)) if a.move_index == g.move_index);
+        if same {
+            return;
+        }
+        if self.arc.is_some() || (guide.is_some() && self.recent.len() > 1) {
+            self.flush(slices, radius);
+            self.arc = None;
+        }
+        let Some(g) = guide else {
+            return;
+        };
+        let on_circle =
+            |p: (f64, f64)| ((p.0 - g.center.0).hypot(p.1 - g.center.1) - g.radius_mm).abs() <= ON_CIRCLE_MM;
+        if self.start.is_none_or(on_circle) {
+            self.arc = Some((*g, 0.0));
+        }
+    }
+
+    /// What the probe tests for the area swept since the rasters were last updated: the
+    /// recent centres' discs, or where the chunk follows an arc, the arc swept since the
+    /// chunk's start (none when no disc swept along it can reach the leading half of a
+    /// tool further along the arc).
+    ///
+    /// A disc about a point of the circle of radius ρ a turn δ behind the tool lies
+    /// √(r² + 2ρ(1 − cos δ)(ρ − r)) from the inner end of the leading half: all reach it
+    /// when ρ < r, and none reaches the leading half when ρ ≥ r.
+    pub fn swept(&self, radius: f64) -> Swept {
+        let Some((guide, _)) = self.arc else {
+            return Swept::Centres;
+        };
+        match (self.start, self.recent.last()) {
+            (Some(a), Some(&b)) if guide.radius_mm < radius + ARC_REACH_MARGIN_MM => {
+                Swept::Arc(Some(ArcSweep::new(guide.center, a, b, guide.ccw)))
+            }
+            _ => Swept::Arc(None),
         }
     }
 
@@ -85,9 +152,13 @@ impl Chunk {
         }
     }
 
-    /// Applies the chunk and starts an empty one cutting `cut` slices.
+    /// Applies the chunk and starts an empty one cutting `cut` slices (along the same arc,
+    /// if it follows one).
     pub fn restart(&mut self, slices: &mut [Slice], radius: f64, cut: usize) {
         self.flush(slices, radius);
+        if let Some((_, swept)) = self.arc.as_mut() {
+            *swept = 0.0;
+        }
         self.start = None;
         self.recent.clear();
         self.reset_line();
@@ -102,6 +173,21 @@ impl Chunk {
         let last = self.recent.last().copied();
         if last.is_some_and(|q| (p.0 - q.0).abs() <= SAME_XY_MM && (p.1 - q.1).abs() <= SAME_XY_MM) {
             // A move along z only: the tool sweeps nothing new in XY.
+            return;
+        }
+        if let Some((guide, swept)) = self.arc {
+            // Along an arc: applied a quarter turn at a time.
+            let step_rad = step_mm / guide.radius_mm;
+            let mut swept = swept + step_rad;
+            if swept > MAX_ARC_SWEEP_RAD || self.recent.len() > MAX_CHUNK_STEPS {
+                self.flush(slices, radius);
+                swept = step_rad;
+            }
+            self.arc = Some((guide, swept));
+            if self.start.is_none() {
+                self.start = Some(p);
+            }
+            self.recent.push(p);
             return;
         }
         if self.start.is_some() && !has_heading(self.heading) {
@@ -143,34 +229,50 @@ impl Chunk {
         self.last_along_mm = 0.0;
     }
 
-    /// Removes the chunk's capsule from the rasters of the slices it cuts; the next chunk
-    /// starts at its last centre.
+    /// Removes the area the chunk swept from the rasters of the slices it cuts: its capsule
+    /// or, along an arc, the area swept along the arc. The next chunk starts at its last
+    /// centre.
     pub fn flush(&mut self, slices: &mut [Slice], radius: f64) {
-        if let (Some(a), Some(&b)) = (self.start, self.recent.last()) {
-            // From the deepest slice cut up: above a slice with no material near the
-            // capsule, none has any (see [`super::slices`]).
-            let mut material_near = true;
-            let cut = self.cut.min(slices.len());
-            self.capsules += 1;
-            // All slices share one grid: the capsule's rows are found once.
-            if let Some(first) = slices.first() {
-                match self.rows.as_mut() {
-                    Some(rows) => rows.set(&first.raster, a, b, radius, self.start_cleared),
-                    None => self.rows = Some(CapsuleRows::new(&first.raster, a, b, radius, self.start_cleared)),
-                }
+        let (Some(a), Some(&b)) = (self.start, self.recent.last()) else {
+            return;
+        };
+        let arc = self.arc.map(|(guide, _)| ArcSweep::new(guide.center, a, b, guide.ccw));
+        if arc.is_some() && self.recent.len() < 2 && self.start_cleared {
+            // Only the start, whose disc a previous update already removed.
+            return;
+        }
+        // From the deepest slice cut up: above a slice with no material near the
+        // capsule, none has any (see [`super::slices`]).
+        let mut material_near = true;
+        let cut = self.cut.min(slices.len());
+        self.capsules += 1;
+        // All slices share one grid: the rows are found once.
+        if let Some(first) = slices.first() {
+            match (arc, self.rows.as_mut(), self.arc_rows.as_mut()) {
+                (Some(arc), _, Some(rows)) => rows.set(&first.raster, arc, radius),
+                (Some(arc), _, None) => self.arc_rows = Some(ArcRows::new(&first.raster, arc, radius)),
+                (None, Some(rows), _) => rows.set(&first.raster, a, b, radius, self.start_cleared),
+                (None, None, _) => self.rows = Some(CapsuleRows::new(&first.raster, a, b, radius, self.start_cleared)),
             }
-            for s in slices[..cut].iter_mut().rev() {
-                if let (true, Some(rows)) = (material_near, self.rows.as_mut()) {
-                    material_near = s.take_capsule(self.capsules, rows);
-                } else {
+        }
+        for s in slices[..cut].iter_mut().rev() {
+            material_near = match (material_near, arc.is_some(), self.rows.as_mut(), self.arc_rows.as_mut()) {
+                (true, true, _, Some(rows)) => s.take_arc(self.capsules, rows),
+                (true, false, Some(rows), _) => s.take_capsule(self.capsules, rows),
+                _ => {
                     s.raster.skip_capsule();
+                    false
                 }
-            }
-            self.start = Some(b);
-            self.start_cleared = true;
-            self.recent.clear();
-            self.recent.push(b);
-            self.reset_line();
+            };
+        }
+        self.start = Some(b);
+        self.start_cleared = true;
+        self.recent.clear();
+        self.recent.push(b);
+        self.reset_line();
+        if arc.is_some() {
+            // A line chunk from here takes the heading of its first move.
+            self.heading = (0.0, 0.0);
         }
     }
 }

@@ -2,7 +2,8 @@
 //! is updated move by move and, at every sample, the engagement of the leading half,
 //! the arc length, the chip thickness at the programmed feed and the force are found.
 
-use super::chunk::Chunk;
+use super::arcs::arc_guides;
+use super::chunk::{Chunk, Swept};
 use super::engages::interior_points;
 use super::lines::straight_runs;
 use super::probe::{AngleTable, Contact, ProbeSite};
@@ -132,6 +133,7 @@ pub fn simulate(
     let r = cutter.radius_mm;
     let mut chunk = Chunk::new(0, cell_mm);
     let runs = straight_runs(path);
+    let arcs = arc_guides(path, spacing_mm);
     let mut s_mm = 0.0;
     let mut n = 0usize;
     let mut failure: Option<CoreError> = None;
@@ -151,6 +153,7 @@ pub fn simulate(
         if cut != chunk.cut {
             chunk.restart(slices, r, cut);
         }
+        chunk.follow(slices, r, arcs[sample.move_index].as_ref());
         let plunge = !has_heading(sample.heading);
         let mut result = SampleResult {
             sample: *sample,
@@ -174,7 +177,15 @@ pub fn simulate(
                 let to_end = ((run.end.0 - p.0).powi(2) + (run.end.1 - p.1).powi(2)).sqrt();
                 Line { id: run.id, dir: sample.heading, ahead_cells: to_end / cell_mm }
             });
-            probes.site.set(&probes.table, p, grid, sample.heading, chunk.recent(), &chunk.corridor(), line);
+            match chunk.swept(r) {
+                Swept::Arc(arc) => {
+                    probes.site.set(&probes.table, p, grid, sample.heading, &[], &chunk.corridor(), line);
+                    probes.site.set_swept_arc(arc);
+                }
+                Swept::Centres => {
+                    probes.site.set(&probes.table, p, grid, sample.heading, chunk.recent(), &chunk.corridor(), line)
+                }
+            }
             if force_model.is_some() {
                 probes.measure_every_slice(slices, cut, p, sample.heading, r);
             } else {

@@ -2,6 +2,7 @@
 //! material removal of a layer along a tool path and report, per sample, the engagement,
 //! chip thickness and force, and the critical regions where the tool is overloaded.
 
+pub mod arcs;
 pub mod chunk;
 pub mod engages;
 pub mod engine;

@@ -9,7 +9,7 @@
 
 use super::recent::{intruders, Corridor};
 use super::scan_memory::{Line, ScanMemory, LATERAL_TOLERANCE_CELLS};
-use crate::core::stock::{Certified, Raster};
+use crate::core::stock::{ArcSweep, Certified, Raster};
 use std::f64::consts::PI;
 
 /// Angular resolution of the probe: positions on the tool circle every 0.05°.
@@ -81,6 +81,10 @@ pub struct ProbeSite {
     /// Tool centres swept since the raster was last updated whose disc can reach the
     /// leading half: a probe within the radius of one of them is not material.
     intruders: Vec<(f64, f64)>,
+    /// Along an arc, the arc swept since the raster was last updated, when its area can
+    /// reach the leading half (it stands for the recent centres): a probe within the
+    /// radius of it is not material.
+    arc: Option<ArcSweep>,
 }
 
 impl ProbeSite {
@@ -110,6 +114,20 @@ impl ProbeSite {
         self.radius = radius;
         // The leading half is the closed half circle about the probe direction h.
         intruders(recent, corridor, center, radius, table.dirs[h as usize], &mut self.intruders);
+        self.arc = None;
+    }
+
+    /// Where the tool follows an arc: `arc` is the area swept along it since the raster was
+    /// last updated, when it can reach the leading half (after [`ProbeSite::set`] with no
+    /// recent centres).
+    pub fn set_swept_arc(&mut self, arc: Option<ArcSweep>) {
+        self.arc = arc;
+    }
+
+    /// `true` when nothing swept since the raster was last updated reaches the leading half.
+    #[inline]
+    fn unswept(&self) -> bool {
+        self.intruders.is_empty() && self.arc.is_none()
     }
 }
 
@@ -162,13 +180,16 @@ impl AngleTable {
     fn swept(&self, site: &ProbeSite, k: usize) -> bool {
         let (c, s) = self.dirs[site.first + k];
         let (x, y) = (site.center.0 + site.radius * c, site.center.1 + site.radius * s);
+        if let Some(arc) = &site.arc {
+            return arc.distance((x, y)) < site.radius;
+        }
         let r2 = site.radius * site.radius;
         site.intruders.iter().any(|c| (x - c.0) * (x - c.0) + (y - c.1) * (y - c.1) < r2)
     }
 
     #[inline]
     fn material(&self, raster: &Raster, site: &ProbeSite, k: usize) -> bool {
-        raster.is_material_at(self.grid_point(site, k)) && (site.intruders.is_empty() || !self.swept(site, k))
+        raster.is_material_at(self.grid_point(site, k)) && (site.unswept() || !self.swept(site, k))
     }
 
     /// As `material`, with how far the state is known to hold; material is certified
@@ -179,7 +200,7 @@ impl AngleTable {
         if !material {
             return (false, level);
         }
-        if site.intruders.is_empty() {
+        if site.unswept() {
             return (true, level);
         }
         (!self.swept(site, k), Certified::No)
@@ -351,7 +372,7 @@ impl AngleTable {
         // States are remembered along a line when no recent disc reaches the leading half:
         // the travel along it.
         let travel = match (memory.as_deref_mut(), site.line) {
-            (Some(mem), Some(line)) if site.intruders.is_empty() => {
+            (Some(mem), Some(line)) if site.unswept() => {
                 Some(mem.travel(raster.version(), site.first, line, site.grid_center))
             }
             _ => None,

@@ -9,7 +9,7 @@
 //! the material of the slice below it. Above a slice with no material near the tool,
 //! none has any.
 
-use crate::core::stock::{BlockRange, CapsuleRows, Raster, Rect};
+use crate::core::stock::{ArcRows, BlockRange, CapsuleRows, Raster, Rect};
 use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Motion, Move, Plane, Toolpath};
 use crate::core::CoreError;
@@ -62,8 +62,19 @@ impl Slice {
     /// Applies capsule number `serial` to the raster ([`Raster::clear_capsule_rows`]),
     /// remembering it when it was applied. Returns `false` when no material lies near it.
     pub fn take_capsule(&mut self, serial: u64, capsule: &mut CapsuleRows) -> bool {
+        self.take(serial, |raster| raster.clear_capsule_rows(capsule))
+    }
+
+    /// Applies arc number `serial` (numbered with the capsules) to the raster
+    /// ([`Raster::clear_arc_rows`]), as [`Slice::take_capsule`] does a capsule.
+    pub fn take_arc(&mut self, serial: u64, arc: &mut ArcRows) -> bool {
+        self.take(serial, |raster| raster.clear_arc_rows(arc))
+    }
+
+    /// Applies update number `serial` with `apply`, remembering it when it was applied.
+    fn take(&mut self, serial: u64, apply: impl FnOnce(&mut Raster) -> bool) -> bool {
         let version_before = self.raster.version();
-        let applied = self.raster.clear_capsule_rows(capsule);
+        let applied = apply(&mut self.raster);
         self.last_capsule =
             applied.then(|| TakenCapsule { serial, version_before, version_after: self.raster.version() });
         applied

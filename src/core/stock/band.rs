@@ -1,18 +1,62 @@
 //! The band of a capsule update: the cells within the clamp width of the capsule's edge,
 //! which take their distance to it (see [`Raster::clear_capsule_rows`]).
 
+use super::arc_sweep::ArcSweep;
 use super::capsule::{Beside, Capsule};
 use super::tiles::TILE_CELLS;
 use super::{Raster, BLOCK_CELLS, FULL};
+
+/// The path a band's cells take their distance to: a capsule's segment or an arc.
+pub(super) trait BandShape {
+    /// Distance from `q` to the path; with `skip_behind`, `None` where `q`'s nearest
+    /// point is the path's start (see [`Capsule::distance_unless_behind`]).
+    fn distance_unless_behind(&self, q: (f64, f64), skip_behind: bool) -> Option<f64>;
+    /// Where the points from `(x_lo, y)` to `(x_hi, y)` all lie beside a segment, how to
+    /// find their distance to it at once (see [`Capsule::beside_all`]).
+    fn beside_all(&self, x_lo: f64, x_hi: f64, y: f64, skip_behind: bool) -> Option<Beside>;
+}
+
+impl BandShape for Capsule {
+    #[inline]
+    fn distance_unless_behind(&self, q: (f64, f64), skip_behind: bool) -> Option<f64> {
+        Capsule::distance_unless_behind(self, q, skip_behind)
+    }
+
+    #[inline]
+    fn beside_all(&self, x_lo: f64, x_hi: f64, y: f64, skip_behind: bool) -> Option<Beside> {
+        Capsule::beside_all(self, x_lo, x_hi, y, skip_behind)
+    }
+}
+
+impl BandShape for ArcSweep {
+    /// Every cell of an arc's band takes its distance (nothing is skipped behind).
+    #[inline]
+    fn distance_unless_behind(&self, q: (f64, f64), _skip_behind: bool) -> Option<f64> {
+        Some(self.distance(q))
+    }
+
+    #[inline]
+    fn beside_all(&self, _x_lo: f64, _x_hi: f64, _y: f64, _skip_behind: bool) -> Option<Beside> {
+        None
+    }
+}
 
 /// Cells of a row taken at once where all lie beside the segment (a tile's stretch).
 const STRETCH_CELLS: usize = TILE_CELLS;
 
 impl Raster {
-    /// Cells [from, to) of row `j` in the band around the capsule `outer` (radius
-    /// `r` + the clamp width) get their distance to the capsule of radius `r`, where it
-    /// is smaller; with `skip_behind`, cells projecting before its start are left alone.
-    pub(super) fn band_cells(&mut self, j: usize, from: usize, to: usize, outer: &Capsule, r: f64, skip_behind: bool) {
+    /// Cells [from, to) of row `j` in the band around the area within `r` of the path
+    /// `outer` (a capsule, or an arc) get their distance to that area, where it is
+    /// smaller; with `skip_behind`, cells projecting before its start are left alone.
+    pub(super) fn band_cells<S: BandShape>(
+        &mut self,
+        j: usize,
+        from: usize,
+        to: usize,
+        outer: &S,
+        r: f64,
+        skip_behind: bool,
+    ) {
         let row = j * self.nx;
         let y = self.row_y(j);
         let mut changed = false;

@@ -314,27 +314,9 @@ impl Capsule {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tiles::Tiles;
-    use super::super::{rect_signed_distance, Rect};
+    use super::super::test_blocks::{block, counts_of_the_cells, shares_a_probe_with_material, SIDE};
     use super::*;
     use proptest::prelude::*;
-
-    const SIDE: f64 = 40.0;
-
-    fn block() -> Raster {
-        let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: SIDE, y_max: SIDE };
-        let mut r = Raster::new(rect, 0.1);
-        r.paint(
-            true,
-            |y, out| {
-                if (0.0..SIDE).contains(&y) {
-                    out.push((0.0, SIDE))
-                }
-            },
-            |x, y, _| rect_signed_distance(&rect, x, y),
-        );
-        r
-    }
 
     #[test]
     fn one_capsules_rows_leave_every_raster_as_its_own_update_would() {
@@ -354,13 +336,6 @@ mod tests {
         }
         assert!(upper.f == upper_alone.f && lower.f == lower_alone.f, "cells differ");
         assert!(upper.blocks == upper_alone.blocks && upper.tiles == upper_alone.tiles, "counts differ");
-    }
-
-    /// `true` when cell `k` and a material cell lie in one 2 × 2 quad, which a probe reads.
-    fn shares_a_probe_with_material(r: &Raster, k: usize) -> bool {
-        let (i, j) = (k % r.nx, k / r.nx);
-        let near = |n: usize, len: usize| n.saturating_sub(1)..(n + 2).min(len);
-        near(j, r.ny).any(|jj| near(i, r.nx).any(|ii| r.f[jj * r.nx + ii] > 0))
     }
 
     proptest! {
@@ -470,18 +445,9 @@ mod tests {
                 raster.clear_capsule_after(a, b, radius, k > 0);
                 a = b;
             }
-            let mut blocks = vec![0u32; raster.blocks.len()];
-            let mut tiles = Tiles::new(raster.nx, raster.ny);
-            for j in 0..raster.ny {
-                for i in 0..raster.nx {
-                    if raster.f[j * raster.nx + i] > 0 {
-                        blocks[(j / BLOCK_CELLS) * raster.bx + i / BLOCK_CELLS] += 1;
-                        tiles.update(i, j, true);
-                    }
-                }
-            }
-            prop_assert!(blocks == raster.blocks, "block counts differ");
-            prop_assert!(tiles == raster.tiles, "tile counts differ");
+            let (blocks, tiles) = counts_of_the_cells(&raster);
+            prop_assert!(blocks, "block counts differ");
+            prop_assert!(tiles, "tile counts differ");
         }
     }
 }

@@ -11,13 +11,19 @@
 //! material that is left, which is all that is read from it.
 
 mod along;
+mod arc_rows;
+mod arc_sweep;
 mod band;
 mod capsule;
 mod capsule_rows;
 mod certified_air;
 mod compare;
+#[cfg(test)]
+mod test_blocks;
 mod tiles;
 
+pub use arc_rows::ArcRows;
+pub use arc_sweep::{ArcSweep, MAX_ARC_SWEEP_RAD};
 pub use capsule::Capsule;
 pub use capsule_rows::CapsuleRows;
 pub use compare::CellRect;

@@ -3,8 +3,9 @@
 
 use super::analysis_result::AnalysisResult;
 use super::inputs::StockInput;
+use super::kind::off_runtime_with;
 use super::program_input::ProgramInput;
-use super::setup::{resolve, PathJobRefs, PathSetup, Resolved, Sampling};
+use super::setup::{path_job_refs, read_inputs, resolve, PathJobRefs, PathSetup, Sampling};
 use crate::core::analysis::samples::{SampleCollector, DRAWING_SAMPLE_BINS};
 use crate::core::analysis::{analyze_with, check, AnalysisSpec, MAX_ALPHA_LIMIT_DEG, MAX_SERIES_POINTS};
 use crate::core::drawing::analysis_scene::analysis_scene;
@@ -78,33 +79,42 @@ pub fn check_request(request: &AnalysisRequest, v: &mut Validator) {
     v.check(request.series_points <= MAX_SERIES_POINTS, "series_points", format!("at most {MAX_SERIES_POINTS}"));
 }
 
-/// Parses the program and the stock of a checked request and resolves it.
-pub async fn prepare(pool: &Pool, request: AnalysisRequest) -> Result<PathSetup, ApiError> {
-    let Resolved { prepared, .. } = resolve(pool, &request.path_job()).await?;
+/// Resolves the request and reads its program and stock, adding every fault to `faults`;
+/// then, when it has none, checks the analysis as the core will run it.
+pub async fn prepare(
+    pool: &Pool,
+    request: AnalysisRequest,
+    faults: &mut Validator,
+) -> Result<Option<PathSetup>, ApiError> {
+    let setup = resolve(pool, &request.path_job(), faults).await?.map(|r| r.prepared);
     // Parse and check everything now, off the async runtime, so that bad input is a 4xx
     // at submission and never a job that fails later.
-    let checked = prepared.clone();
-    tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
-        let (path, spec) = build(&request, &checked)?;
-        check(&path, &spec)?;
+    let checked = setup.clone();
+    off_runtime_with(faults, move |faults| {
+        let inputs = read_inputs(checked.as_ref(), Some(&request.program), Some(&request.stock), faults)?;
+        if let (Some(setup), Some(stock), Some(read)) = (&checked, inputs.stock, inputs.program) {
+            if !faults.has_errors() {
+                faults.take(check(&read.path, &setup.spec(stock, &request.sampling())))?;
+            }
+        }
         Ok(())
     })
-    .await
-    .map_err(|e| ApiError::Internal(e.to_string()))??;
-    Ok(prepared)
+    .await?;
+    Ok(setup)
 }
 
 impl AnalysisRequest {
-    fn path_job(&self) -> PathJobRefs<'_> {
-        PathJobRefs {
-            tool_id: self.tool_id,
-            tool_type: self.tool_type,
-            diameter_mm: self.diameter_mm,
-            material_id: self.material_id,
-            material: self.material.as_deref(),
-            machine_id: self.machine_id,
-            spindle_rpm: self.spindle_rpm,
+    fn sampling(&self) -> Sampling {
+        Sampling {
+            sample_spacing_mm: self.sample_spacing_mm,
+            cell_mm: self.cell_mm,
+            alpha_limit_deg: self.alpha_limit_deg,
+            series_points: self.series_points,
         }
+    }
+
+    fn path_job(&self) -> PathJobRefs<'_> {
+        path_job_refs!(self, self.machine_id, self.spindle_rpm)
     }
 }
 
@@ -125,13 +135,7 @@ pub fn run(
 
 /// Reads the program and the stock and puts the analysis together.
 pub fn build(request: &AnalysisRequest, prepared: &PathSetup) -> Result<(Toolpath, AnalysisSpec), ApiError> {
-    let sampling = Sampling {
-        sample_spacing_mm: request.sample_spacing_mm,
-        cell_mm: request.cell_mm,
-        alpha_limit_deg: request.alpha_limit_deg,
-        series_points: request.series_points,
-    };
-    prepared.analysis(&request.program, &request.stock, &sampling)
+    prepared.analysis(&request.program, &request.stock, &request.sampling())
 }
 
 /// The `analysis` job kind.
@@ -143,7 +147,8 @@ impl JobKindSpec for Analysis {
     const OPERATION_ID: &'static str = "analyzePath";
     const SUMMARY: &'static str = "Analyses a tool path (job kind `analysis`).";
     const DESCRIPTION: &'static str = "Simulates the material removal of the layer along the path (G-code or JSON moves) and reports, per sample, the engagement angle, arc length, chip thickness at the programmed feed and the predicted force; the summary (cutting and air-cut length, time at programmed feeds, α and force statistics with a histogram) and the critical regions where α exceeds the limit (default 40°). Bad NC or contour input is refused here with a 422 naming the line or vertex.";
-    const REFUSES: &'static str = "A refused field, NC line or contour vertex";
+    const REFUSES: &'static str =
+        "Every fault of the request, in one problem: each refused field, each row it names that is not in the database, the NC program's faults (line, column and word) and the stock contour's";
     type Request = AnalysisRequest;
     type Prepared = PathSetup;
     type Output = AnalysisResult;
@@ -152,8 +157,12 @@ impl JobKindSpec for Analysis {
         check_request(request, v)
     }
 
-    async fn prepare(submission: &Submission<'_>, request: AnalysisRequest) -> Result<PathSetup, ApiError> {
-        prepare(submission.pool, request).await
+    async fn prepare(
+        submission: &Submission<'_>,
+        request: AnalysisRequest,
+        faults: &mut Validator,
+    ) -> Result<Option<PathSetup>, ApiError> {
+        prepare(submission.pool, request, faults).await
     }
 
     fn run(

@@ -10,7 +10,7 @@ use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
 use crate::service::jobs::kind::{JobKindSpec, Produced, Submission};
 use crate::service::jobs::model::JobKind;
-use crate::service::jobs::setup::{ForceModelRef, NamedRef, StandardRef, ToolRef};
+use crate::service::jobs::setup::{material_and_tool, path_job_refs, ForceModelRef, NamedRef, StandardRef, ToolRef};
 use crate::service::lookup;
 use crate::service::resources::Source;
 use crate::service::store::Pool;
@@ -79,13 +79,22 @@ pub fn check_request(request: &ConditionsRequest, v: &mut Validator) {
     }
 }
 
-/// Resolves a checked request against the database.
-pub async fn prepare(pool: &Pool, request: ConditionsRequest) -> Result<ConditionsPrepared, ApiError> {
-    let material = lookup::material(pool, request.material_id, request.material.as_deref()).await?;
-    let tool = lookup::tool(pool, request.tool_id, request.tool_type, request.diameter_mm).await?;
+/// Resolves the request against the database, adding every fault to `faults`.
+pub async fn prepare(
+    pool: &Pool,
+    request: ConditionsRequest,
+    faults: &mut Validator,
+) -> Result<Option<ConditionsPrepared>, ApiError> {
+    let refs = path_job_refs!(request, None, None);
+    let (Some(material), Some(tool)) = material_and_tool(pool, &refs, faults).await? else {
+        return Ok(None);
+    };
+    if faults.refused("operation") {
+        return Ok(None);
+    }
     let operation = request.operation.unwrap_or(DEFAULT_OPERATION);
-    let standard = lookup::standard_conditions(pool, tool.id, material.id, operation).await?.ok_or_else(|| {
-        ApiError::field(
+    let Some(standard) = lookup::standard_conditions(pool, tool.id, material.id, operation).await? else {
+        faults.fail(
             "operation",
             format!(
                 "no standard conditions for {} with tool {} ({}) in {}: add them at /v1/conditions/standard",
@@ -94,8 +103,9 @@ pub async fn prepare(pool: &Pool, request: ConditionsRequest) -> Result<Conditio
                 tool.data.name,
                 material.data.name
             ),
-        )
-    })?;
+        );
+        return Ok(None);
+    };
     let base = standard.data.conditions();
     let mut overridden = Vec::new();
     let mut pick = |name: &str, given: Option<f64>, standard: f64| match given {
@@ -114,9 +124,12 @@ pub async fn prepare(pool: &Pool, request: ConditionsRequest) -> Result<Conditio
     let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(|m| ForceModelRef::of_tool(m, &tool));
     let tool_ref = ToolRef::from(&tool);
     let geometry = tool_ref.geometry;
-    // Refuse now what the computation would refuse later.
-    evaluate_conditions(&geometry.into(), conditions, force_model.as_ref().map(|f| &f.model))?;
-    Ok(ConditionsPrepared {
+    // Refuse now what the computation would refuse later (on a request without faults: a
+    // refused override would be checked at its standard value).
+    if !faults.has_errors() {
+        faults.take(evaluate_conditions(&geometry.into(), conditions, force_model.as_ref().map(|f| &f.model)))?;
+    }
+    Ok(Some(ConditionsPrepared {
         material: NamedRef { id: material.id, name: material.data.name },
         tool: tool_ref,
         operation,
@@ -132,7 +145,7 @@ pub async fn prepare(pool: &Pool, request: ConditionsRequest) -> Result<Conditio
         conditions,
         overridden,
         force_model,
-    })
+    }))
 }
 
 /// The recommended conditions.
@@ -254,7 +267,8 @@ impl JobKindSpec for Conditions {
     const OPERATION_ID: &'static str = "recommendConditions";
     const SUMMARY: &'static str = "Recommends cutting conditions (job kind `conditions`).";
     const DESCRIPTION: &'static str = "For a material (default SKD61), a tool (id, or type + diameter) and an operation (default standard_side_cutting): S, fz, F, Rd, Ad and the cutting speed from the database, with the engagement angle, t_m, L and XY force the models predict.";
-    const REFUSES: &'static str = "A refused field (every one of the request)";
+    const REFUSES: &'static str =
+        "Every fault of the request, in one problem: each refused field, and each row it names that is not in the database (tool, material, standard conditions)";
     type Request = ConditionsRequest;
     type Prepared = ConditionsPrepared;
     type Output = ConditionsResult;
@@ -263,8 +277,12 @@ impl JobKindSpec for Conditions {
         check_request(request, v)
     }
 
-    async fn prepare(submission: &Submission<'_>, request: ConditionsRequest) -> Result<ConditionsPrepared, ApiError> {
-        prepare(submission.pool, request).await
+    async fn prepare(
+        submission: &Submission<'_>,
+        request: ConditionsRequest,
+        faults: &mut Validator,
+    ) -> Result<Option<ConditionsPrepared>, ApiError> {
+        prepare(submission.pool, request, faults).await
     }
 
     fn run(

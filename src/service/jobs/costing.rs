@@ -3,9 +3,10 @@
 
 use super::costing_result::CostingResult;
 use super::inputs::StockInput;
+use super::kind::off_runtime_with;
 use super::model::{JobId, ProgramPart};
 use super::program_input::ProgramInput;
-use super::setup::{resolve, resolve_cost, CostSetup, PathJobRefs, PathSetup, Resolved, Sampling};
+use super::setup::{path_job_refs, read_inputs, resolve, resolve_cost, CostSetup, PathSetup, Sampling};
 use super::store;
 use crate::core::analysis::{check, AnalysisSpec};
 use crate::core::costing::estimate::estimate;
@@ -73,21 +74,27 @@ pub struct CostingPrepared {
 }
 
 impl CostingRequest {
-    /// The path and the analysis of the program this request costs.
-    fn analysis(&self, prepared: &CostingPrepared) -> Result<(Toolpath, AnalysisSpec), ApiError> {
-        let sampling = Sampling {
+    fn sampling(&self) -> Sampling {
+        Sampling {
             sample_spacing_mm: self.sample_spacing_mm,
             cell_mm: self.cell_mm,
             alpha_limit_deg: None,
             series_points: 0,
-        };
-        prepared.base.analysis(&self.program(prepared)?, &self.stock, &sampling)
+        }
     }
 
-    fn program(&self, prepared: &CostingPrepared) -> Result<ProgramInput, ApiError> {
-        match (&self.program, &prepared.job_program) {
+    /// The path and the analysis of the program this request costs.
+    fn analysis(&self, prepared: &CostingPrepared) -> Result<(Toolpath, AnalysisSpec), ApiError> {
+        let program = self.program(&prepared.job_program, prepared.job_program_options.as_ref())?;
+        prepared.base.analysis(&program, &self.stock, &self.sampling())
+    }
+
+    /// The program costed: the request's, or the text of the job it names, read as that
+    /// job read its own (`options`).
+    fn program(&self, job_program: &Option<String>, options: Option<&ProgramInput>) -> Result<ProgramInput, ApiError> {
+        match (&self.program, job_program) {
             (Some(p), None) => Ok(p.clone()),
-            (None, Some(text)) => Ok(ProgramInput::of_text(text.clone(), prepared.job_program_options.as_ref())),
+            (None, Some(text)) => Ok(ProgramInput::of_text(text.clone(), options)),
             _ => Err(ApiError::field("program", "give exactly one of program and job_id")),
         }
     }
@@ -110,49 +117,76 @@ pub fn check_request(request: &CostingRequest, v: &mut Validator) {
     }
 }
 
-/// Resolves a checked request against the database; a `job_id` must name a job the
-/// caller may see (a planner's own).
-pub async fn prepare(submission: &Submission<'_>, request: CostingRequest) -> Result<CostingPrepared, ApiError> {
+/// The NC program of the finished job `id` and how that job read its own; a planner may
+/// name only its own jobs. Faults name `job_id`.
+async fn job_program(
+    submission: &Submission<'_>,
+    id: &JobId,
+) -> Result<(Option<String>, Option<ProgramInput>), ApiError> {
     let pool = submission.pool;
-    let (job_program, job_program_options) = match &request.job_id {
-        Some(id) => {
-            let row = store::get_visible(pool, submission.caller, id).await.map_err(|e| match e {
-                ApiError::NotFound(_) => ApiError::field("job_id", format!("no job with id {id}")),
-                other => other,
-            })?;
-            let text = store::program_part(pool, id, ProgramPart::Main).await?.ok_or_else(|| {
-                ApiError::field("job_id", format!("job {id} ({}, {}) has no NC program", row.kind, row.status))
-            })?;
-            // The input may be large: it is read off the async runtime.
-            let input = store::input(pool, id).await?.unwrap_or_default();
-            let options = tokio::task::spawn_blocking(move || ProgramInput::options_of_job_input(&input))
-                .await
-                .map_err(|e| ApiError::Internal(e.to_string()))?;
-            (Some(text), options)
+    let row = store::get_visible(pool, submission.caller, id).await.map_err(|e| match e {
+        ApiError::NotFound(_) => ApiError::field("job_id", format!("no job with id {id}")),
+        other => other,
+    })?;
+    let text = store::program_part(pool, id, ProgramPart::Main).await?.ok_or_else(|| {
+        ApiError::field("job_id", format!("job {id} ({}, {}) has no NC program", row.kind, row.status))
+    })?;
+    // The input may be large: it is read off the async runtime.
+    let input = store::input(pool, id).await?.unwrap_or_default();
+    let options = tokio::task::spawn_blocking(move || ProgramInput::options_of_job_input(&input))
+        .await
+        .map_err(|e| ApiError::Internal(e.to_string()))?;
+    Ok((Some(text), options))
+}
+
+/// Resolves the request against the database and reads its program and stock, adding
+/// every fault to `faults`; then, when it has none, checks the analysis as the core will
+/// run it. A `job_id` must name a job the caller may see (a planner's own).
+pub async fn prepare(
+    submission: &Submission<'_>,
+    request: CostingRequest,
+    faults: &mut Validator,
+) -> Result<Option<CostingPrepared>, ApiError> {
+    let pool = submission.pool;
+    let job = match &request.job_id {
+        Some(id) if !faults.refused_any(&["job_id", "program"]) => faults.take(job_program(submission, id).await)?,
+        Some(_) => None,
+        None => Some((None, None)),
+    };
+    let refs = path_job_refs!(request, request.machine_id, request.spindle_rpm);
+    let resolved = resolve(pool, &refs, faults).await?;
+    let (base, standard) = resolved.map(|r| (r.prepared, r.standard)).unzip();
+    let cost = resolve_cost(
+        pool,
+        base.as_ref(),
+        standard.flatten().as_ref(),
+        request.cost_rates_id,
+        request.tool_price,
+        faults,
+    )
+    .await?;
+    let (job_program, job_program_options) = job.unzip();
+    let checked = base.clone();
+    let (text, options) = (job_program.clone().flatten(), job_program_options.clone().flatten());
+    // The program is unknown when the job it names is refused (or it was refused itself).
+    let known = job_program.is_some() && !faults.refused("program");
+    off_runtime_with(faults, move |faults| {
+        let program = if known { faults.take(request.program(&text, options.as_ref()))? } else { None };
+        let inputs = read_inputs(checked.as_ref(), program.as_ref(), Some(&request.stock), faults)?;
+        if let (Some(base), Some(stock), Some(read)) = (&checked, inputs.stock, inputs.program) {
+            if !faults.has_errors() {
+                faults.take(check(&read.path, &base.spec(stock, &request.sampling())))?;
+            }
         }
-        None => (None, None),
-    };
-    let refs = PathJobRefs {
-        tool_id: request.tool_id,
-        tool_type: request.tool_type,
-        diameter_mm: request.diameter_mm,
-        material_id: request.material_id,
-        material: request.material.as_deref(),
-        machine_id: request.machine_id,
-        spindle_rpm: request.spindle_rpm,
-    };
-    let Resolved { prepared: base, standard, .. } = resolve(pool, &refs).await?;
-    let cost = resolve_cost(pool, &base, standard.as_ref(), request.cost_rates_id, request.tool_price).await?;
-    let prepared = CostingPrepared { job_program, job_program_options, cost, base };
-    let checked = prepared.clone();
-    tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
-        let (path, spec) = request.analysis(&checked)?;
-        check(&path, &spec)?;
         Ok(())
     })
-    .await
-    .map_err(|e| ApiError::Internal(e.to_string()))??;
-    Ok(prepared)
+    .await?;
+    let (Some(base), Some(cost), Some(job_program), Some(job_program_options)) =
+        (base, cost, job_program, job_program_options)
+    else {
+        return Ok(None);
+    };
+    Ok(Some(CostingPrepared { job_program, job_program_options, cost, base }))
 }
 
 /// Runs the costing.
@@ -177,7 +211,8 @@ impl JobKindSpec for Costing {
     const OPERATION_ID: &'static str = "costProgram";
     const SUMMARY: &'static str = "Costs an NC program (job kind `costing`).";
     const DESCRIPTION: &'static str = "Simulates the program in its stock and reports the machining time, the tool-life consumption `L_t / L_f` with the lines and engagement angles where the tool wears (MODEL.md §9), the cost `C = c_m · T_m + c_t · L_t / L_f` (seed 002, Eq. 4), the material removed and the removal rate. The program is given, or taken from a finished job of the caller's (`job_id`, e.g. a `feeds` job; a planner's key may name only its own jobs).";
-    const REFUSES: &'static str = "A refused field, NC line or contour vertex";
+    const REFUSES: &'static str =
+        "Every fault of the request, in one problem: each refused field, each row or job it names that is not in the database, the NC program's faults (line, column and word) and the stock contour's";
     type Request = CostingRequest;
     type Prepared = CostingPrepared;
     type Output = CostingResult;
@@ -186,8 +221,12 @@ impl JobKindSpec for Costing {
         check_request(request, v)
     }
 
-    async fn prepare(submission: &Submission<'_>, request: CostingRequest) -> Result<CostingPrepared, ApiError> {
-        prepare(submission, request).await
+    async fn prepare(
+        submission: &Submission<'_>,
+        request: CostingRequest,
+        faults: &mut Validator,
+    ) -> Result<Option<CostingPrepared>, ApiError> {
+        prepare(submission, request, faults).await
     }
 
     fn run(

@@ -2,22 +2,21 @@
 //! optimised for a constant feed at the cutting point, a constant cutting force, or
 //! both, written back as an NC program.
 
+use super::feed_limits;
 use super::feeds_result::FeedsResult;
-use super::inputs::{read_stock, StockInput};
+use super::inputs::{Stock, StockInput};
+use super::kind::off_runtime_with;
 use super::output::OutputOptions;
-use super::program_input::ProgramInput;
-use super::setup::{
-    machine_limits, resolve, resolve_cost, CostSetup, PathJobRefs, PathSetup, Resolved, MAX_FEED_PER_STANDARD,
-};
+use super::program_input::{ProgramInput, ReadProgram};
+use super::setup::{path_job_refs, read_inputs, reread_inputs, resolve, CostSetup, PathSetup};
 use crate::core::analysis::{check, sample_count, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_ALPHA_LIMIT_DEG};
-use crate::core::conditions::{feed_mm_min, standard_centres};
 use crate::core::drawing::feeds_scene::feeds_scene;
 use crate::core::drawing::scene::Scene;
 use crate::core::feed::blocks::{BlockOptions, DEFAULT_FEED_STEP_MM_MIN, DEFAULT_FEED_TOLERANCE, DEFAULT_MIN_BLOCK_MM};
 use crate::core::feed::costed::{optimize_costed, Costed};
 use crate::core::feed::edit::edit_feeds;
 use crate::core::feed::objective::{Objective, ObjectiveSpec};
-use crate::core::feed::plan::{check_sample_count, check_spec, FeedPlan, FeedSpec, DEFAULT_MAX_FEED_CHANGE_PER_MM};
+use crate::core::feed::plan::{check_sample_count, check_spec, FeedPlan, FeedSpec};
 use crate::core::feed::rule::{FeedRule, FeedStrategy};
 use crate::core::feed::surface::{
     self, optimize_surface_finishing, ContactNormal, SurfaceSpec, DEFAULT_SURFACE_FIT_HALF_WIDTH_MM,
@@ -31,7 +30,6 @@ use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
 use crate::service::jobs::kind::{JobKindSpec, Produced, Submission};
 use crate::service::jobs::model::JobKind;
-use crate::service::lookup;
 use crate::service::store::Pool;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
@@ -237,150 +235,45 @@ pub fn check_request(request: &FeedsRequest, v: &mut Validator) {
     request.output.validate(v);
 }
 
-/// Parses the program and the stock of a checked request and resolves it.
-pub async fn prepare(pool: &Pool, request: FeedsRequest) -> Result<FeedsPrepared, ApiError> {
-    let refs = PathJobRefs {
-        tool_id: request.tool_id,
-        tool_type: request.tool_type,
-        diameter_mm: request.diameter_mm,
-        material_id: request.material_id,
-        material: request.material.as_deref(),
-        machine_id: request.machine_id,
-        spindle_rpm: request.spindle_rpm,
-    };
-    let Resolved { prepared: base, standard, machine_max_feed_mm_min, .. } = resolve(pool, &refs).await?;
-    let strategy = request.strategy.unwrap_or(match request.mode {
-        CutMode::SideMilling => FeedStrategy::ConstantForce,
-        CutMode::SurfaceFinishing => FeedStrategy::CuttingPoint,
-    });
-    let tool = base.tool.geometry;
-    if request.mode == CutMode::SurfaceFinishing && tool.tool_type != ToolType::Ball {
-        return Err(ApiError::field(
-            if request.tool_id.is_some() { "tool_id" } else { "tool_type" },
-            format!(
-                "surface finishing holds the feed where a ball touches the surface (seed 000 Eq. 1) and needs a ball end mill; tool {} ({}) is a {} end mill",
-                base.tool.id,
-                base.tool.name,
-                tool.tool_type.as_str()
-            ),
-        ));
-    }
-    if strategy.needs_force_model() && base.force_model.is_none() {
-        return Err(ApiError::field(
-            "strategy",
-            format!(
-                "constant force needs a force model and tool {} ({}) has none in {}: use cutting_point, or fit one at /v1/tools/{}/force-model/fit",
-                base.tool.id, base.tool.name, base.material.name, base.tool.id
-            ),
-        ));
-    }
-    let standard_feed = standard.as_ref().map(|c| feed_mm_min(c.data.fz_mm, tool.flutes, c.data.spindle_rpm));
-    let no_standard = |field: &str| {
-        ApiError::field(
-            field,
-            format!(
-                "no standard side-cutting conditions for tool {} in {}: give {field}",
-                base.tool.id, base.material.name
-            ),
-        )
-    };
-    let min_feed = match (request.min_feed_mm_min, &standard) {
-        (Some(f), _) => f,
-        (None, Some(c)) => feed_mm_min(c.data.fz_min_mm, tool.flutes, c.data.spindle_rpm),
-        (None, None) => return Err(no_standard("min_feed_mm_min")),
-    };
-    let max_feed = match (request.max_feed_mm_min, standard_feed) {
-        (Some(f), _) => f,
-        (None, Some(f)) => (MAX_FEED_PER_STANDARD * f).min(machine_max_feed_mm_min),
-        (None, None) => return Err(no_standard("max_feed_mm_min")),
-    };
-    if max_feed > machine_max_feed_mm_min {
-        return Err(ApiError::field(
-            "max_feed_mm_min",
-            format!("above the machine's maximum feed of {machine_max_feed_mm_min} mm/min"),
-        ));
-    }
-    if min_feed > max_feed {
-        return Err(ApiError::field("min_feed_mm_min", format!("{min_feed} is above the maximum feed {max_feed}")));
-    }
-    let target_force_n = match (strategy.needs_force_model(), request.target_force_n) {
-        (false, _) => None,
-        (true, Some(f)) => Some(f),
-        (true, None) => {
-            let (Some(c), Some(model)) = (&standard, &base.force_model) else {
-                return Err(no_standard("target_force_n"));
-            };
-            let (t_um, l_mm) = standard_centres(tool.diameter_mm / 2.0, c.data.conditions())?;
-            Some(model.model.force_n(t_um, l_mm, model.model.ad_ref_mm))
-        }
-    };
-    let side_milling = request.mode == CutMode::SideMilling;
-    let costable =
-        side_milling && standard.is_some() && lookup::tool_life(pool, base.tool.id, base.material.id).await?.is_some();
-    let cost = match costable {
-        true => Some(resolve_cost(pool, &base, standard.as_ref(), request.cost_rates_id, request.tool_price).await?),
-        false => None,
-    };
-    let mut notes = Vec::new();
-    let objective = match (request.objective, &cost) {
-        (Some(Objective::MinCost), None) if side_milling => {
-            return Err(ApiError::field(
-                "objective",
-                format!(
-                    "min_cost weighs tool wear and needs tool-life data and standard side-cutting conditions for tool {} in {} (add them at /v1/tool-life and /v1/conditions/standard), or choose constant_force or min_time",
-                    base.tool.id, base.material.name
-                ),
-            ))
-        }
-        (Some(o), _) => o,
-        (None, Some(_)) => Objective::MinCost,
-        (None, None) => {
-            if side_milling {
-                notes.push(format!(
-                    "no tool-life data or standard conditions for tool {} in {}: the feeds follow the papers' rule (objective constant_force) and the figures before and after have no wear or cost",
-                    base.tool.id, base.material.name
-                ));
-            }
-            Objective::ConstantForce
-        }
-    };
-    let max_force_n = request.max_force_n.or(target_force_n);
-    let limits = Some(machine_limits(pool, base.machine.id).await?);
-    let prepared = FeedsPrepared {
-        objective,
-        max_force_n,
-        cost,
-        limits,
-        notes,
-        standard_conditions_id: standard.as_ref().map(|c| c.id),
-        strategy,
-        target_force_n,
-        min_feed_mm_min: min_feed,
-        max_feed_mm_min: max_feed,
-        air_feed_mm_min: request.air_feed_mm_min.unwrap_or(max_feed).min(max_feed),
-        max_feed_change_per_mm: match request.max_feed_change_per_mm {
-            Some(rate) if rate <= 0.0 => None,
-            Some(rate) => Some(rate),
-            None => Some(DEFAULT_MAX_FEED_CHANGE_PER_MM),
-        },
-        base,
+/// Resolves the request and reads its program and stock, adding every fault to `faults`;
+/// then, when it has none, checks the optimisation as the core will run it.
+pub async fn prepare(
+    pool: &Pool,
+    request: FeedsRequest,
+    faults: &mut Validator,
+) -> Result<Option<FeedsPrepared>, ApiError> {
+    let refs = path_job_refs!(request, request.machine_id, request.spindle_rpm);
+    let resolved = resolve(pool, &refs, faults).await?;
+    let base = resolved.as_ref().map(|r| r.prepared.clone());
+    let prepared = match resolved {
+        Some(resolved) => feed_limits::resolve(pool, &request, resolved, faults).await?,
+        None => None,
     };
     // Parse and check everything now, off the async runtime: bad input is a 4xx here.
     let checked = prepared.clone();
-    tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
-        let job = build(&request, &checked)?;
-        check_spec(&job.spec)?;
+    off_runtime_with(faults, move |faults| {
+        let stock = request.stock.as_ref().filter(|_| request.mode == CutMode::SideMilling);
+        let inputs = read_inputs(base.as_ref(), Some(&request.program), stock, faults)?;
+        let (Some(prepared), Some(read)) = (checked, inputs.program) else {
+            return Ok(());
+        };
+        if faults.has_errors() {
+            return Ok(());
+        }
+        let Some(job) = faults.take(build(&request, &prepared, inputs.stock, read))? else {
+            return Ok(());
+        };
+        faults.take(check_spec(&job.spec))?;
         if let Some(analysis) = &job.analysis {
-            check(&job.path, analysis)?;
-            check_sample_count(sample_count(&job.path, analysis))?;
+            faults.take(check(&job.path, analysis))?;
+            faults.take(check_sample_count(sample_count(&job.path, analysis)))?;
         }
         if let Some(surface) = &job.surface {
-            surface::check_surface(&job.path, surface, &job.spec)?;
+            faults.take(surface::check_surface(&job.path, surface, &job.spec))?;
         }
         Ok(())
     })
-    .await
-    .map_err(|e| ApiError::Internal(e.to_string()))??;
+    .await?;
     Ok(prepared)
 }
 
@@ -395,13 +288,14 @@ struct Built {
     surface: Option<SurfaceSpec>,
 }
 
-fn build(request: &FeedsRequest, prepared: &FeedsPrepared) -> Result<Built, ApiError> {
+/// The job of a request whose stock (side milling) and program were read.
+fn build(
+    request: &FeedsRequest,
+    prepared: &FeedsPrepared,
+    stock: Option<Stock>,
+    read: ReadProgram,
+) -> Result<Built, ApiError> {
     let base = &prepared.base;
-    let stock_top = match (request.mode, &request.stock) {
-        (CutMode::SideMilling, Some(stock)) => Some(read_stock(stock)?.z_top),
-        _ => None,
-    };
-    let read = base.read_program(&request.program, stock_top)?;
     let (path, map) = (read.path, read.map);
     let tool: crate::core::tool::EndMill = base.tool.geometry.into();
     let spec = FeedSpec {
@@ -422,9 +316,8 @@ fn build(request: &FeedsRequest, prepared: &FeedsPrepared) -> Result<Built, ApiE
         },
         rapid_mm_min: base.rapid_mm_min,
     };
-    let (analysis, surface) = match (request.mode, &request.stock) {
+    let (analysis, surface) = match (request.mode, stock) {
         (CutMode::SideMilling, Some(stock)) => {
-            let stock = read_stock(stock)?;
             let analysis = AnalysisSpec {
                 tool,
                 stock: stock.regions,
@@ -472,7 +365,9 @@ pub fn run(
     progress: &dyn Progress,
 ) -> Result<(FeedsResult, String, Scene), CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
-    let job = build(&request, &prepared).map_err(reread)?;
+    let stock = request.stock.as_ref().filter(|_| request.mode == CutMode::SideMilling);
+    let (stock, read) = reread_inputs(&prepared.base, &request.program, stock).map_err(reread)?;
+    let job = build(&request, &prepared, stock, read).map_err(reread)?;
     let (plan, costed): (FeedPlan, Option<Costed>) = match (&job.analysis, &job.surface) {
         (Some(analysis), _) => optimize_costed(&job.path, analysis, &job.spec, job.objective.clone(), progress)?,
         (None, Some(surface)) => (optimize_surface_finishing(&job.path, surface, &job.spec, progress)?, None),
@@ -519,7 +414,8 @@ impl JobKindSpec for Feeds {
     const OPERATION_ID: &'static str = "optimizeFeeds";
     const SUMMARY: &'static str = "Optimises the feeds of a tool path (job kind `feeds`).";
     const DESCRIPTION: &'static str = "`side_milling` (default) simulates the stock to find the engagement at every sample and sets each block's feed for a constant cutting force (`constant_force`, default), a constant feed at the cutting point (`cutting_point`, seed 000) or both; long blocks are split where the feed must change, the change per mm of path is limited, feeds are clamped to the limits and rounded. `surface_finishing` holds the feed at the cutting point of a ball end mill on a 3-D path. The result holds the before/after figures, the feed of every block and where the target could not be held; the NC program is at `GET /v1/jobs/{id}/program`.";
-    const REFUSES: &'static str = "A refused field, NC line or contour vertex";
+    const REFUSES: &'static str =
+        "Every fault of the request, in one problem: each refused field, each row it names that is not in the database or lacks the data asked for, the NC program's faults (line, column and word) and the stock contour's";
     type Request = FeedsRequest;
     type Prepared = FeedsPrepared;
     type Output = FeedsResult;
@@ -528,8 +424,12 @@ impl JobKindSpec for Feeds {
         check_request(request, v)
     }
 
-    async fn prepare(submission: &Submission<'_>, request: FeedsRequest) -> Result<FeedsPrepared, ApiError> {
-        prepare(submission.pool, request).await
+    async fn prepare(
+        submission: &Submission<'_>,
+        request: FeedsRequest,
+        faults: &mut Validator,
+    ) -> Result<Option<FeedsPrepared>, ApiError> {
+        prepare(submission.pool, request, faults).await
     }
 
     fn run(

@@ -52,6 +52,20 @@ impl<R> Produced<R> {
     }
 }
 
+/// Runs `work` on a blocking thread (parsing a program or a pocket is CPU work), adding its
+/// faults to `faults`.
+pub async fn off_runtime_with<T: Send + 'static>(
+    faults: &mut Validator,
+    work: impl FnOnce(&mut Validator) -> Result<T, ApiError> + Send + 'static,
+) -> Result<T, ApiError> {
+    let mut moved = std::mem::take(faults);
+    let (value, back) = tokio::task::spawn_blocking(move || (work(&mut moved), moved))
+        .await
+        .map_err(|e| ApiError::Internal(format!("a blocking task failed: {e}")))?;
+    *faults = back;
+    value
+}
+
 /// A kind of job.
 pub trait JobKindSpec: 'static {
     /// Its name in `kind`.
@@ -79,13 +93,22 @@ pub trait JobKindSpec: 'static {
     /// aside), so that a problem names every fault at once.
     fn check(request: &Self::Request, v: &mut Validator);
 
-    /// Resolves a checked request against the database, and parses and checks what needs
-    /// its rows (the program, the pocket, the tool's reach). CPU work runs off the async
-    /// runtime.
+    /// Resolves a request against the database, and parses and checks what needs its rows
+    /// (the program, the pocket, the tool's reach). CPU work runs off the async runtime.
+    ///
+    /// `faults` holds what the schema and [`JobKindSpec::check`] refused, and `prepare`
+    /// adds every fault it finds there instead of stopping at the first: it resolves every
+    /// field it can on its own (an unknown tool does not keep the program from being read),
+    /// and skips each look-up or check that needs a field already refused
+    /// ([`Validator::refused`]), so that no field is blamed for another's fault. The checks
+    /// of the core, which span the whole request, run only on a request without faults.
+    /// `None` when a fault keeps it from resolving the request; `Err` only for a failure on
+    /// our side.
     fn prepare(
         submission: &Submission<'_>,
         request: Self::Request,
-    ) -> impl Future<Output = Result<Self::Prepared, ApiError>> + Send;
+        faults: &mut Validator,
+    ) -> impl Future<Output = Result<Option<Self::Prepared>, ApiError>> + Send;
 
     /// Runs a prepared job. CPU-bound: called on a blocking thread.
     fn run(

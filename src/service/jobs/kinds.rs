@@ -130,43 +130,43 @@ fn to_json<T: serde::Serialize>(value: &T) -> Result<String, ApiError> {
         .map_err(|e| ApiError::Internal(format!("serializing a job: {e}")))
 }
 
-/// Reads `input` as a `K` request and checks it in one stage: the fields its schema
-/// refuses and the values [`JobKindSpec::check`] refuses in the rest are one problem.
-fn read_request<K: JobKindSpec>(input: serde_json::Value) -> Result<K::Request, ApiError> {
+/// Reads `input` as a `K` request and checks it: the fields its schema refuses and the
+/// values [`JobKindSpec::check`] refuses in the rest. The request is `None` when it does
+/// not read even with the refused fields set aside (a required field is missing).
+fn read_request<K: JobKindSpec>(input: serde_json::Value) -> (Option<K::Request>, Validator) {
     let Read { value, refused } = read_all::<K::Request>(input);
-    let mut checked = Validator::new();
+    // A check of a field the schema refused sees it missing, which is no news: the
+    // validator drops it.
+    let mut faults = Validator::after(refused);
     if let Some(request) = &value {
-        K::check(request, &mut checked);
+        K::check(request, &mut faults);
     }
-    let faults = together(refused, checked.into_errors());
-    match value {
-        Some(request) if faults.is_empty() => Ok(request),
-        _ => Err(ApiError::Validation(faults)),
-    }
+    (value, faults)
 }
 
-/// The schema's refusals, then the checks' faults that are not about a refused field (a
-/// check of a field set aside sees it missing, which is no news).
-fn together(mut refused: Vec<FieldError>, checked: Vec<FieldError>) -> Vec<FieldError> {
-    let related = |a: &str, b: &str| a == b || [".", "["].iter().any(|s| a.starts_with(&format!("{b}{s}")));
-    let new: Vec<FieldError> = checked
-        .into_iter()
-        .filter(|c| !refused.iter().any(|r| related(&c.field, &r.field) || related(&r.field, &c.field)))
-        .collect();
-    refused.extend(new);
-    refused
-}
-
-/// Reads `input` as a `K` request, checks and resolves it; the reading and writing of
-/// JSON run off the async runtime.
+/// Reads `input` as a `K` request, checks and resolves it, and answers every fault of
+/// the three stages in one problem; the reading and writing of JSON run off the async
+/// runtime.
 fn accept_kind<'a, K: JobKindSpec>(submission: &'a Submission<'a>, input: serde_json::Value) -> Pending<'a, Accepted> {
     Box::pin(async move {
-        let (request, text) = off_runtime(move || {
+        let (request, text, mut faults) = off_runtime(move || {
             let text = input.to_string();
-            Ok((read_request::<K>(input)?, text))
+            let (request, faults) = read_request::<K>(input);
+            Ok((request, text, faults))
         })
         .await?;
-        let prepared = K::prepare(submission, request).await?;
+        // Resolved even when the checks found faults, so that the faults of the look-ups and
+        // of the program come in the same problem; `prepare` skips what needs a refused field.
+        let prepared = match request {
+            Some(request) => {
+                faults.next_stage();
+                K::prepare(submission, request, &mut faults).await?
+            }
+            None => None,
+        };
+        faults.finish()?;
+        let prepared =
+            prepared.ok_or_else(|| ApiError::Internal(format!("a {} job resolved to nothing", K::KIND.as_str())))?;
         let prepared = off_runtime(move || to_json(&prepared)).await?;
         Ok(Accepted { input: text, prepared })
     })

@@ -22,8 +22,17 @@ pub struct Pick {
 /// The candidate tools of a request: the default tool of `tool_type` of every diameter of
 /// `diameters_mm`, then the tools of `tool_ids` (a tool named twice is one candidate); or,
 /// when neither is given, the default tool of every diameter of the range. Every unknown
-/// diameter or id, and every ball end mill among the ids, is reported at once.
-pub async fn pick(pool: &Pool, request: &PlanRequest, tool_type: ToolType) -> Result<Vec<Pick>, ApiError> {
+/// diameter or id, and every ball end mill among the ids, is added to `faults`; a diameter
+/// or id an earlier stage refused is not looked up.
+pub async fn pick(
+    pool: &Pool,
+    request: &PlanRequest,
+    tool_type: ToolType,
+    faults: &mut Validator,
+) -> Result<Option<Vec<Pick>>, ApiError> {
+    if faults.refused_any(&["diameters_mm", "tool_ids"]) {
+        return Ok(None);
+    }
     if request.diameters_mm.is_none() && request.tool_ids.is_none() {
         let ids = sqlx::query_scalar::<_, i64>(
             "SELECT id FROM tools WHERE tool_type = $1 AND is_default = 1 AND diameter_mm BETWEEN $2 AND $3
@@ -34,9 +43,8 @@ pub async fn pick(pool: &Pool, request: &PlanRequest, tool_type: ToolType) -> Re
         .bind(CANDIDATE_DIAMETER_RANGE_MM.1)
         .fetch_all(pool)
         .await?;
-        return Ok(ids.into_iter().map(|tool_id| Pick { tool_id, field: None }).collect());
+        return Ok(Some(ids.into_iter().map(|tool_id| Pick { tool_id, field: None }).collect()));
     }
-    let mut v = Validator::new();
     let mut picks: Vec<Pick> = Vec::new();
     let mut add = |tool_id: i64, field: String| {
         if picks.iter().all(|p| p.tool_id != tool_id) {
@@ -45,26 +53,31 @@ pub async fn pick(pool: &Pool, request: &PlanRequest, tool_type: ToolType) -> Re
     };
     for (i, d) in request.diameters_mm.iter().flatten().enumerate() {
         let field = format!("diameters_mm[{i}]");
+        if faults.refused(&field) {
+            continue;
+        }
         match lookup::default_tool(pool, tool_type, *d).await {
             Ok(tool) => add(tool.id, field),
-            Err(ApiError::Validation(errors)) => errors.into_iter().for_each(|e| v.fail(field.clone(), e.reason)),
+            Err(ApiError::Validation(errors)) => errors.into_iter().for_each(|e| faults.fail(field.clone(), e.reason)),
             Err(other) => return Err(other),
         }
     }
     for (i, id) in request.tool_ids.iter().flatten().enumerate() {
         let field = format!("tool_ids[{i}]");
+        if faults.refused(&field) {
+            continue;
+        }
         let tool = sqlx::query_as::<_, Tool>("SELECT * FROM tools WHERE id = $1").bind(id).fetch_optional(pool).await?;
         match tool {
-            None => v.fail(field, format!("no tool with id {id}")),
-            Some(t) if t.data.tool_type == ToolType::Ball => v.fail(
+            None => faults.fail(field, format!("no tool with id {id}")),
+            Some(t) if t.data.tool_type == ToolType::Ball => faults.fail(
                 field,
                 format!("tool {id} ({}) is a ball end mill: the proposed strategy needs flat end mills", t.data.name),
             ),
             Some(t) => add(t.id, field),
         }
     }
-    v.finish()?;
-    Ok(picks)
+    Ok(Some(picks))
 }
 
 /// Resolves one candidate tool; `Err(reason)` when the database lacks what it needs.
@@ -84,7 +97,12 @@ pub async fn resolve(
         machine_id: Some(machine_id),
         spindle_rpm: None,
     };
-    let Resolved { prepared: base, standard, machine_max_feed_mm_min, .. } = resolve_path_job(pool, &refs).await?;
+    let mut found = Validator::new();
+    let resolved = resolve_path_job(pool, &refs, &mut found).await?;
+    found.finish()?;
+    let Some(Resolved { prepared: base, standard, machine_max_feed_mm_min, .. }) = resolved else {
+        return Err(ApiError::Internal(format!("tool {tool_id} resolved to nothing")));
+    };
     let name = base.tool.name.clone();
     let row = |op: Operation| async move { lookup::standard_conditions(pool, tool_id, material_id, op).await };
     let (Some(standard), Some(model)) = (standard, base.force_model.as_ref()) else {

@@ -4,17 +4,17 @@
 //! with the conventional ball-end baseline.
 
 use super::inputs::{read_contour, read_dxf, ContourInput};
+use super::kind::off_runtime_with;
 use super::output::{OutputOptions, DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM};
-use super::plan_tools;
+use super::plan_rows;
 use super::plans_result::PlanResult;
-use super::setup::{machine_limits, NamedRef};
+use super::setup::NamedRef;
 use crate::core::conditions::{standard_centres, CuttingConditions};
 use crate::core::drawing::process_scene::process_scene;
 use crate::core::drawing::scene::Scene;
 use crate::core::insertion::DEFAULT_INSERTION_ALPHA_LIMIT_DEG;
 use crate::core::kinematics::MachineLimits;
 use crate::core::nc::{write_program, write_program_mapped};
-use crate::core::operation::Operation;
 use crate::core::process::{
     check_process, plan_process, BaselineSpec, Cavity, CavityInput, CavityLayer, ProcessOptions, ToolCandidate,
     DEFAULT_MAX_FORCE_FACTOR, DEFAULT_TARGET_CONSUMPTION, MAX_CAVITY_LAYERS,
@@ -26,7 +26,6 @@ use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
 use crate::service::jobs::kind::{JobKindSpec, Produced, Submission};
 use crate::service::jobs::model::JobKind;
-use crate::service::lookup;
 use crate::service::resources::Source;
 use crate::service::store::Pool;
 use serde::{Deserialize, Serialize};
@@ -240,137 +239,64 @@ pub fn check_request(r: &PlanRequest, v: &mut Validator) {
     r.output.validate(v);
 }
 
-/// The cavity of the request: its layers, or its contour and depth.
-fn read_cavity(r: &PlanRequest) -> Result<CavityInput, ApiError> {
+/// The cavity of the request: its layers (each read on its own), or its contour and
+/// depth, adding every fault to `faults`; a part an earlier stage refused is not read.
+fn read_cavity(r: &PlanRequest, faults: &mut Validator) -> Result<Option<CavityInput>, ApiError> {
+    // A fault of `layers` itself says that the cavity is not given in one of the two ways.
+    if faults.refused("layers") {
+        return Ok(None);
+    }
     if let Some(layers) = &r.layers {
-        let layers = layers
-            .iter()
-            .enumerate()
-            .map(|(i, l)| {
-                Ok(CavityLayer {
-                    pocket: read_contour(&format!("layers[{i}].contour"), &l.contour)?,
-                    z_top_mm: l.z_top,
-                    z_bottom_mm: l.z_bottom,
-                })
-            })
-            .collect::<Result<Vec<_>, ApiError>>()?;
-        return Ok(CavityInput::Layers(Cavity { layers }));
+        let mut read = Vec::with_capacity(layers.len());
+        for (i, l) in layers.iter().enumerate() {
+            let field = format!("layers[{i}].contour");
+            let pocket = if faults.refused(&field) { None } else { faults.take(read_contour(&field, &l.contour))? };
+            read.push(pocket.map(|pocket| CavityLayer { pocket, z_top_mm: l.z_top, z_bottom_mm: l.z_bottom }));
+        }
+        let layers = read.into_iter().collect::<Option<Vec<_>>>();
+        return Ok(layers.map(|layers| CavityInput::Layers(Cavity { layers })));
+    }
+    if faults.refused_any(&["contour", "dxf"]) {
+        return Ok(None);
     }
     let pocket = match (&r.contour, &r.dxf) {
-        (Some(c), None) => read_contour("contour", c)?,
-        (None, Some(text)) => read_dxf(None, text)?,
-        _ => return Err(ApiError::field("contour", "give exactly one of contour and dxf")),
+        (Some(c), None) => read_contour("contour", c),
+        (None, Some(text)) => read_dxf(None, text),
+        _ => Err(ApiError::field("contour", "give exactly one of contour and dxf")),
     };
-    Ok(CavityInput::Depth { pocket, z_top_mm: r.z_top.unwrap_or(0.0), z_bottom_mm: r.z_bottom.unwrap_or(0.0) })
+    let depth = |pocket| CavityInput::Depth {
+        pocket,
+        z_top_mm: r.z_top.unwrap_or(0.0),
+        z_bottom_mm: r.z_bottom.unwrap_or(0.0),
+    };
+    Ok(faults.take(pocket)?.map(depth))
 }
 
-/// Resolves a checked request: the candidates, the baseline, the machine and the rates;
-/// then checks the cavity against them.
-pub async fn prepare(pool: &Pool, request: PlanRequest) -> Result<PlanPrepared, ApiError> {
-    let material = lookup::material(pool, request.material_id, request.material.as_deref()).await?;
-    let tool_type = request.tool_type.unwrap_or(ToolType::Square);
-    let picks = plan_tools::pick(pool, &request, tool_type).await?;
-    let machine_id = match request.machine_id {
-        Some(id) => id,
-        None => sqlx::query_scalar::<_, i64>("SELECT id FROM machines ORDER BY id LIMIT 1")
-            .fetch_optional(pool)
-            .await?
-            .ok_or_else(|| ApiError::field("machine_id", "no machine in the database (add one at /v1/machines)"))?,
-    };
-    let rates = lookup::cost_rates(pool, request.cost_rates_id).await?;
-    let (mut candidates, mut skipped, mut writer_base) = (Vec::new(), Vec::new(), None);
-    let mut faults = Validator::new();
-    for pick in &picks {
-        match plan_tools::resolve(pool, pick.tool_id, material.id, machine_id, rates.data.default_tool_price).await? {
-            Ok((c, base)) => {
-                writer_base.get_or_insert(base);
-                candidates.push(c);
-            }
-            Err(reason) => match &pick.field {
-                Some(field) => faults.fail(field.clone(), reason),
-                None => skipped.push(reason),
-            },
-        }
-    }
-    faults.finish()?;
-    let Some(writer_base) = writer_base else {
-        return Err(ApiError::field(
-            "diameters_mm",
-            format!(
-                "no {} end mill from 6 to 16 mm has the data to plan with in {}",
-                tool_type.as_str(),
-                material.data.name
-            ),
-        ));
-    };
-    let limits = machine_limits(pool, machine_id).await?;
-    let baseline = if request.baseline.unwrap_or(true) {
-        Some(resolve_baseline(pool, material.id, &material.data.name, &rates.data).await?)
-    } else {
-        None
-    };
-    let prepared = PlanPrepared {
-        material: NamedRef { id: material.id, name: material.data.name.clone() },
-        machine: writer_base.machine.clone(),
-        limits,
-        cost_rates: NamedRef { id: rates.id, name: rates.data.name.clone() },
-        machine_rate_per_hour: rates.data.machine_rate_per_hour,
-        currency: rates.data.currency.clone(),
-        candidates,
-        skipped,
-        baseline,
-        writer_base,
-    };
+/// Resolves the request (the candidates, the baseline, the machine and the rates) and
+/// reads its cavity, adding every fault to `faults`; then, when it has none, checks the
+/// cavity against the candidates as the core will plan it.
+pub async fn prepare(
+    pool: &Pool,
+    request: PlanRequest,
+    faults: &mut Validator,
+) -> Result<Option<PlanPrepared>, ApiError> {
+    let prepared = plan_rows::resolve(pool, &request, faults).await?;
     let checked = prepared.clone();
-    tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
-        let (cavity, candidates, options) = build(&request, &checked)?;
-        check_process(&cavity, &candidates, &options)?;
+    off_runtime_with(faults, move |faults| {
+        let cavity = read_cavity(&request, faults)?;
+        if let (Some(prepared), Some(cavity)) = (&checked, cavity) {
+            if !faults.has_errors() {
+                let (candidates, options) = build(&request, prepared, &cavity);
+                faults.take(check_process(&cavity, &candidates, &options))?;
+            }
+        }
         Ok(())
     })
-    .await
-    .map_err(|e| ApiError::Internal(e.to_string()))??;
+    .await?;
     Ok(prepared)
 }
 
-async fn resolve_baseline(
-    pool: &Pool,
-    material_id: i64,
-    material: &str,
-    rates: &crate::service::resources::cost_rates::CostRatesData,
-) -> Result<BaselinePrepared, ApiError> {
-    let missing = |what: &str| ApiError::field("baseline", format!("{what}: give baseline: false to plan without it"));
-    let ball = lookup::tool(pool, None, Some(ToolType::Ball), Some(BASELINE_BALL_DIAMETER_MM))
-        .await
-        .map_err(|_| missing("no default R5 ball end mill in the database"))?;
-    let row = lookup::standard_conditions(pool, ball.id, material_id, Operation::ConventionalBallRoughing)
-        .await?
-        .ok_or_else(|| {
-            missing(&format!("no conventional_ball_roughing conditions for {} in {material}", ball.data.name))
-        })?;
-    let life = lookup::tool_life(pool, ball.id, material_id)
-        .await?
-        .ok_or_else(|| missing(&format!("no tool-life data for {} in {material}", ball.data.name)))?;
-    let d = &ball.data;
-    let tool = EndMill {
-        tool_type: d.tool_type,
-        diameter_mm: d.diameter_mm,
-        flutes: d.flutes,
-        corner_radius_mm: d.resolved_corner_radius_mm(),
-    };
-    Ok(BaselinePrepared {
-        tool_id: ball.id,
-        name: ball.data.name.clone(),
-        tool,
-        conditions: row.data.conditions(),
-        conditions_row: Some(RowRef { id: row.id, source: row.data.source, reference: row.data.reference.clone() }),
-        life_m: life.data.life_m,
-        gamma_table: life.data.gamma_table.iter().map(|g| (g.0, g.1)).collect(),
-        force_exponent: life.data.force_exponent,
-        tool_price: ball.data.price.unwrap_or(rates.default_tool_price),
-    })
-}
-
-type Built = (CavityInput, Vec<ToolCandidate>, ProcessOptions);
+type Built = (Vec<ToolCandidate>, ProcessOptions);
 
 fn life_model(life_m: f64, gamma: &[(f64, f64)], k: f64, arc_mm: f64, fz_mm: f64, force: Option<f64>) -> ToolLifeModel {
     ToolLifeModel {
@@ -383,8 +309,8 @@ fn life_model(life_m: f64, gamma: &[(f64, f64)], k: f64, arc_mm: f64, fz_mm: f64
     }
 }
 
-fn build(r: &PlanRequest, p: &PlanPrepared) -> Result<Built, ApiError> {
-    let cavity = read_cavity(r)?;
+/// The candidates and options of a plan of `cavity`.
+fn build(r: &PlanRequest, p: &PlanPrepared, cavity: &CavityInput) -> Built {
     let candidates = p
         .candidates
         .iter()
@@ -422,13 +348,14 @@ fn build(r: &PlanRequest, p: &PlanPrepared) -> Result<Built, ApiError> {
         max_force_factor: r.max_force_factor.unwrap_or(DEFAULT_MAX_FORCE_FACTOR),
         max_feed_change_per_mm: Some(crate::core::feed::plan::DEFAULT_MAX_FEED_CHANGE_PER_MM),
     };
-    Ok((cavity, candidates, options))
+    (candidates, options)
 }
 
 /// Plans the cavity and writes the chosen tool's program.
 pub fn run(request: PlanRequest, prepared: PlanPrepared, progress: &dyn Progress) -> Result<PlanOutput, CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
-    let (cavity, candidates, options) = build(&request, &prepared).map_err(reread)?;
+    let cavity = Validator::collect(|faults| read_cavity(&request, faults)).map_err(reread)?;
+    let (candidates, options) = build(&request, &prepared, &cavity);
     // The ball's life (assumed as the straight tool's, MODEL.md §5) counts against its own
     // conventional roughing cut.
     let baseline = prepared
@@ -486,7 +413,8 @@ impl JobKindSpec for Plan {
     const SUMMARY: &'static str =
         "Plans a cavity from end to end (job kind `plan`; seed 002 Fig. 1 and §2.6, seed 004 Table 1).";
     const DESCRIPTION: &'static str = "For each candidate flat end mill (6–16 mm from the database, or `diameters_mm`) that can reach the whole cavity, every layer is planned (helical entries, spiral hole expansion, trochoidal grooving of the critical regions, z-cut division, contour-parallel rough side cutting; the last layer intermediate-rough), the feeds are optimised for a constant cutting force, and time (nominal and kinematic), tool life and cost are estimated. The cheapest complete candidate is chosen and its force target tuned so the job uses about 90 % of one tool. The conventional ball-end baseline is planned for the comparison. The NC program is at `GET /v1/jobs/{id}/program`. Progress is reported while it runs; `DELETE` cancels it.";
-    const REFUSES: &'static str = "A refused field or contour vertex";
+    const REFUSES: &'static str =
+        "Every fault of the request, in one problem: each refused field, each diameter, tool id or row it names that is not in the database or cannot be planned with, and the contour's faults";
     type Request = PlanRequest;
     type Prepared = PlanPrepared;
     type Output = PlanResult;
@@ -495,8 +423,12 @@ impl JobKindSpec for Plan {
         check_request(request, v)
     }
 
-    async fn prepare(submission: &Submission<'_>, request: PlanRequest) -> Result<PlanPrepared, ApiError> {
-        prepare(submission.pool, request).await
+    async fn prepare(
+        submission: &Submission<'_>,
+        request: PlanRequest,
+        faults: &mut Validator,
+    ) -> Result<Option<PlanPrepared>, ApiError> {
+        prepare(submission.pool, request, faults).await
     }
 
     fn run(

@@ -166,7 +166,7 @@ fn header_value(text: &str) -> HeaderValue {
         (status = 202, description = "Queued (or the service is stopping: the job goes on); poll Location", body = Job,
             headers(("Location" = String, description = "The job"), ("Retry-After" = u64, description = "Seconds to wait before polling"))),
         (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
-        (status = 422, description = "A refused field", body = Problem, content_type = "application/problem+json")))]
+        (status = 422, description = "Every fault of the input, in one problem (its fields under `input`): refused fields, rows it names that are not in the database, the faults of its NC program or pocket", body = Problem, content_type = "application/problem+json")))]
 pub async fn create_job(
     State(state): State<AppState>,
     caller: Caller,

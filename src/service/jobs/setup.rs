@@ -14,12 +14,12 @@ use crate::core::operation::Operation;
 use crate::core::tool::{EndMill, ToolType};
 use crate::core::tool_life::ToolLifeModel;
 use crate::core::toolpath::Toolpath;
-use crate::service::error::ApiError;
-use crate::service::jobs::inputs::{read_stock, StockInput};
+use crate::service::error::{ApiError, Validator};
+use crate::service::jobs::inputs::{read_stock, Stock, StockInput};
 use crate::service::jobs::program_input::{read_program, ProgramContext, ProgramInput, ReadProgram};
 use crate::service::lookup;
 use crate::service::resources::force_models::ForceModelRecord;
-use crate::service::resources::machines::Machine;
+use crate::service::resources::materials::Material;
 use crate::service::resources::standard_conditions::StandardConditions;
 use crate::service::resources::tools::Tool;
 use crate::service::resources::Source;
@@ -179,7 +179,12 @@ impl PathSetup {
     ) -> Result<(Toolpath, AnalysisSpec), ApiError> {
         let stock = read_stock(stock)?;
         let path = self.read_program(program, Some(stock.z_top))?.path;
-        let spec = AnalysisSpec {
+        Ok((path, self.spec(stock, sampling)))
+    }
+
+    /// The analysis of a path in `stock`, sampled as the request says.
+    pub fn spec(&self, stock: Stock, sampling: &Sampling) -> AnalysisSpec {
+        AnalysisSpec {
             tool: self.tool.geometry.into(),
             stock: stock.regions,
             open: stock.open,
@@ -192,9 +197,60 @@ impl PathSetup {
             cell_mm: sampling.cell_mm,
             alpha_limit_deg: sampling.alpha_limit_deg.unwrap_or(DEFAULT_ALPHA_LIMIT_DEG),
             series_points: sampling.series_points,
-        };
-        Ok((path, spec))
+        }
     }
+}
+
+/// The stock and program of a path job as read at submission.
+pub struct PathInputs {
+    /// `None` when the job has none (surface finishing) or it was refused.
+    pub stock: Option<Stock>,
+    /// `None` when it was refused.
+    pub program: Option<ReadProgram>,
+}
+
+/// Reads a path job's stock (when it has one) and program (when it is known) at
+/// submission, each on its own, adding every fault to `faults`. The program is read with
+/// the tool's radius when the tool is known (`setup`), else by radius 0, so that no fault
+/// of the program comes from an unknown tool. A stock or program an earlier stage refused
+/// is not read.
+pub fn read_inputs(
+    setup: Option<&PathSetup>,
+    program: Option<&ProgramInput>,
+    stock: Option<&StockInput>,
+    faults: &mut Validator,
+) -> Result<PathInputs, ApiError> {
+    let stock = match stock {
+        Some(stock) if !faults.refused("stock") => faults.take(read_stock(stock))?,
+        _ => None,
+    };
+    let stock_top_mm = stock.as_ref().map(|s| s.z_top);
+    let read = match (program, setup) {
+        (Some(_), _) if faults.refused_any(&["program.gcode", "program.moves"]) => None,
+        (Some(program), Some(setup)) => Some(setup.read_program(program, stock_top_mm)),
+        (Some(program), None) => {
+            Some(read_program(program, ProgramContext { tool_radius_mm: Some(0.0), stock_top_mm }))
+        }
+        (None, _) => None,
+    };
+    let program = match read {
+        Some(read) => faults.take(read)?,
+        None => None,
+    };
+    Ok(PathInputs { stock, program })
+}
+
+/// Reads a path job's stock (when it has one) and program again as it runs: they were
+/// checked at submission, so a fault here is an error.
+pub fn reread_inputs(
+    setup: &PathSetup,
+    program: &ProgramInput,
+    stock: Option<&StockInput>,
+) -> Result<(Option<Stock>, ReadProgram), ApiError> {
+    Validator::collect(|faults| {
+        let inputs = read_inputs(Some(setup), Some(program), stock, faults)?;
+        Ok(inputs.program.map(|read| (inputs.stock, read)))
+    })
 }
 
 /// What names the database rows of a path job.
@@ -208,6 +264,24 @@ pub struct PathJobRefs<'a> {
     pub spindle_rpm: Option<f64>,
 }
 
+/// The [`PathJobRefs`] of a request whose fields name its tool (`tool_id`, `tool_type`,
+/// `diameter_mm`) and material (`material_id`, `material`), with its machine and spindle
+/// speed.
+macro_rules! path_job_refs {
+    ($request:expr, $machine_id:expr, $spindle_rpm:expr) => {
+        $crate::service::jobs::setup::PathJobRefs {
+            tool_id: $request.tool_id,
+            tool_type: $request.tool_type,
+            diameter_mm: $request.diameter_mm,
+            material_id: $request.material_id,
+            material: $request.material.as_deref(),
+            machine_id: $machine_id,
+            spindle_rpm: $spindle_rpm,
+        }
+    };
+}
+pub(crate) use path_job_refs;
+
 /// The rows a path job resolved to.
 pub struct Resolved {
     pub prepared: PathSetup,
@@ -219,25 +293,47 @@ pub struct Resolved {
     pub machine_max_spindle_rpm: f64,
 }
 
+/// The material and the tool a request names, each looked up on its own unless a field
+/// naming it was refused, adding every fault to `faults`.
+pub async fn material_and_tool(
+    pool: &Pool,
+    refs: &PathJobRefs<'_>,
+    faults: &mut Validator,
+) -> Result<(Option<Material>, Option<Tool>), ApiError> {
+    let material = match faults.refused_any(&["material_id", "material"]) {
+        true => None,
+        false => faults.take(lookup::material(pool, refs.material_id, refs.material).await)?,
+    };
+    let tool = match faults.refused_any(&["tool_id", "tool_type", "diameter_mm"]) {
+        true => None,
+        false => faults.take(lookup::tool(pool, refs.tool_id, refs.tool_type, refs.diameter_mm).await)?,
+    };
+    Ok((material, tool))
+}
+
 /// Resolves the material, tool, force model, machine and standard conditions of a path
-/// job (analysis, feeds, costing, trochoids, a plan's candidates).
-pub async fn resolve(pool: &Pool, refs: &PathJobRefs<'_>) -> Result<Resolved, ApiError> {
-    let material = lookup::material(pool, refs.material_id, refs.material).await?;
-    let tool = lookup::tool(pool, refs.tool_id, refs.tool_type, refs.diameter_mm).await?;
-    let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(|m| ForceModelRef::of_tool(m, &tool));
-    let machine = match refs.machine_id {
-        Some(id) => {
-            sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = $1").bind(id).fetch_optional(pool).await?
+/// job (analysis, feeds, costing, trochoids, a plan's candidates), adding every fault to
+/// `faults`: each row is looked up on its own, unless a field naming it was refused.
+pub async fn resolve(
+    pool: &Pool,
+    refs: &PathJobRefs<'_>,
+    faults: &mut Validator,
+) -> Result<Option<Resolved>, ApiError> {
+    let (material, tool) = material_and_tool(pool, refs, faults).await?;
+    let machine = match faults.refused("machine_id") {
+        true => None,
+        false => faults.take(lookup::machine(pool, refs.machine_id).await)?,
+    };
+    if let (Some(machine), Some(rpm)) = (&machine, refs.spindle_rpm) {
+        if rpm > machine.data.max_spindle_rpm && !faults.refused("spindle_rpm") {
+            let reason = format!("{rpm} is above the machine's maximum of {} min⁻¹", machine.data.max_spindle_rpm);
+            faults.fail("spindle_rpm", reason);
         }
-        None => sqlx::query_as::<_, Machine>("SELECT * FROM machines ORDER BY id LIMIT 1").fetch_optional(pool).await?,
     }
-    .ok_or_else(|| ApiError::field("machine_id", "no such machine (add one at /v1/machines)"))?;
-    if let Some(rpm) = refs.spindle_rpm.filter(|rpm| *rpm > machine.data.max_spindle_rpm) {
-        return Err(ApiError::field(
-            "spindle_rpm",
-            format!("{rpm} is above the machine's maximum of {} min⁻¹", machine.data.max_spindle_rpm),
-        ));
-    }
+    let (Some(material), Some(tool), Some(machine)) = (material, tool, machine) else {
+        return Ok(None);
+    };
+    let force_model = lookup::force_model(pool, tool.id, material.id).await?.map(|m| ForceModelRef::of_tool(m, &tool));
     let standard = lookup::standard_conditions(pool, tool.id, material.id, Operation::StandardSideCutting).await?;
     let default_spindle_rpm = refs.spindle_rpm.or(standard.as_ref().map(|c| c.data.spindle_rpm));
     let prepared = PathSetup {
@@ -250,12 +346,12 @@ pub async fn resolve(pool: &Pool, refs: &PathJobRefs<'_>) -> Result<Resolved, Ap
         default_spindle_rpm,
         coolant: machine.data.coolant,
     };
-    Ok(Resolved {
+    Ok(Some(Resolved {
         prepared,
         standard,
         machine_max_feed_mm_min: machine.data.max_feed_mm_min,
         machine_max_spindle_rpm: machine.data.max_spindle_rpm,
-    })
+    }))
 }
 
 /// The tool life, machine and rates a program is costed with (MODEL.md §9 and §10).
@@ -274,31 +370,45 @@ pub struct CostSetup {
 }
 
 /// The tool life, standard force, rates, tool price and machine limits a program cut by
-/// the tool of `base` is costed with; errors name the field to change.
+/// the tool of `base` is costed with, adding every fault to `faults` (named by the field
+/// to change). The rates are looked up even when `base` is not known.
 pub async fn resolve_cost(
     pool: &Pool,
-    base: &PathSetup,
+    base: Option<&PathSetup>,
     standard: Option<&StandardConditions>,
     cost_rates_id: Option<i64>,
     tool_price: Option<f64>,
-) -> Result<CostSetup, ApiError> {
-    let life = lookup::tool_life(pool, base.tool.id, base.material.id).await?.ok_or_else(|| {
-        ApiError::field(
-            "tool_id",
-            format!("no tool-life data for tool {} in {} (add it at /v1/tool-life)", base.tool.id, base.material.name),
-        )
-    })?;
-    let standard = standard.ok_or_else(|| {
-        ApiError::field(
-            "tool_id",
-            format!("no standard side-cutting conditions for tool {} in {}", base.tool.id, base.material.name),
-        )
-    })?;
-    let (t_um, arc_mm) = standard_centres(base.tool.geometry.diameter_mm / 2.0, standard.data.conditions())?;
+    faults: &mut Validator,
+) -> Result<Option<CostSetup>, ApiError> {
+    let rates = match faults.refused("cost_rates_id") {
+        true => None,
+        false => faults.take(lookup::cost_rates(pool, cost_rates_id).await)?,
+    };
+    let Some(base) = base else {
+        return Ok(None);
+    };
+    let (tool_id, material) = (base.tool.id, &base.material.name);
+    let life = lookup::tool_life(pool, tool_id, base.material.id).await?;
+    if life.is_none() {
+        let reason = format!("no tool-life data for tool {tool_id} in {material} (add it at /v1/tool-life)");
+        faults.fail("tool_id", reason);
+    }
+    if standard.is_none() {
+        faults.fail("tool_id", format!("no standard side-cutting conditions for tool {tool_id} in {material}"));
+    }
+    let limits = faults.take(machine_limits(pool, base.machine.id).await)?;
+    let (Some(life), Some(standard), Some(rates), Some(limits)) = (life, standard, rates, limits) else {
+        return Ok(None);
+    };
+    let Some((t_um, arc_mm)) = faults.take(
+        standard_centres(base.tool.geometry.diameter_mm / 2.0, standard.data.conditions()).map_err(ApiError::from),
+    )?
+    else {
+        return Ok(None);
+    };
     let standard_force_n = base.force_model.as_ref().map(|m| m.model.force_n(t_um, arc_mm, m.model.ad_ref_mm));
-    let rates = lookup::cost_rates(pool, cost_rates_id).await?;
     let price = sqlx::query_scalar::<_, Option<f64>>("SELECT price FROM tools WHERE id = $1")
-        .bind(base.tool.id)
+        .bind(tool_id)
         .fetch_one(pool)
         .await?;
     let setup = CostSetup {
@@ -317,16 +427,14 @@ pub async fn resolve_cost(
             tool_price: tool_price.or(price).unwrap_or(rates.data.default_tool_price),
             currency: rates.data.currency.clone(),
         },
-        limits: machine_limits(pool, base.machine.id).await?,
+        limits,
     };
-    setup.life.validate()?;
-    Ok(setup)
+    Ok(faults.take(setup.life.validate().map_err(ApiError::from))?.map(|_| setup))
 }
 
 /// The kinematic limits of machine `id` (which must exist); errors name `machine_id`.
 pub async fn machine_limits(pool: &Pool, id: i64) -> Result<MachineLimits, ApiError> {
-    let machine =
-        sqlx::query_as::<_, Machine>("SELECT * FROM machines WHERE id = $1").bind(id).fetch_one(pool).await?.data;
+    let machine = lookup::machine(pool, Some(id)).await?.data;
     let limits = MachineLimits {
         rapid_mm_min: machine.rapid_mm_min,
         max_feed_mm_min: machine.max_feed_mm_min,

@@ -4,9 +4,10 @@
 //! the report of which region got which treatment out.
 
 use super::inputs::{read_contour, read_dxf, ContourInput};
+use super::kind::off_runtime_with;
 use super::output::{OutputOptions, DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM};
 use super::program_input::{read_program, ProgramContext, ProgramInput};
-use super::setup::{machine_limits, resolve, PathJobRefs, PathSetup, Resolved};
+use super::setup::{machine_limits, path_job_refs, resolve, PathSetup, Resolved};
 use super::trochoids_result::{ChangeFigures, TrochoidsResult};
 use crate::core::conditions::{feed_mm_min, CuttingConditions};
 use crate::core::cycles::trochoid::default_loop_radius_mm;
@@ -20,6 +21,7 @@ use crate::core::medial::{CLASS_A_RATIO_MAX, CLASS_A_RATIO_MIN};
 use crate::core::nc::{write_program_mapped, WriterOptions};
 use crate::core::operation::Operation;
 use crate::core::progress::Progress;
+use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
 use crate::service::jobs::kind::{JobKindSpec, Produced, Submission};
@@ -194,20 +196,50 @@ fn read_pocket(request: &TrochoidsRequest) -> Result<Pocket, ApiError> {
     }
 }
 
-/// Resolves a checked request: the tool, material, machine and conditions; then parses and
-/// checks the pocket and the program against them.
-pub async fn prepare(pool: &Pool, request: TrochoidsRequest) -> Result<TrochoidsPrepared, ApiError> {
-    let refs = PathJobRefs {
-        tool_id: request.tool_id,
-        tool_type: request.tool_type,
-        diameter_mm: request.diameter_mm,
-        material_id: request.material_id,
-        material: request.material.as_deref(),
-        machine_id: request.machine_id,
-        spindle_rpm: None,
+/// Resolves the request (the tool, material, machine and conditions) and reads its pocket
+/// and program, adding every fault to `faults`; then, when it has none, checks the plan as
+/// the core will make it.
+pub async fn prepare(
+    pool: &Pool,
+    request: TrochoidsRequest,
+    faults: &mut Validator,
+) -> Result<Option<TrochoidsPrepared>, ApiError> {
+    let refs = path_job_refs!(request, request.machine_id, None);
+    let resolved = resolve(pool, &refs, faults).await?;
+    // An unknown tool's radius is not the program's fault: it is read by radius 0.
+    let radius_mm = resolved.as_ref().map_or(0.0, |r| r.prepared.tool.geometry.diameter_mm / 2.0);
+    let prepared = match resolved {
+        Some(resolved) => resolve_conditions(pool, &request, resolved, faults).await?,
+        None => None,
     };
-    let Resolved { prepared: base, standard, machine_max_feed_mm_min, machine_max_spindle_rpm } =
-        resolve(pool, &refs).await?;
+    let checked = prepared.clone();
+    off_runtime_with(faults, move |faults| {
+        let read = read_inputs(&request, radius_mm, faults)?;
+        if let (Some(prepared), Some((pocket, path))) = (&checked, read) {
+            if !faults.has_errors() {
+                faults.take(check_plan(&pocket, &spec(&request, prepared), path.as_ref()))?;
+            }
+        }
+        Ok(())
+    })
+    .await?;
+    Ok(prepared)
+}
+
+/// The roughing and grooving conditions of a request whose rows resolved, adding every
+/// fault to `faults`.
+async fn resolve_conditions(
+    pool: &Pool,
+    request: &TrochoidsRequest,
+    resolved: Resolved,
+    faults: &mut Validator,
+) -> Result<Option<TrochoidsPrepared>, ApiError> {
+    let Resolved { prepared: base, standard, machine_max_feed_mm_min, machine_max_spindle_rpm } = resolved;
+    // The grooving conditions default to the roughing ones: a fault in either leaves
+    // both unjudged.
+    if faults.touched("roughing") || faults.touched("grooving") {
+        return Ok(None);
+    }
     let (tool_id, material_id) = (base.tool.id, base.material.id);
     let row = |op: Operation| async move { lookup::standard_conditions(pool, tool_id, material_id, op).await };
     let rough_row = row(Operation::RoughSideCutting).await?;
@@ -216,13 +248,14 @@ pub async fn prepare(pool: &Pool, request: TrochoidsRequest) -> Result<Trochoids
         (None, Some(r), _) => (r.data.conditions(), format!("standard conditions {} (rough_side_cutting)", r.id)),
         (None, None, Some(s)) => (s.data.conditions(), format!("standard conditions {} (standard_side_cutting)", s.id)),
         (None, None, None) => {
-            return Err(ApiError::field(
+            faults.fail(
                 "roughing",
                 format!(
                     "no rough or standard side-cutting conditions for tool {tool_id} in {}: give roughing",
                     base.material.name
                 ),
-            ))
+            );
+            return Ok(None);
         }
     };
     let (grooving, grooving_source) = match (request.grooving, row(Operation::TrochoidalGrooving).await?) {
@@ -232,19 +265,10 @@ pub async fn prepare(pool: &Pool, request: TrochoidsRequest) -> Result<Trochoids
     };
     let flutes = base.tool.geometry.flutes;
     for (name, c, source) in [("roughing", roughing, &roughing_source), ("grooving", grooving, &grooving_source)] {
-        within_machine(name, &c, source, flutes, (machine_max_spindle_rpm, machine_max_feed_mm_min))?;
+        faults.take(within_machine(name, &c, source, flutes, (machine_max_spindle_rpm, machine_max_feed_mm_min)))?;
     }
     let limits = Some(machine_limits(pool, base.machine.id).await?);
-    let prepared = TrochoidsPrepared { base, roughing, roughing_source, grooving, grooving_source, limits };
-    let checked = prepared.clone();
-    tokio::task::spawn_blocking(move || -> Result<(), ApiError> {
-        let (pocket, spec, path) = build(&request, &checked)?;
-        check_plan(&pocket, &spec, path.as_ref())?;
-        Ok(())
-    })
-    .await
-    .map_err(|e| ApiError::Internal(e.to_string()))??;
-    Ok(prepared)
+    Ok(Some(TrochoidsPrepared { base, roughing, roughing_source, grooving, grooving_source, limits }))
 }
 
 /// Refuses conditions (`name`, from `source`) whose spindle speed or feed
@@ -270,13 +294,32 @@ fn within_machine(
     Ok(())
 }
 
-type Built = (Pocket, InsertionSpec, Option<crate::core::toolpath::Toolpath>);
+/// Reads the pocket and the program (if any, by the tool's `radius_mm`), each on its own,
+/// adding every fault to `faults`; a pocket or program an earlier stage refused is not
+/// read.
+fn read_inputs(
+    request: &TrochoidsRequest,
+    radius_mm: f64,
+    faults: &mut Validator,
+) -> Result<Option<(Pocket, Option<Toolpath>)>, ApiError> {
+    let pocket = match faults.refused_any(&["contour", "dxf"]) {
+        true => None,
+        false => faults.take(read_pocket(request))?,
+    };
+    let path = match &request.program {
+        None => Some(None),
+        Some(_) if faults.refused_any(&["program.gcode", "program.moves"]) => None,
+        Some(program) => {
+            let context = ProgramContext { tool_radius_mm: Some(radius_mm), stock_top_mm: Some(request.z_top) };
+            faults.take(read_program(program, context))?.map(|read| Some(read.path))
+        }
+    };
+    Ok(pocket.zip(path))
+}
 
-fn build(request: &TrochoidsRequest, prepared: &TrochoidsPrepared) -> Result<Built, ApiError> {
-    let pocket = read_pocket(request)?;
+/// The insertion a request asks for, with the conditions it resolved to.
+fn spec(request: &TrochoidsRequest, prepared: &TrochoidsPrepared) -> InsertionSpec {
     let tool: crate::core::tool::EndMill = prepared.base.tool.geometry.into();
-    let context = ProgramContext { tool_radius_mm: Some(tool.radius_mm()), stock_top_mm: Some(request.z_top) };
-    let path = request.program.as_ref().map(|p| read_program(p, context)).transpose()?.map(|r| r.path);
     let mut spec = InsertionSpec::new(tool, prepared.roughing, prepared.grooving, request.z_top, request.z_bottom);
     spec.safe_z_mm = request.safe_z.unwrap_or(request.z_top + DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM);
     spec.rapid_mm_min = prepared.base.rapid_mm_min;
@@ -307,7 +350,7 @@ fn build(request: &TrochoidsRequest, prepared: &TrochoidsPrepared) -> Result<Bui
     if let Some(max) = prepared.base.max_feed_mm_min {
         spec.air_feed_mm_min = Some(spec.air_feed_mm_min().min(max));
     }
-    Ok((pocket, spec, path))
+    spec
 }
 
 /// Replaces the move numbers (1-based) of `lines` by the lines of the text written from
@@ -340,7 +383,9 @@ pub type Run = (TrochoidsResult, String, String, Scene);
 /// Plans the insertion and writes the program (and the base program).
 pub fn run(request: TrochoidsRequest, prepared: TrochoidsPrepared, progress: &dyn Progress) -> Result<Run, CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
-    let (pocket, spec, path) = build(&request, &prepared).map_err(reread)?;
+    let radius_mm = prepared.base.tool.geometry.diameter_mm / 2.0;
+    let (pocket, path) = Validator::collect(|faults| read_inputs(&request, radius_mm, faults)).map_err(reread)?;
+    let spec = spec(&request, &prepared);
     let mut plan = plan_insertion(&pocket, &spec, path.as_ref(), progress)?;
     let options = request.output.to_writer(&prepared.base);
     let written = write_program_mapped(&plan.toolpath, &options);
@@ -363,7 +408,8 @@ impl JobKindSpec for Trochoids {
     const SUMMARY: &'static str =
         "Inserts trochoid cycles where a pocket's path overloads the tool (job kind `trochoids`).";
     const DESCRIPTION: &'static str = "Takes a pocket contour (or DXF) and optionally a path to modify; without one, the contour-parallel roughing path is generated (Rd and Ad of the rough side-cutting conditions). The path is simulated; its samples above the engagement limit are mapped onto the medial axis; each critical stretch gets trochoids (classes A and B, the pitch reduced where the limit needs it, entered by a helix) or z-cut division (class C, seed 004 §2.3); the path is cut where the trochoids cleared and re-linked; and the result is simulated again. The result holds the axis with its classes, the treatments with the area each removes, the checks and the path as JSON moves; the NC program is at `GET /v1/jobs/{id}/program`.";
-    const REFUSES: &'static str = "A refused field, NC line or contour vertex";
+    const REFUSES: &'static str =
+        "Every fault of the request, in one problem: each refused field, each row it names that is not in the database, the NC program's faults (line, column and word) and the pocket's (contour vertex or DXF)";
     type Request = TrochoidsRequest;
     type Prepared = TrochoidsPrepared;
     type Output = TrochoidsResult;
@@ -372,8 +418,12 @@ impl JobKindSpec for Trochoids {
         check_request(request, v)
     }
 
-    async fn prepare(submission: &Submission<'_>, request: TrochoidsRequest) -> Result<TrochoidsPrepared, ApiError> {
-        prepare(submission.pool, request).await
+    async fn prepare(
+        submission: &Submission<'_>,
+        request: TrochoidsRequest,
+        faults: &mut Validator,
+    ) -> Result<Option<TrochoidsPrepared>, ApiError> {
+        prepare(submission.pool, request, faults).await
     }
 
     fn run(
