@@ -36,8 +36,8 @@ impl<const N: usize> RowIntervals<N> {
         RowIntervals { spans: [(0.0, 0.0); N], len: 0 }
     }
 
-    /// Adds [lo, hi] (ignored when empty), merging it with the intervals it meets; keeps
-    /// the largest `N` when there would be more (an under-approximation).
+    /// Adds [lo, hi] (ignored when empty), merged with the intervals it meets. Every
+    /// caller adds at most `N` intervals.
     fn add(&mut self, lo: f64, hi: f64) {
         if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
             return;
@@ -45,35 +45,19 @@ impl<const N: usize> RowIntervals<N> {
         let (mut lo, mut hi) = (lo, hi);
         let mut kept = [(0.0, 0.0); N];
         let mut n = 0;
-        let mut extra: Option<(f64, f64)> = None;
         for &(l, h) in &self.spans[..self.len] {
             if h < lo || l > hi {
-                if n < N {
-                    kept[n] = (l, h);
-                    n += 1;
-                }
+                kept[n] = (l, h);
+                n += 1;
             } else {
                 lo = lo.min(l);
                 hi = hi.max(h);
             }
         }
-        if n < N {
-            kept[n] = (lo, hi);
-            n += 1;
-        } else {
-            extra = Some((lo, hi));
-        }
-        if let Some(e) = extra {
-            // Full: drop the shortest.
-            let (k, shortest) =
-                kept.iter().enumerate().min_by(|x, y| (x.1 .1 - x.1 .0).total_cmp(&(y.1 .1 - y.1 .0))).expect("N > 0");
-            if e.1 - e.0 > shortest.1 - shortest.0 {
-                kept[k] = e;
-            }
-        }
-        kept[..n].sort_by(|x, y| x.0.total_cmp(&y.0));
+        kept[n] = (lo, hi);
+        kept[..=n].sort_by(|x, y| x.0.total_cmp(&y.0));
         self.spans = kept;
-        self.len = n;
+        self.len = n + 1;
     }
 
     pub fn iter(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
