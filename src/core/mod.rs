@@ -38,5 +38,6 @@ pub mod tolerance;
 pub mod tool;
 pub mod tool_life;
 pub mod toolpath;
+pub mod zero_crossing;
 
 pub use error::CoreError;

@@ -13,17 +13,14 @@
 //!
 //! This reproduces the simulation: `ρ = 1`, `r = 5`, `p = 0.5` (seed 004's 12 mm slot with
 //! a 10 mm tool at the standard Rd) peaks at 64.9°, as the full simulation does. The pitch
-//! for a limit is the largest `p` whose loop stays under it (bisection: the engagement grows
-//! with the pitch).
+//! for a limit is the largest `p` whose loop stays under it (the engagement grows with the
+//! pitch), found by Brent's method on the loop's peak engagement less the limit.
 
+use crate::core::zero_crossing::zero_crossing;
 use std::f64::consts::{PI, TAU};
 
 /// Loop angles examined per turn when looking for the largest engagement.
 pub const LOOP_ANGLE_STEPS: usize = 720;
-
-/// Bisection steps when solving for the pitch (to the last bits of the pitch: the plans are
-/// sensitive to it; a micrometre less pitch changed the slot box's path by 1.2 %).
-const PITCH_BISECTION_STEPS: usize = 48;
 
 /// Smallest pitch the planner writes, mm: below it a trochoid is a slot cut in tiny steps
 /// and the region belongs to z-cut division (seed 004 §2.3).
@@ -150,9 +147,48 @@ fn short_arc_indices(rho_mm: f64, pitch_mm: f64, w_mm: f64, r_mm: f64, short_arc
 /// changes the cosine by far more than any rounding of `d`.
 const SHORT_ARC_INDEX_MARGIN: usize = 2;
 
+/// The largest engagement (deg) of the loop of [`loop_engagement_deg`], found without
+/// measuring the angles that cannot raise it: the scan starts at loop angle `*hint` (the
+/// index of [`loop_angles`] where the last loop of a search peaked, left where this one
+/// peaks), and an angle whose material arc is no longer than the largest engagement so far
+/// is passed over, a range of them about φ = π without a distance ([`short_arc_indices`]).
+fn loop_peak_deg(rho_prev_mm: f64, rho_mm: f64, pitch_mm: f64, r_mm: f64, hint: &mut usize) -> f64 {
+    let w = rho_prev_mm + r_mm;
+    let angles = loop_angles();
+    let at = |i: usize| {
+        let (s, c) = angles[i];
+        ((pitch_mm + rho_mm * c, rho_mm * s), (-s, c))
+    };
+    let (v, t) = at(*hint);
+    let mut peak = engagement_outside_disc_rad(v, t, w, r_mm);
+    // Material arcs whose cosine is at least this are no longer than the peak.
+    let shorter = |peak: f64| (0.5 * peak).cos() + SHORT_ARC_MARGIN;
+    let mut short_arc = shorter(peak);
+    let (lo, hi) = short_arc_indices(rho_mm, pitch_mm, w, r_mm, short_arc);
+    for i in (0..lo).chain(hi..LOOP_ANGLE_STEPS) {
+        let (v, t) = at(i);
+        let d = (v.0 * v.0 + v.1 * v.1).sqrt();
+        if d > f64::EPSILON && material_arc_cosine(d, w, r_mm) >= short_arc {
+            continue;
+        }
+        let alpha = engagement_at_rad(v, d, t, w, r_mm);
+        if alpha > peak {
+            (peak, *hint) = (alpha, i);
+            short_arc = shorter(peak);
+        }
+    }
+    peak.to_degrees()
+}
+
+/// How close the pitch search brackets the largest pitch that fits, mm: far below any
+/// digit a program carries, close to the last bits of a pitch (the plans are sensitive to
+/// it; a micrometre less pitch changed the slot box's path by 1.2 %).
+const PITCH_TOLERANCE_MM: f64 = 1e-13;
+
 /// The largest pitch in `(0, max_pitch_mm]` whose loop (radius `rho(p)` at that pitch, after
 /// a loop of radius `rho_prev_mm`) stays at or under `alpha_limit_deg`; `None` when even
-/// [`MIN_PITCH_MM`] does not.
+/// [`MIN_PITCH_MM`] does not. The loop's peak engagement less the limit is brought to zero by
+/// Brent's method ([`zero_crossing`]), keeping the side that fits.
 pub fn pitch_for_limit(
     rho_prev_mm: f64,
     rho_at: impl Fn(f64) -> f64,
@@ -160,23 +196,23 @@ pub fn pitch_for_limit(
     alpha_limit_deg: f64,
     max_pitch_mm: f64,
 ) -> Option<f64> {
-    let fits = |p: f64| !loop_exceeds(rho_prev_mm, rho_at(p), p, r_mm, alpha_limit_deg);
-    if fits(max_pitch_mm) {
+    if alpha_limit_deg >= 180.0 {
         return Some(max_pitch_mm);
     }
-    if max_pitch_mm <= MIN_PITCH_MM || !fits(MIN_PITCH_MM) {
+    let mut hint = 0;
+    let mut over = |p: f64| loop_peak_deg(rho_prev_mm, rho_at(p), p, r_mm, &mut hint) - alpha_limit_deg;
+    let over_max = over(max_pitch_mm);
+    if over_max <= 0.0 {
+        return Some(max_pitch_mm);
+    }
+    if max_pitch_mm <= MIN_PITCH_MM {
         return None;
     }
-    let (mut lo, mut hi) = (MIN_PITCH_MM, max_pitch_mm);
-    for _ in 0..PITCH_BISECTION_STEPS {
-        let mid = 0.5 * (lo + hi);
-        if fits(mid) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
+    let over_min = over(MIN_PITCH_MM);
+    if over_min > 0.0 {
+        return None;
     }
-    Some(lo)
+    Some(zero_crossing(MIN_PITCH_MM, over_min, max_pitch_mm, over_max, PITCH_TOLERANCE_MM, over).at_most_zero)
 }
 
 #[cfg(test)]
@@ -231,6 +267,19 @@ mod tests {
                     proptest::prop_assert!(loop_engagement_deg(rho, rho, (p * 1.01).min(max_p), 5.0) > limit - 0.5);
                 }
             }
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(256))]
+        #[test]
+        fn the_peak_found_passing_over_short_arcs_is_the_largest_engagement_of_every_angle(
+            rho_prev in 0.2f64..6.0, rho in 0.2f64..6.0, pitch in 0.0f64..2.0, hint in 0usize..LOOP_ANGLE_STEPS
+        ) {
+            let mut at = hint;
+            let peak = loop_peak_deg(rho_prev, rho, pitch, 5.0, &mut at);
+            let every = loop_engagement_deg(rho_prev, rho, pitch, 5.0);
+            proptest::prop_assert!((peak - every).abs() <= 1e-9, "{} against {}", peak, every);
         }
     }
 
