@@ -9,7 +9,7 @@
 use super::arcs::ArcGuide;
 use super::recent::Corridor;
 use super::sampling::has_heading;
-use super::slices::Slice;
+use super::stack::Stack;
 use crate::core::stock::{ArcRows, ArcSweep, CapsuleRows, MAX_ARC_SWEEP_RAD};
 
 /// A chunk holds at most this many steps: straight stretches are applied in capsules
@@ -64,7 +64,7 @@ pub struct Chunk {
     start_cleared: bool,
     cos_turn: f64,
     max_deviation_mm: f64,
-    /// Capsules applied so far (numbers them for [`Slice::take_capsule`]).
+    /// Capsules applied so far (numbers them for [`super::slices::SliceStock::take_capsule`]).
     capsules: u64,
     /// The rows of the capsule last applied (kept to reuse its memory).
     rows: Option<CapsuleRows>,
@@ -100,13 +100,13 @@ impl Chunk {
     /// is no arc in XY), before the sample is probed. A chunk along another arc, or along
     /// a line, is applied first; a chunk follows an arc only from a start on its circle
     /// (otherwise the sample joins the line chunk, and the arc is followed from it on).
-    pub fn follow(&mut self, slices: &mut [Slice], radius: f64, guide: Option<&ArcGuide>) {
+    pub fn follow(&mut self, stack: &mut Stack, radius: f64, guide: Option<&ArcGuide>) {
         let same = matches!((&self.arc, guide), (Some((a, _)), Some(g)) if a.move_index == g.move_index);
         if same {
             return;
         }
         if self.arc.is_some() || (guide.is_some() && self.recent.len() > 1) {
-            self.flush(slices, radius);
+            self.flush(stack, radius);
             self.arc = None;
         }
         let Some(g) = guide else {
@@ -154,8 +154,8 @@ impl Chunk {
 
     /// Applies the chunk and starts an empty one cutting `cut` slices (along the same arc,
     /// if it follows one).
-    pub fn restart(&mut self, slices: &mut [Slice], radius: f64, cut: usize) {
-        self.flush(slices, radius);
+    pub fn restart(&mut self, stack: &mut Stack, radius: f64, cut: usize) {
+        self.flush(stack, radius);
         if let Some((_, swept)) = self.arc.as_mut() {
             *swept = 0.0;
         }
@@ -169,7 +169,7 @@ impl Chunk {
     /// Adds the centre `p` of a sample reached by a step of `step_mm` along `heading`;
     /// when `p` would turn the chunk or bow it away from its chord, or it is full, the
     /// chunk is first applied, so it ends at the previous centre.
-    pub fn push(&mut self, slices: &mut [Slice], radius: f64, p: (f64, f64), heading: (f64, f64), step_mm: f64) {
+    pub fn push(&mut self, stack: &mut Stack, radius: f64, p: (f64, f64), heading: (f64, f64), step_mm: f64) {
         let last = self.recent.last().copied();
         if last.is_some_and(|q| (p.0 - q.0).abs() <= SAME_XY_MM && (p.1 - q.1).abs() <= SAME_XY_MM) {
             // A move along z only: the tool sweeps nothing new in XY.
@@ -180,7 +180,7 @@ impl Chunk {
             let step_rad = step_mm / guide.radius_mm;
             let mut swept = swept + step_rad;
             if swept > MAX_ARC_SWEEP_RAD || self.recent.len() > MAX_CHUNK_STEPS {
-                self.flush(slices, radius);
+                self.flush(stack, radius);
                 swept = step_rad;
             }
             self.arc = Some((guide, swept));
@@ -200,7 +200,7 @@ impl Chunk {
             let turned = h.0 * c.0 + h.1 * c.1 < self.cos_turn;
             let bowed = (self.length_mm + step_mm) * turn / KINK_DEVIATION_PER_TURN > self.max_deviation_mm;
             if turned || bowed || self.recent.len() > MAX_CHUNK_STEPS {
-                self.flush(slices, radius);
+                self.flush(stack, radius);
                 self.heading = heading;
             }
         }
@@ -232,7 +232,7 @@ impl Chunk {
     /// Removes the area the chunk swept from the rasters of the slices it cuts: its capsule
     /// or, along an arc, the area swept along the arc. The next chunk starts at its last
     /// centre.
-    pub fn flush(&mut self, slices: &mut [Slice], radius: f64) {
+    pub fn flush(&mut self, stack: &mut Stack, radius: f64) {
         let (Some(a), Some(&b)) = (self.start, self.recent.last()) else {
             return;
         };
@@ -244,18 +244,28 @@ impl Chunk {
         // From the deepest slice cut up: above a slice with no material near the
         // capsule, none has any (see [`super::slices`]).
         let mut material_near = true;
-        let cut = self.cut.min(slices.len());
+        let cut = self.cut.min(stack.len());
         self.capsules += 1;
         // All slices share one grid: the rows are found once.
-        if let Some(first) = slices.first() {
+        if !stack.is_empty() {
+            let grid = stack.raster(0);
             match (arc, self.rows.as_mut(), self.arc_rows.as_mut()) {
-                (Some(arc), _, Some(rows)) => rows.set(&first.raster, arc, radius),
-                (Some(arc), _, None) => self.arc_rows = Some(ArcRows::new(&first.raster, arc, radius)),
-                (None, Some(rows), _) => rows.set(&first.raster, a, b, radius, self.start_cleared),
-                (None, None, _) => self.rows = Some(CapsuleRows::new(&first.raster, a, b, radius, self.start_cleared)),
+                (Some(arc), _, Some(rows)) => rows.set(grid, arc, radius),
+                (Some(arc), _, None) => self.arc_rows = Some(ArcRows::new(grid, arc, radius)),
+                (None, Some(rows), _) => rows.set(grid, a, b, radius, self.start_cleared),
+                (None, None, _) => self.rows = Some(CapsuleRows::new(grid, a, b, radius, self.start_cleared)),
             }
         }
-        for s in slices[..cut].iter_mut().rev() {
+        if cut > 0 {
+            // The deepest slice cut is cut apart from the one below; a slice above it that is
+            // alike with the one below takes the update with it.
+            stack.separate(cut - 1);
+        }
+        for k in (0..cut).rev() {
+            if stack.alike_below(k) {
+                continue;
+            }
+            let s = stack.own(k);
             material_near = match (material_near, arc.is_some(), self.rows.as_mut(), self.arc_rows.as_mut()) {
                 (true, true, _, Some(rows)) => s.take_arc(self.capsules, rows),
                 (true, false, Some(rows), _) => s.take_capsule(self.capsules, rows),
@@ -288,11 +298,11 @@ mod tests {
     const CELL: f64 = 0.1;
 
     /// One slice of a 40 × 40 mm block.
-    fn block() -> Vec<Slice> {
+    fn block() -> Stack {
         let rect = Rect { x_min: -20.0, y_min: -20.0, x_max: 20.0, y_max: 20.0 };
         let mut raster = Raster::new(rect, CELL);
         paint(&mut raster, &[StockRegion::Rect(rect)], &[], &NoProgress).expect("nothing cancels the painting");
-        vec![Slice::new(0.0, -10.0, raster)]
+        Stack::new(&[0.0, -10.0], raster)
     }
 
     #[test]
@@ -301,31 +311,31 @@ mod tests {
         let mut chunk = Chunk::new(1, CELL);
         chunk.push(&mut slices, RADIUS, (0.0, 0.0), (1.0, 0.0), 0.05);
         chunk.push(&mut slices, RADIUS, (0.05, 0.0), (1.0, 0.0), 0.05);
-        let version = slices[0].raster.version();
+        let version = slices.raster(0).version();
         for _ in 0..100 {
             chunk.push(&mut slices, RADIUS, (0.05, 0.0), (0.0, 0.0), 0.05);
         }
-        assert_eq!(slices[0].raster.version(), version, "a plunge in place applied a capsule");
+        assert_eq!(slices.raster(0).version(), version, "a plunge in place applied a capsule");
         assert_eq!(chunk.recent().len(), 2);
     }
 
     #[test]
     fn a_chunk_that_starts_with_a_plunge_takes_the_heading_of_the_first_move_in_xy() {
         let mut slices = block();
-        let version = slices[0].raster.version();
+        let version = slices.raster(0).version();
         let mut chunk = Chunk::new(1, CELL);
         for _ in 0..10 {
             chunk.push(&mut slices, RADIUS, (0.0, 0.0), (0.0, 0.0), 0.05);
         }
         chunk.push(&mut slices, RADIUS, (0.0, 0.05), (0.0, 1.0), 0.05);
         chunk.push(&mut slices, RADIUS, (0.0, 0.10), (0.0, 1.0), 0.05);
-        assert_eq!(slices[0].raster.version(), version, "the plunge's foot was applied on its own");
+        assert_eq!(slices.raster(0).version(), version, "the plunge's foot was applied on its own");
         let corridor = chunk.corridor();
         assert!(corridor.ordered && corridor.dir.1 > 1.0 - 1e-12);
         // The chunk, when applied, clears the plunge's foot and the move.
         chunk.flush(&mut slices, RADIUS);
-        assert!(!slices[0].raster.is_material(0.0, -RADIUS + 0.5));
-        assert!(!slices[0].raster.is_material(0.0, RADIUS + 0.05));
-        assert!(slices[0].raster.is_material(0.0, -RADIUS - 0.5));
+        assert!(!slices.raster(0).is_material(0.0, -RADIUS + 0.5));
+        assert!(!slices.raster(0).is_material(0.0, RADIUS + 0.05));
+        assert!(slices.raster(0).is_material(0.0, -RADIUS - 0.5));
     }
 }

@@ -10,7 +10,7 @@ use super::probe::{AngleTable, Contact, ProbeSite};
 use super::same_below::SameBelow;
 use super::sampling::{for_each_sample, has_heading, move_curvatures, Sample};
 use super::scan_memory::{Line, ScanMemory};
-use super::slices::{self, Slice};
+use super::stack::{Slice, Stack};
 use crate::core::engagement::{pivot_bounded_centre_radius_mm, tooth_chip_thickness_mm, ToothCut};
 use crate::core::force_model::{Coded, ForceModel};
 use crate::core::progress::Progress;
@@ -113,7 +113,7 @@ fn cutting_point_ratio(sample: &Sample, contact: &Contact, radius: f64) -> (f64,
 pub fn simulate(
     path: &Toolpath,
     cutter: Cutter,
-    slices: &mut [Slice],
+    slices: &mut Stack,
     progress: &dyn Progress,
     mut sink: impl FnMut(&SampleResult),
 ) -> Result<(), CoreError> {
@@ -121,7 +121,7 @@ pub fn simulate(
     let force_model = force_model.as_ref();
     let curvatures = move_curvatures(path);
     // All slices share one cell size (with none, nothing is probed).
-    let cell_mm = slices.first().map_or(0.0, |s| s.raster.cell_mm());
+    let cell_mm = if slices.is_empty() { 0.0 } else { slices.raster(0).cell_mm() };
     let mut probes = SliceProbes {
         table: AngleTable::new(cutter.radius_mm, cell_mm),
         site: ProbeSite::default(),
@@ -149,7 +149,7 @@ pub fn simulate(
         }
         s_mm += sample.step_mm;
         let p = (sample.p.x, sample.p.y);
-        let cut = slices::slices_cut(slices, sample.p.z);
+        let cut = slices.cut_at(sample.p.z);
         if cut != chunk.cut {
             chunk.restart(slices, r, cut);
         }
@@ -164,7 +164,7 @@ pub fn simulate(
             t_m_um: 0.0,
             force_n: force_model.map(|_| 0.0),
             // The deepest slice cut holds the material of all above it (see `slices`).
-            plunge: plunge && cut > 0 && slices[cut - 1].any_material_near(p.0, p.1, r),
+            plunge: plunge && cut > 0 && slices.stock_mut(cut - 1).any_material_near(p.0, p.1, r),
             force_extrapolated: false,
             coded: None,
             cutting_point_ratio: 1.0,
@@ -172,7 +172,7 @@ pub fn simulate(
         };
         if cut > 0 && !plunge {
             // All slices share one grid.
-            let grid = slices[0].raster.grid_position(p.0, p.1);
+            let grid = slices.raster(0).grid_position(p.0, p.1);
             let line = runs[sample.move_index].map(|run| {
                 let to_end = ((run.end.0 - p.0).powi(2) + (run.end.1 - p.1).powi(2)).sqrt();
                 Line { id: run.id, dir: sample.heading, ahead_cells: to_end / cell_mm }
@@ -191,7 +191,7 @@ pub fn simulate(
             } else {
                 probes.measure_deepest_slice(slices, cut, p, r);
             }
-            evaluate(&mut result, &probes.contacts[..cut], slices, cutter, force_model);
+            evaluate(&mut result, &probes.contacts[..cut], slices.slices(), cutter, force_model);
         }
         chunk.push(slices, r, p, sample.heading, sample.step_mm);
         sink(&result);
@@ -221,7 +221,7 @@ struct SliceProbes {
 impl SliceProbes {
     /// Measures the contact of each of the `cut` slices at the site, tool centre `p`
     /// moving along `heading`: a force model needs every slice's α.
-    fn measure_every_slice(&mut self, slices: &mut [Slice], cut: usize, p: (f64, f64), heading: (f64, f64), r: f64) {
+    fn measure_every_slice(&mut self, slices: &mut Stack, cut: usize, p: (f64, f64), heading: (f64, f64), r: f64) {
         // From the deepest slice cut up. Each slice's material lies inside the material of
         // the one below (see `slices`), and so does each coarse point's state: above a
         // slice with no material near the tool, or none at an interior coarse point (no
@@ -232,10 +232,10 @@ impl SliceProbes {
         for k in (0..cut).rev() {
             let (contact, states) = match below {
                 Some(states) if self.same_below.same(slices, k, p, heading, r) => (self.contacts[k + 1], states),
-                _ if !slices[k].any_material_near(p.0, p.1, r) => (Contact::default(), 0),
+                _ if !slices.stock_mut(k).any_material_near(p.0, p.1, r) => (Contact::default(), 0),
                 _ => {
                     let known_air = below.map_or(0, |states| !states);
-                    self.table.contact_and_states(&slices[k].raster, &self.site, Some(&mut self.memories[k]), known_air)
+                    self.table.contact_and_states(slices.raster(k), &self.site, Some(&mut self.memories[k]), known_air)
                 }
             };
             self.contacts[k] = contact;
@@ -257,10 +257,10 @@ impl SliceProbes {
     /// sample differs.)
     ///
     /// [`measure_every_slice`]: SliceProbes::measure_every_slice
-    fn measure_deepest_slice(&mut self, slices: &mut [Slice], cut: usize, p: (f64, f64), r: f64) {
+    fn measure_deepest_slice(&mut self, slices: &mut Stack, cut: usize, p: (f64, f64), r: f64) {
         let deepest = cut - 1;
-        let (contact, states) = if slices[deepest].any_material_near(p.0, p.1, r) {
-            self.table.contact_and_states(&slices[deepest].raster, &self.site, Some(&mut self.memories[deepest]), 0)
+        let (contact, states) = if slices.stock_mut(deepest).any_material_near(p.0, p.1, r) {
+            self.table.contact_and_states(slices.raster(deepest), &self.site, Some(&mut self.memories[deepest]), 0)
         } else {
             (Contact::default(), 0)
         };
@@ -268,8 +268,13 @@ impl SliceProbes {
         // Interior points in air below are in air above (see `engages`).
         let mut candidates = states & interior_points();
         for k in (0..deepest).rev() {
+            if candidates != 0 && slices.alike_below(k) {
+                // The cells of the slice below, which engages: so does this one.
+                self.contacts[k] = contact;
+                continue;
+            }
             if candidates == 0
-                || !self.table.engages(&slices[k].raster, &self.site, &mut candidates, &mut self.engaged_at[k])
+                || !self.table.engages(slices.raster(k), &self.site, &mut candidates, &mut self.engaged_at[k])
             {
                 self.contacts[k] = Contact::default();
                 break;
@@ -348,7 +353,7 @@ fn evaluate(
 mod tests {
     use super::*;
     use crate::core::analysis::region::{paint, StockRegion};
-    use crate::core::analysis::slices::{build, slice_levels};
+    use crate::core::analysis::slices::slice_levels;
     use crate::core::progress::NoProgress;
     use crate::core::stock::Rect;
     use crate::core::toolpath::{Motion, Move, Units, P3};
@@ -381,9 +386,9 @@ mod tests {
     }
 
     /// The slices of [`RELIEF`] for `path`, painted.
-    fn relief_slices(path: &Toolpath) -> Vec<Slice> {
+    fn relief_slices(path: &Toolpath) -> Stack {
         let levels = slice_levels(path, -6.0, 0.0);
-        build(&levels, RELIEF, 0.1, |raster| paint(raster, &[StockRegion::Rect(RELIEF)], &[], &NoProgress))
+        Stack::build(&levels, RELIEF, 0.1, |raster| paint(raster, &[StockRegion::Rect(RELIEF)], &[], &NoProgress))
             .expect("nothing cancels the painting")
     }
 
@@ -408,14 +413,38 @@ mod tests {
         for i in 0..300 {
             for j in 0..300 {
                 let (x, y) = (0.05 + 0.1 * f64::from(i), 0.05 + 0.1 * f64::from(j));
-                for (k, pair) in slices.windows(2).enumerate() {
-                    let (upper, lower) = (pair[0].raster.is_material(x, y), pair[1].raster.is_material(x, y));
+                for (k, removed) in removed_somewhere.iter_mut().enumerate().take(slices.len() - 1) {
+                    let (upper, lower) = (slices.raster(k).is_material(x, y), slices.raster(k + 1).is_material(x, y));
                     assert!(!upper || lower, "material at ({x}, {y}) in slice {k} but not below it");
-                    removed_somewhere[k] |= !upper;
+                    *removed |= !upper;
                 }
             }
         }
         assert!(removed_somewhere.iter().take(slices.len() - 1).all(|&r| r), "some slice was never cut");
+    }
+
+    #[test]
+    fn slices_sharing_one_stock_while_alike_simulate_exactly_as_slices_with_a_raster_each() {
+        let path = relief_program();
+        for model in [None, Some(crate::core::fixtures::seed_001_ten_mm())] {
+            let run = |separate: bool| {
+                let mut slices = relief_slices(&path);
+                if separate {
+                    (0..slices.len()).for_each(|k| slices.separate(k));
+                }
+                let mut results = Vec::new();
+                simulate(&path, relief_cutter(model), &mut slices, &NoProgress, |r| {
+                    results.push((r.contact, r.ad_mm.to_bits(), r.force_n.map(f64::to_bits)))
+                })
+                .expect("simulates");
+                let areas: Vec<u64> =
+                    (0..slices.len()).map(|k| slices.raster(k).material_area_mm2().to_bits()).collect();
+                (results, areas, slices.memory_bytes())
+            };
+            let ((shared, shared_areas, shared_bytes), (apart, apart_areas, apart_bytes)) = (run(false), run(true));
+            assert!(shared == apart && shared_areas == apart_areas, "the shared stock changed a result");
+            assert!(shared_bytes <= apart_bytes);
+        }
     }
 
     #[test]

@@ -19,6 +19,7 @@ pub mod samples;
 pub mod sampling;
 pub mod scan_memory;
 pub mod slices;
+pub mod stack;
 
 use crate::core::error::require_positive;
 use crate::core::force_model::ForceModel;
@@ -32,6 +33,7 @@ use outside::{ForceOverload, OutsideModel};
 pub use region::StockRegion;
 use report::{CriticalRegion, FinishedReport, HistogramBin, ReportBuilder, Series, Stats};
 use serde::Serialize;
+use stack::Stack;
 
 /// Engagement above this is critical by default (seed 002 §2.4, seed 004 §2.1), deg.
 pub const DEFAULT_ALPHA_LIMIT_DEG: f64 = 40.0;
@@ -101,6 +103,8 @@ pub struct Summary {
     pub samples: usize,
     pub sample_spacing_mm: f64,
     pub cell_mm: f64,
+    /// Memory the slices' rasters took at the end of the simulation, bytes: slices that
+    /// were still alike shared one raster.
     pub raster_memory_bytes: usize,
     pub slices: Vec<SliceSummary>,
     /// Length of feed moves in material, mm.
@@ -231,8 +235,8 @@ pub fn analyze_with(
     let paint_share = painting / (painting + total_samples as f64);
     let paint_stage = Stage { inner: progress, from: 0.0, span: paint_share };
     let mut slices =
-        slices::build(&levels, bounds, cell, |raster| region::paint(raster, &spec.stock, &spec.open, &paint_stage))?;
-    let initial: Vec<f64> = slices.iter().map(|s| s.raster.material_area_mm2()).collect();
+        Stack::build(&levels, bounds, cell, |raster| region::paint(raster, &spec.stock, &spec.open, &paint_stage))?;
+    let initial: Vec<f64> = (0..slices.len()).map(|k| slices.raster(k).material_area_mm2()).collect();
 
     let total_length: f64 = path.moves.iter().map(crate::core::toolpath::move_length).sum();
     let cutter = Cutter {
@@ -264,7 +268,7 @@ fn assemble(
     path: &Toolpath,
     spec: &AnalysisSpec,
     report: FinishedReport,
-    slices: &[slices::Slice],
+    slices: &Stack,
     initial: &[f64],
     spacing: f64,
     cell: f64,
@@ -298,12 +302,14 @@ fn assemble(
         warnings.push("no force model: forces are not predicted".to_string());
     }
     let slice_summaries: Vec<SliceSummary> = slices
+        .slices()
         .iter()
         .zip(initial)
-        .map(|(s, a0)| SliceSummary {
+        .enumerate()
+        .map(|(k, (s, a0))| SliceSummary {
             z_top: s.z_top,
             z_bottom: s.z_bottom,
-            removed_area_mm2: a0 - s.raster.material_area_mm2(),
+            removed_area_mm2: a0 - slices.raster(k).material_area_mm2(),
         })
         .collect();
     let removed_volume_mm3 = slice_summaries.iter().map(|s| s.removed_area_mm2 * (s.z_top - s.z_bottom)).sum();
@@ -322,7 +328,7 @@ fn assemble(
             samples: report.samples,
             sample_spacing_mm: spacing,
             cell_mm: cell,
-            raster_memory_bytes: slices.iter().map(|s| s.raster.memory_bytes()).sum(),
+            raster_memory_bytes: slices.memory_bytes(),
             slices: slice_summaries,
             cutting_length_mm: report.cutting_length_mm,
             air_cut_length_mm: report.air_cut_length_mm,

@@ -5,7 +5,8 @@
 //! chunk is applied, so an agreement found over a stretch ahead of the tool holds until
 //! either raster changes.
 
-use super::slices::Slice;
+use super::slices::SliceStock;
+use super::stack::Stack;
 use crate::core::stock::CellRect;
 
 /// An agreement is checked this far ahead of the tool along its heading, cells.
@@ -35,19 +36,16 @@ impl SameBelow {
     /// `true` when slice `k` and the slice below it hold the same cells wherever a probe
     /// of a tool of `radius_mm` at `center` reads; `heading`, the tool's unit direction,
     /// says where to look ahead.
-    pub fn same(
-        &mut self,
-        slices: &[Slice],
-        k: usize,
-        center: (f64, f64),
-        heading: (f64, f64),
-        radius_mm: f64,
-    ) -> bool {
-        let (upper, lower) = (&slices[k].raster, &slices[k + 1].raster);
+    pub fn same(&mut self, slices: &Stack, k: usize, center: (f64, f64), heading: (f64, f64), radius_mm: f64) -> bool {
+        if slices.alike_below(k) {
+            // One stock for both.
+            return true;
+        }
+        let (upper, lower) = (slices.raster(k), slices.raster(k + 1));
         let pair = &mut self.pairs[k];
         let versions = (upper.version(), lower.version());
         if pair.versions != versions {
-            *pair = if both_took_one_capsule_since(pair.versions, &slices[k], &slices[k + 1]) {
+            *pair = if both_took_one_capsule_since(pair.versions, slices.stock(k), slices.stock(k + 1)) {
                 // Cells the same in both stay the same; cells that differed may not.
                 Pair { versions, same_over: pair.same_over, differ_at: None }
             } else {
@@ -102,7 +100,7 @@ impl SameBelow {
 /// is one capsule applied to both. A capsule sets each cell from that cell's value alone
 /// (see [`crate::core::stock::Raster::clear_capsule_after`]), so cells the same in both
 /// rasters before are the same after.
-fn both_took_one_capsule_since(versions: (u64, u64), upper: &Slice, lower: &Slice) -> bool {
+fn both_took_one_capsule_since(versions: (u64, u64), upper: &SliceStock, lower: &SliceStock) -> bool {
     match (upper.last_capsule(), lower.last_capsule()) {
         (Some(u), Some(l)) => u.serial == l.serial && (u.version_before, l.version_before) == versions,
         _ => false,
@@ -113,29 +111,33 @@ fn both_took_one_capsule_since(versions: (u64, u64), upper: &Slice, lower: &Slic
 mod tests {
     use super::*;
     use crate::core::analysis::region::{paint, StockRegion};
-    use crate::core::analysis::slices::build;
     use crate::core::progress::NoProgress;
     use crate::core::stock::{CapsuleRows, Rect};
 
     const RADIUS: f64 = 2.0;
 
     /// Capsule number `serial` of radius RADIUS from `a` to `b`, applied to slice `s`.
-    fn take(s: &mut Slice, serial: u64, a: (f64, f64), b: (f64, f64), disc_at_a_cleared: bool) -> bool {
+    fn take(s: &mut SliceStock, serial: u64, a: (f64, f64), b: (f64, f64), disc_at_a_cleared: bool) -> bool {
         let mut rows = CapsuleRows::new(&s.raster, a, b, RADIUS, disc_at_a_cleared);
         s.take_capsule(serial, &mut rows)
     }
 
-    fn two_slices() -> Vec<Slice> {
+    /// Two slices, each with its own stock (so that their cells are compared).
+    fn two_slices() -> Stack {
         let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 40.0, y_max: 40.0 };
-        build(&[0.0, -5.0, -10.0], rect, 0.1, |raster| paint(raster, &[StockRegion::Rect(rect)], &[], &NoProgress))
-            .expect("nothing cancels the painting")
+        let mut slices = Stack::build(&[0.0, -5.0, -10.0], rect, 0.1, |raster| {
+            paint(raster, &[StockRegion::Rect(rect)], &[], &NoProgress)
+        })
+        .expect("nothing cancels the painting");
+        slices.separate(0);
+        slices
     }
 
     #[test]
     fn slices_cut_alike_are_the_same_under_the_tool() {
         let mut slices = two_slices();
-        for s in &mut slices {
-            s.raster.clear_capsule((0.0, 20.0), (20.0, 20.0), RADIUS);
+        for k in 0..2 {
+            slices.own(k).raster.clear_capsule((0.0, 20.0), (20.0, 20.0), RADIUS);
         }
         let mut same = SameBelow::new(slices.len());
         assert!(same.same(&slices, 0, (21.0, 20.0), (1.0, 0.0), RADIUS));
@@ -146,40 +148,40 @@ mod tests {
     #[test]
     fn one_capsule_taken_by_both_slices_keeps_them_known_alike_and_any_other_change_does_not() {
         let mut slices = two_slices();
-        let versions = (slices[0].raster.version(), slices[1].raster.version());
-        for s in &mut slices {
-            assert!(take(s, 1, (0.0, 20.0), (20.0, 20.0), false));
+        let versions = (slices.raster(0).version(), slices.raster(1).version());
+        for k in 0..2 {
+            assert!(take(slices.own(k), 1, (0.0, 20.0), (20.0, 20.0), false));
         }
-        assert!(both_took_one_capsule_since(versions, &slices[0], &slices[1]));
+        assert!(both_took_one_capsule_since(versions, slices.stock(0), slices.stock(1)));
         // A second capsule since the versions, or one the upper slice alone took.
-        for s in &mut slices {
-            take(s, 2, (20.0, 20.0), (25.0, 20.0), true);
+        for k in 0..2 {
+            take(slices.own(k), 2, (20.0, 20.0), (25.0, 20.0), true);
         }
-        assert!(!both_took_one_capsule_since(versions, &slices[0], &slices[1]));
-        let versions = (slices[0].raster.version(), slices[1].raster.version());
-        take(&mut slices[0], 3, (25.0, 20.0), (30.0, 20.0), true);
-        assert!(!both_took_one_capsule_since(versions, &slices[0], &slices[1]));
+        assert!(!both_took_one_capsule_since(versions, slices.stock(0), slices.stock(1)));
+        let versions = (slices.raster(0).version(), slices.raster(1).version());
+        take(slices.own(0), 3, (25.0, 20.0), (30.0, 20.0), true);
+        assert!(!both_took_one_capsule_since(versions, slices.stock(0), slices.stock(1)));
         // A raster changed other than by a capsule.
-        let versions = (slices[0].raster.version(), slices[1].raster.version());
-        for s in &mut slices {
-            take(s, 4, (30.0, 20.0), (35.0, 20.0), true);
+        let versions = (slices.raster(0).version(), slices.raster(1).version());
+        for k in 0..2 {
+            take(slices.own(k), 4, (30.0, 20.0), (35.0, 20.0), true);
         }
-        slices[1].raster.clear_capsule((5.0, 5.0), (5.0, 5.0), RADIUS);
-        assert!(!both_took_one_capsule_since(versions, &slices[0], &slices[1]));
+        slices.own(1).raster.clear_capsule((5.0, 5.0), (5.0, 5.0), RADIUS);
+        assert!(!both_took_one_capsule_since(versions, slices.stock(0), slices.stock(1)));
     }
 
     #[test]
     fn what_is_kept_across_capsules_taken_by_both_slices_agrees_with_a_fresh_comparison() {
         let mut slices = two_slices();
         // The upper slice alone was cut along y = 14: the slices differ there.
-        slices[0].raster.clear_capsule((0.0, 14.0), (40.0, 14.0), RADIUS);
+        slices.own(0).raster.clear_capsule((0.0, 14.0), (40.0, 14.0), RADIUS);
         let mut kept = SameBelow::new(slices.len());
         let mut at = (2.0, 20.0);
         let mut answers = [false; 2];
         for step in 0..60u32 {
             let next = (at.0 + 0.6, 20.0 - 0.1 * f64::from(step));
-            for s in &mut slices {
-                take(s, u64::from(step) + 1, at, next, step > 0);
+            for k in 0..2 {
+                take(slices.own(k), u64::from(step) + 1, at, next, step > 0);
             }
             at = next;
             let fresh = SameBelow::new(slices.len()).same(&slices, 0, at, (1.0, 0.0), RADIUS);
@@ -194,7 +196,7 @@ mod tests {
         let mut slices = two_slices();
         let mut same = SameBelow::new(slices.len());
         assert!(same.same(&slices, 0, (10.0, 10.0), (1.0, 0.0), RADIUS));
-        slices[0].raster.clear_capsule((13.0, 10.0), (13.0, 10.0), RADIUS);
+        slices.own(0).raster.clear_capsule((13.0, 10.0), (13.0, 10.0), RADIUS);
         // The upper raster changed: what was found ahead no longer counts.
         assert!(!same.same(&slices, 0, (10.0, 10.0), (1.0, 0.0), RADIUS));
         assert!(!same.same(&slices, 0, (10.1, 10.0), (1.0, 0.0), RADIUS));

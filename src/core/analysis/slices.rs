@@ -7,12 +7,11 @@
 //! Every slice starts as the same raster, and a tool removes material from the slices
 //! above its tip, a run of slices from the top: so a slice's material always lies inside
 //! the material of the slice below it. Above a slice with no material near the tool,
-//! none has any.
+//! none has any. Slices still alike share one stock (see [`super::stack`]).
 
-use crate::core::stock::{ArcRows, BlockRange, CapsuleRows, Raster, Rect};
+use crate::core::stock::{ArcRows, BlockRange, CapsuleRows, Raster};
 use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Motion, Move, Plane, Toolpath};
-use crate::core::CoreError;
 
 /// z levels closer than this are one level, mm.
 pub const MIN_SLICE_MM: f64 = 0.05;
@@ -29,10 +28,9 @@ pub const LAYER_LEVEL_SHARE: f64 = 0.02;
 /// A tool tip this close to a slice top does not cut the slice, mm.
 pub const Z_CONTACT_EPS_MM: f64 = 1e-6;
 
-/// One z slice of the stock.
-pub struct Slice {
-    pub z_bottom: f64,
-    pub z_top: f64,
+/// The stock of one z slice (see [`super::stack`] for slices that share one).
+#[derive(Clone)]
+pub struct SliceStock {
     pub raster: Raster,
     /// Blocks last found to hold no material: material is only ever removed during a
     /// simulation, so they stay empty.
@@ -40,7 +38,7 @@ pub struct Slice {
     /// The block (column, row) last found to hold material: it is looked at first, since
     /// it most often still does.
     material_at: Option<(usize, usize)>,
-    /// The last capsule applied to the raster (see [`Slice::take_capsule`]).
+    /// The last capsule applied to the raster (see [`SliceStock::take_capsule`]).
     last_capsule: Option<TakenCapsule>,
 }
 
@@ -54,19 +52,20 @@ pub struct TakenCapsule {
     pub version_after: u64,
 }
 
-impl Slice {
-    pub fn new(z_top: f64, z_bottom: f64, raster: Raster) -> Slice {
-        Slice { z_bottom, z_top, raster, empty: None, material_at: None, last_capsule: None }
+impl SliceStock {
+    pub fn new(raster: Raster) -> SliceStock {
+        SliceStock { raster, empty: None, material_at: None, last_capsule: None }
     }
 
     /// Applies capsule number `serial` to the raster ([`Raster::clear_capsule_rows`]),
     /// remembering it when it was applied. Returns `false` when no material lies near it.
+    /// (A stock two slices share takes it once for both.)
     pub fn take_capsule(&mut self, serial: u64, capsule: &mut CapsuleRows) -> bool {
         self.take(serial, |raster| raster.clear_capsule_rows(capsule))
     }
 
     /// Applies arc number `serial` (numbered with the capsules) to the raster
-    /// ([`Raster::clear_arc_rows`]), as [`Slice::take_capsule`] does a capsule.
+    /// ([`Raster::clear_arc_rows`]), as [`SliceStock::take_capsule`] does a capsule.
     pub fn take_arc(&mut self, serial: u64, arc: &mut ArcRows) -> bool {
         self.take(serial, |raster| raster.clear_arc_rows(arc))
     }
@@ -186,27 +185,11 @@ fn cuts_flat(m: &Move) -> bool {
     in_xy && (m.end.z - m.start.z).abs() <= Z_CONTACT_EPS_MM
 }
 
-/// Builds the slices with material painted by `paint` (whose error it returns).
-pub fn build(
-    levels: &[f64],
-    bounds: Rect,
-    cell_mm: f64,
-    paint: impl FnOnce(&mut Raster) -> Result<(), CoreError>,
-) -> Result<Vec<Slice>, CoreError> {
-    let mut first = Raster::new(bounds, cell_mm);
-    paint(&mut first)?;
-    Ok(levels.windows(2).map(|w| Slice::new(w[0], w[1], first.clone())).collect())
-}
-
-/// How many slices (from the top) a tool tip at `z` cuts.
-pub fn slices_cut(slices: &[Slice], z: f64) -> usize {
-    slices.iter().take_while(|s| z < s.z_top - Z_CONTACT_EPS_MM).count()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::core::nc::{parse_gcode, ParseOptions};
+    use crate::core::stock::Rect;
     use crate::core::toolpath::{Units, P3};
     use proptest::prelude::*;
 
@@ -369,7 +352,7 @@ mod tests {
             &crate::core::progress::NoProgress,
         )
         .expect("nothing cancels the painting");
-        let mut slice = Slice::new(0.0, -5.0, raster);
+        let mut slice = SliceStock::new(raster);
         assert!(slice.any_material_near(10.0, 10.0, 2.0));
         let first = slice.material_at.expect("the block with material is remembered");
         // The block found first goes; others near the tool still hold material.

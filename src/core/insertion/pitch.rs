@@ -180,10 +180,11 @@ fn loop_peak_deg(rho_prev_mm: f64, rho_mm: f64, pitch_mm: f64, r_mm: f64, hint: 
     peak.to_degrees()
 }
 
-/// How close the pitch search brackets the largest pitch that fits, mm: far below any
-/// digit a program carries, close to the last bits of a pitch (the plans are sensitive to
-/// it; a micrometre less pitch changed the slot box's path by 1.2 %).
-const PITCH_TOLERANCE_MM: f64 = 1e-13;
+/// How close the pitch search brackets the largest pitch that fits, mm: the last bits of a
+/// pitch, as close as the 48 bisection steps it replaced came (the plans are sensitive to
+/// it: a micrometre less pitch changed the slot box's path by 1.2 %, and pitches 5e-14 mm
+/// shorter moved the README plan's kinematic time by 1 %).
+const PITCH_TOLERANCE_MM: f64 = 4e-15;
 
 /// The largest pitch in `(0, max_pitch_mm]` whose loop (radius `rho(p)` at that pitch, after
 /// a loop of radius `rho_prev_mm`) stays at or under `alpha_limit_deg`; `None` when even

@@ -1,0 +1,172 @@
+//! The slices of a layer's stock, top first, with the stock of slices that are still alike
+//! held once.
+//!
+//! Every slice starts as the same raster, and each update removes material from a run of
+//! slices from the top (see [`super::slices`]). So until an update cuts a slice but not the
+//! one below it, the two hold exactly the same cells, and the upper one shares the lower
+//! one's stock instead of keeping a copy: an update that cuts both is applied once. Where a
+//! slot is cut to full depth in one pass, as most of a trochoid program is, the slices of
+//! its z-cut passes are all one stock until those passes reach them. A slice gets its own
+//! copy ([`Stack::separate`]) just before the first update that cuts it and not the slice
+//! below; a copy behaves exactly as the stock it was taken from (same cells, same versions,
+//! same remembered capsule), so the simulation is the same as with a raster per slice.
+
+use super::slices::{SliceStock, Z_CONTACT_EPS_MM};
+use crate::core::stock::{Raster, Rect};
+use crate::core::CoreError;
+
+/// One z slice of the stock.
+pub struct Slice {
+    pub z_bottom: f64,
+    pub z_top: f64,
+    /// Its own stock, or `None` while it holds exactly the cells of the slice below.
+    own: Option<SliceStock>,
+}
+
+/// The slices of a layer, top first; the last always has its own stock.
+pub struct Stack {
+    slices: Vec<Slice>,
+}
+
+impl Stack {
+    /// The slices between consecutive `levels` (top first, at least two), all holding the
+    /// material of `raster`.
+    pub fn new(levels: &[f64], raster: Raster) -> Stack {
+        let n = levels.len().saturating_sub(1).max(1);
+        let mut slices: Vec<Slice> = (0..n)
+            .map(|k| Slice {
+                z_top: levels.get(k).copied().unwrap_or(0.0),
+                z_bottom: levels.get(k + 1).copied().unwrap_or(0.0),
+                own: None,
+            })
+            .collect();
+        slices[n - 1].own = Some(SliceStock::new(raster));
+        Stack { slices }
+    }
+
+    /// Builds the slices between `levels` with material painted by `paint` (whose error it
+    /// returns).
+    pub fn build(
+        levels: &[f64],
+        bounds: Rect,
+        cell_mm: f64,
+        paint: impl FnOnce(&mut Raster) -> Result<(), CoreError>,
+    ) -> Result<Stack, CoreError> {
+        let mut raster = Raster::new(bounds, cell_mm);
+        paint(&mut raster)?;
+        Ok(Stack::new(levels, raster))
+    }
+
+    /// The slices' z ranges, top first.
+    pub fn slices(&self) -> &[Slice] {
+        &self.slices
+    }
+
+    pub fn len(&self) -> usize {
+        self.slices.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.slices.is_empty()
+    }
+
+    /// How many slices (from the top) a tool tip at `z` cuts.
+    pub fn cut_at(&self, z: f64) -> usize {
+        self.slices.iter().take_while(|s| z < s.z_top - Z_CONTACT_EPS_MM).count()
+    }
+
+    /// The slice whose stock slice `k` holds: `k` itself or the first below it with its own.
+    fn holder(&self, k: usize) -> usize {
+        (k..self.slices.len()).find(|&i| self.slices[i].own.is_some()).unwrap_or(self.slices.len() - 1)
+    }
+
+    /// `true` while slice `k` shares the stock of the slice below it: the two hold the same
+    /// cells.
+    pub fn alike_below(&self, k: usize) -> bool {
+        self.slices[k].own.is_none()
+    }
+
+    /// The stock slice `k` holds.
+    pub fn stock(&self, k: usize) -> &SliceStock {
+        let holder = self.holder(k);
+        self.slices[holder].own.as_ref().expect("the holder has its own stock")
+    }
+
+    /// The stock slice `k` holds, to remember what it finds in it (shared with the slices
+    /// it is alike with: what it finds holds for them too). Changing its cells changes
+    /// theirs: an update of slice `k` alone goes through [`Stack::own`].
+    pub fn stock_mut(&mut self, k: usize) -> &mut SliceStock {
+        let holder = self.holder(k);
+        self.slices[holder].own.as_mut().expect("the holder has its own stock")
+    }
+
+    /// The raster of slice `k`.
+    pub fn raster(&self, k: usize) -> &Raster {
+        &self.stock(k).raster
+    }
+
+    /// Gives slice `k` its own copy of the stock it shares, if it shares one.
+    pub fn separate(&mut self, k: usize) {
+        if self.slices[k].own.is_none() {
+            let copy = self.stock(k).clone();
+            self.slices[k].own = Some(copy);
+        }
+    }
+
+    /// Slice `k`'s own stock, separated from the slices below first.
+    pub fn own(&mut self, k: usize) -> &mut SliceStock {
+        self.separate(k);
+        self.slices[k].own.as_mut().expect("separated")
+    }
+
+    /// Memory the slices' rasters take, bytes (a shared stock counts once).
+    pub fn memory_bytes(&self) -> usize {
+        self.slices.iter().filter_map(|s| s.own.as_ref()).map(|s| s.raster.memory_bytes()).sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::analysis::region::{paint, StockRegion};
+    use crate::core::progress::NoProgress;
+
+    fn block() -> Stack {
+        let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 20.0, y_max: 20.0 };
+        Stack::build(&[0.0, -2.0, -4.0, -6.0], rect, 0.1, |raster| {
+            paint(raster, &[StockRegion::Rect(rect)], &[], &NoProgress)
+        })
+        .expect("nothing cancels the painting")
+    }
+
+    #[test]
+    fn slices_start_as_one_stock_and_a_slice_cut_apart_gets_its_own() {
+        let mut stack = block();
+        assert_eq!(stack.len(), 3);
+        assert!(stack.alike_below(0) && stack.alike_below(1) && !stack.alike_below(2));
+        let one = stack.memory_bytes();
+        // A cut through the top slice alone.
+        stack.own(0).raster.clear_capsule((5.0, 10.0), (15.0, 10.0), 2.0);
+        assert!(!stack.alike_below(0) && stack.alike_below(1));
+        assert_eq!(stack.memory_bytes(), 2 * one);
+        assert!(!stack.raster(0).is_material(10.0, 10.0));
+        assert!(stack.raster(1).is_material(10.0, 10.0) && stack.raster(2).is_material(10.0, 10.0));
+    }
+
+    #[test]
+    fn a_slice_sharing_the_stock_below_sees_every_change_to_it() {
+        let mut stack = block();
+        stack.own(2).raster.clear_capsule((5.0, 5.0), (5.0, 5.0), 2.0);
+        assert!(!stack.raster(0).is_material(5.0, 5.0) && !stack.raster(1).is_material(5.0, 5.0));
+        assert_eq!(stack.raster(0).version(), stack.raster(2).version());
+    }
+
+    #[test]
+    fn the_cut_counts_the_slices_above_the_tip() {
+        let stack = block();
+        assert_eq!(stack.cut_at(1.0), 0);
+        assert_eq!(stack.cut_at(-1.0), 1);
+        assert_eq!(stack.cut_at(-2.0), 1);
+        assert_eq!(stack.cut_at(-5.0), 3);
+    }
+}
