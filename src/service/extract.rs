@@ -192,10 +192,12 @@ fn field_of(path: String) -> String {
     }
 }
 
-/// Query parameters; a bad parameter is a 400 naming it.
-pub struct ApiQuery<T>(pub T);
+/// Query parameters; a bad parameter is a 400 naming it. With `LISTS`, a parameter may
+/// repeat into a list (`tag=a&tag=b`), and an empty value is refused (a list's reader
+/// would read `limit=` as no limit).
+pub struct ApiQuery<T, const LISTS: bool = false>(pub T);
 
-impl<S, T> FromRequestParts<S> for ApiQuery<T>
+impl<S, T, const LISTS: bool> FromRequestParts<S> for ApiQuery<T, LISTS>
 where
     S: Send + Sync,
     T: DeserializeOwned,
@@ -204,14 +206,25 @@ where
 
     async fn from_request_parts(parts: &mut Parts, _state: &S) -> Result<Self, Self::Rejection> {
         let query = parts.uri.query().unwrap_or("");
-        let de = serde_urlencoded::Deserializer::new(form_urlencoded::parse(query.as_bytes()));
-        serde_path_to_error::deserialize(de).map(ApiQuery).map_err(|e| {
-            let field = field_of(e.path().to_string());
-            ApiError::Status {
-                status: axum::http::StatusCode::BAD_REQUEST,
-                detail: format!("query parameter {field}: {}", shorten_quoted(&reason(&e.inner().to_string()))),
-            }
-        })
+        let pairs = form_urlencoded::parse(query.as_bytes());
+        if !LISTS {
+            let de = serde_urlencoded::Deserializer::new(pairs);
+            return serde_path_to_error::deserialize(de).map(ApiQuery).map_err(query_rejection);
+        }
+        if let Some((key, _)) = pairs.clone().find(|(_, value)| value.is_empty()) {
+            return Err(ApiError::BadRequest(format!("query parameter {}: must not be empty", excerpt(&key))));
+        }
+        let de = serde_html_form::Deserializer::new(pairs);
+        serde_path_to_error::deserialize(de).map(ApiQuery).map_err(query_rejection)
+    }
+}
+
+/// A query parameter that does not read, named.
+fn query_rejection<E: std::fmt::Display>(e: serde_path_to_error::Error<E>) -> ApiError {
+    let field = field_of(e.path().to_string());
+    ApiError::Status {
+        status: axum::http::StatusCode::BAD_REQUEST,
+        detail: format!("query parameter {field}: {}", shorten_quoted(&reason(&e.inner().to_string()))),
     }
 }
 

@@ -4,10 +4,12 @@
 //! generated from the document gets a typed result for every kind instead of `Any`.
 
 use crate::service::jobs::kinds::REGISTRY;
+use crate::service::jobs::labels::JobLabels;
 use crate::service::jobs::model::JobKind;
 use std::collections::BTreeMap;
 use utoipa::openapi::schema::{Discriminator, ObjectBuilder, OneOfBuilder, Schema, Type};
 use utoipa::openapi::{OpenApi, Ref, RefOr};
+use utoipa::{PartialSchema, ToSchema};
 
 /// The name of the schema of a job of one kind: `ConditionsJob`, `PlanJob`, …
 pub fn job_schema(kind: JobKind) -> String {
@@ -17,13 +19,20 @@ pub fn job_schema(kind: JobKind) -> String {
     format!("{first}{}Job", chars.as_str())
 }
 
+/// The name of the schema of the body of a kind's named endpoint: its request with the
+/// job's name and tags (`AnalysisSubmission`, …).
+pub fn submission_schema(kind: JobKind) -> String {
+    job_schema(kind).replace("Job", "Submission")
+}
+
 /// Replaces the `Job` and `JobRequest` schemas by a `oneOf` of one schema per kind,
-/// discriminated by `kind`.
+/// discriminated by `kind`, and adds the bodies of the named endpoints.
 pub fn describe(doc: &mut OpenApi) {
     let Some(components) = doc.components.as_mut() else {
         return;
     };
     describe_requests(&mut components.schemas);
+    describe_submissions(&mut components.schemas);
     let Some(RefOr::T(Schema::Object(job))) = components.schemas.get("Job").cloned() else {
         return;
     };
@@ -78,6 +87,30 @@ fn describe_requests(schemas: &mut BTreeMap<String, RefOr<Schema>>) {
     let mut schema = one_of.discriminator(Some(discriminator)).build();
     schema.example = request.example.clone();
     schemas.insert("JobRequest".to_string(), Schema::OneOf(schema).into());
+}
+
+/// `AnalysisSubmission`, …: each kind's request with the `name` and `tags` of
+/// [`JobLabels`], which its named endpoint takes beside the request's own fields.
+fn describe_submissions(schemas: &mut BTreeMap<String, RefOr<Schema>>) {
+    let RefOr::T(Schema::Object(labels)) = JobLabels::schema() else {
+        return;
+    };
+    let mut more = Vec::new();
+    JobLabels::schemas(&mut more);
+    schemas.extend(more);
+    for registered in &REGISTRY {
+        let Some(RefOr::T(Schema::Object(request))) = schemas.get((registered.request_schema)().as_ref()).cloned()
+        else {
+            continue;
+        };
+        let mut schema = request;
+        schema.description = Some(format!(
+            "{} With the job's `name` and `tags`, which are not part of its input.",
+            schema.description.unwrap_or_default()
+        ));
+        schema.properties.extend(labels.properties.clone());
+        schemas.insert(submission_schema(registered.kind), RefOr::T(Schema::Object(schema)));
+    }
 }
 
 #[cfg(test)]

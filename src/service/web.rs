@@ -35,6 +35,7 @@ static ASSETS: &[Asset] = &[
     Asset { path: "/units.js", content_type: JS, body: include_str!("web/units.js") },
     Asset { path: "/program-view.js", content_type: JS, body: include_str!("web/program-view.js") },
     Asset { path: "/zoom.js", content_type: JS, body: include_str!("web/zoom.js") },
+    Asset { path: "/trace.js", content_type: JS, body: include_str!("web/trace.js") },
 ];
 
 fn etag(body: &str) -> String {

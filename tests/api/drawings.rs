@@ -1,5 +1,5 @@
 //! Drawings and charts of finished jobs: `GET /v1/jobs/{id}/views`, `drawing.svg` and
-//! `charts/{chart}`.
+//! `charts/{chart}`, and `trace`.
 
 use crate::common::{assert_problem, TestApp};
 use serde_json::{json, Value};
@@ -179,5 +179,43 @@ async fn a_costing_draws_where_the_tool_life_is_spent_and_charts_time_and_cost()
         let a = app.get(&format!("/v1/jobs/{id}/charts/{chart}")).await;
         assert_svg(&a);
     }
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_trace_gives_every_vertex_its_height_line_distance_and_values_and_charts_come_in_inches() {
+    let app = TestApp::start().await;
+    let id = finished(&app, "/v1/analysis", slotting_analysis()).await;
+    let trace = app.get(&format!("/v1/jobs/{id}/trace")).await;
+    assert_eq!(trace.status, 200, "{}", trace.text);
+    assert_eq!(trace.body["path"], "input");
+    let runs = trace.body["runs"].as_array().unwrap();
+    let mut cut_lines = Vec::new();
+    for run in runs {
+        let n = run["points"].as_array().unwrap().len();
+        for list in ["z", "lines", "s_mm"] {
+            assert_eq!(run[list].as_array().unwrap().len(), n, "{list} of {run}");
+        }
+        if run["rapid"] == false {
+            assert!(run["z"].as_array().unwrap().iter().all(|z| z.as_f64().unwrap() >= -10.0 - 1e-3), "{run}");
+            cut_lines.extend(run["lines"].as_array().unwrap().iter().map(|l| l.as_u64().unwrap()));
+            assert_eq!(run["values"]["alpha"].as_array().unwrap().len(), n);
+        }
+        let s: Vec<f64> = run["s_mm"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+        assert!(s.windows(2).all(|w| w[1] >= w[0] - 1e-9), "path distance runs forward: {s:?}");
+    }
+    // The slot (line 5 of the program) is drawn at full engagement.
+    assert!(cut_lines.contains(&5), "{cut_lines:?}");
+    assert_problem(&app.get(&format!("/v1/jobs/{id}/trace?path=nope")).await, 404, None);
+    // Charts in inches: the path distance axis says so.
+    let mm = app.get(&format!("/v1/jobs/{id}/charts/alpha")).await;
+    let inch = app.get(&format!("/v1/jobs/{id}/charts/alpha?units=inch")).await;
+    assert_svg(&inch);
+    assert!(mm.text.contains("path distance, mm") && inch.text.contains("path distance, in"), "{}", inch.text);
+    let x_max = |svg: &str| -> f64 {
+        let at = svg.find("data-x-max=\"").unwrap() + 12;
+        svg[at..].split('"').next().unwrap().parse().unwrap()
+    };
+    assert!(x_max(&inch.text) < x_max(&mm.text) / 10.0, "{} vs {}", x_max(&inch.text), x_max(&mm.text));
     app.stop().await;
 }

@@ -17,6 +17,7 @@ mod fair_queue;
 mod feeds;
 mod fit;
 mod job_blobs;
+mod job_labels;
 mod jobs;
 mod keys;
 mod nc_programs;

@@ -16,7 +16,7 @@
 use super::postgres::BACKEND_VARIABLE;
 
 /// The modules (or tests) run against PostgreSQL: test-name filters.
-const MODULES: [&str; 25] = [
+const MODULES: [&str; 26] = [
     "analysis::",
     "ball_tools::",
     "concurrency::",
@@ -29,6 +29,7 @@ const MODULES: [&str; 25] = [
     "feeds::",
     "fit::",
     "job_blobs::",
+    "job_labels::",
     "jobs::",
     "keys::",
     "nc_programs::",

@@ -184,3 +184,49 @@ async fn bad_trochoid_requests_are_refused_naming_the_field() {
     let jobs = app.get("/v1/jobs").await;
     assert!(jobs.text.contains("[]") || !jobs.text.contains("trochoids"), "no job was created: {}", jobs.text);
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_figures_before_and_after_give_air_cut_tool_use_and_the_cost_of_seed_002_eq_4() {
+    let app = TestApp::start().await;
+    let job = finished(
+        &app,
+        json!({"contour": box_with_slot(), "z_top": 0, "z_bottom": -10, "tool_type": "square", "diameter_mm": 10}),
+    )
+    .await;
+    let f = &job["result"]["figures"];
+    let rates = app.get(&format!("/v1/cost-rates/{}", f["cost_rates"]["id"])).await.body;
+    let tool = app.get(&format!("/v1/tools/{}", job["result"]["tool"]["id"])).await.body;
+    let price = tool["price"].as_f64().unwrap_or_else(|| rates["default_tool_price"].as_f64().unwrap());
+    for side in ["before", "after"] {
+        let s = &f[side];
+        let (consumption, air) = (s["consumption"].as_f64().unwrap(), s["air_cut_length_mm"].as_f64().unwrap());
+        assert!(consumption > 0.0 && air >= 0.0 && air < s["feed_length_mm"].as_f64().unwrap(), "{side}: {s}");
+        // C = c_m · T_m + c_t · L_t / L_f, with the kinematic time.
+        let machine =
+            rates["machine_rate_per_hour"].as_f64().unwrap() / 60.0 * s["kinematic_time_min"].as_f64().unwrap();
+        let expected = machine + price * consumption;
+        let total = s["cost"]["total"].as_f64().unwrap();
+        assert!((total - expected).abs() < 1e-6 * expected, "{side}: {total} vs {expected}");
+        assert_eq!(s["cost"]["currency"], rates["currency"]);
+    }
+    // The slot's trochoids cut less of the tool's life per mm than the full-width slotting.
+    let per_mm = |s: &Value| s["consumption"].as_f64().unwrap() / s["feed_length_mm"].as_f64().unwrap();
+    assert!(per_mm(&f["after"]) < per_mm(&f["before"]), "{f}");
+    // The drawn paths name the lines of the programs served: every line of a cut is a
+    // motion block there.
+    let id = job["id"].as_str().unwrap();
+    for (path, part) in [("planned", "main"), ("base", "base")] {
+        let program = app.get(&format!("/v1/jobs/{id}/program?part={part}")).await.text;
+        let text: Vec<&str> = program.lines().collect();
+        let trace = app.get(&format!("/v1/jobs/{id}/trace?path={path}")).await.body;
+        let cuts = trace["runs"].as_array().unwrap().iter().filter(|r| r["rapid"] == false);
+        for line in cuts.flat_map(|r| r["lines"].as_array().unwrap().iter().skip(1)).map(|l| l.as_u64().unwrap()) {
+            let block = text.get(line as usize - 1).unwrap_or_else(|| panic!("{path}: no line {line}"));
+            assert!(
+                block.contains('X') || block.contains('Y') || block.contains('Z'),
+                "{path}: line {line} is {block:?}"
+            );
+        }
+    }
+    app.stop().await;
+}

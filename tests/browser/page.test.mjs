@@ -10,6 +10,7 @@ import { chromium } from 'playwright-core';
 import { mkdtempSync, mkdirSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
+import { labelSteps, linkSteps } from './workbench.steps.mjs';
 
 const BASE = (process.argv[2] || process.env.DIEPLAN || 'http://127.0.0.1:8080').replace(/\/$/, '');
 const SHOTS = resolve(process.env.SCREENSHOT_DIR || 'target/browser-screenshots');
@@ -97,8 +98,13 @@ try {
       id: e.dataset.figure, before: e.querySelector('.before')?.textContent, after: e.querySelector('.after')?.textContent,
       change: e.querySelector('.saving-change')?.textContent || '' })));
     const ids = cards.map((c) => c.id);
-    for (const id of ['nominal-time', 'kinematic-time', 'length', 'rapid-length', 'max-alpha']) {
+    for (const id of ['nominal-time', 'kinematic-time', 'length', 'rapid-length', 'air-cut', 'tool-use', 'cost', 'max-alpha']) {
       check(ids.includes(id), `no "${id}" card: ${JSON.stringify(cards)}`);
+    }
+    // Air cut, tool use and cost before and after, from the simulations of both paths.
+    for (const id of ['air-cut', 'tool-use', 'cost']) {
+      const c = cards.find((x) => x.id === id);
+      check(c.before !== '–' && c.after !== '–', `the "${id}" card has no figures: ${JSON.stringify(c)}`);
     }
     const job = await page.evaluate(async (id) => (await (await fetch(`/v1/jobs/${id}`)).json()).result, jobId);
     check(job.figures?.before?.kinematic_time_min > 0 && job.figures?.after?.kinematic_time_min > 0, `the result has no figures: ${JSON.stringify(job.figures)}`);
@@ -218,7 +224,7 @@ try {
     // The hover read-out gives the position (and what is under the pointer).
     const box = await page.locator('#drawing svg').boundingBox();
     await page.mouse.move(box.x + box.width / 2, box.y + box.height / 3);
-    check(/^X -?[\d.,]+ {2}Y -?[\d.,]+ mm/.test(await page.locator('#drawing-readout').innerText()), `no read-out: ${await page.locator('#drawing-readout').innerText()}`);
+    check(/^X -?[\d.,]+ {2}Y -?[\d.,]+( {2}Z -?[\d.,]+)? mm/.test(await page.locator('#drawing-readout').innerText()), `no read-out: ${await page.locator('#drawing-readout').innerText()}`);
     await shot(page, 'desktop-drawing-zoomed');
     await page.click('button:has-text("Fit")');
     await page.waitForSelector('#drawing svg .frame[data-windowed="false"]', { state: 'attached' });
@@ -331,6 +337,9 @@ try {
     await page.waitForFunction((n) => document.querySelectorAll('.chart svg').length === n, views.charts.length, { timeout: 30_000 });
     await shot(page, 'desktop-job');
   });
+
+  await linkSteps({ page, step, check, shot, BASE, jobId });
+  await labelSteps({ page, step, check, shot, BASE, consoleErrors });
 
   await step('once the service has keys, the page asks for one and keeps it', async () => {
     const made = await page.evaluate(async () => {

@@ -184,7 +184,9 @@ fn draw_lines(svg: &mut Svg, chart: &LineChart, layout: &Layout) {
     let (x_min, x_max) = (x_ticks[0], x_ticks[x_ticks.len() - 1]);
     let x_px = |x: f64| left + (x - x_min) / (x_max - x_min) * (right - left);
 
-    svg.group(Attrs::new().class("x-axis"));
+    // The x axis's scale, so that a page can read the path distance under the pointer.
+    let scale = Attrs::new().class("x-axis").num("data-x-min", x_min).num("data-x-max", x_max);
+    svg.group(scale.num("data-left", left).num("data-right", right));
     svg.line((left, bottom), (right, bottom), Attrs::new().class("axis").show("stroke", palette::INK));
     let decimals = decimals_for(x_ticks.get(1).map_or(1.0, |t| t - x_ticks[0]));
     for &t in &x_ticks {

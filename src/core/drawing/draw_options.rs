@@ -169,6 +169,9 @@ mod tests {
             rapid: false,
             points: vec![[0.0, 0.0], [1.0, 0.0]],
             values: BTreeMap::from([(q, vec![Some(1.0), Some(2.0)])]),
+            z: Vec::new(),
+            lines: Vec::new(),
+            s_mm: Vec::new(),
         };
         Scene {
             layers: vec![LayerInfo { name: "L1".into(), z_top: 0.0, z_bottom: -1.0 }],

@@ -26,12 +26,18 @@ pub(super) fn small_scene() -> Scene {
             (Quantity::Feed, alpha.iter().map(|_| Some(feed as f32)).collect()),
         ]),
         points,
+        z: Vec::new(),
+        lines: Vec::new(),
+        s_mm: Vec::new(),
     };
     let rapid = Run {
         layer: None,
         rapid: true,
         points: vec![[5.0, 5.0], [25.0, 15.0]],
         values: BTreeMap::from([(Quantity::Alpha, vec![None, None]), (Quantity::Feed, vec![None, None])]),
+        z: Vec::new(),
+        lines: Vec::new(),
+        s_mm: Vec::new(),
     };
     let medial = |class: MedialClass, points: Vec<[f64; 2]>| MedialEdge {
         class,
@@ -71,7 +77,13 @@ pub(super) fn small_scene() -> Scene {
             start_line: 120,
             end_line: 124,
         }],
-        trochoids: vec![TrochoidMark { layer: Some(0), points: vec![[20.0, 40.0], [30.0, 40.0]], loop_radius_mm: 2.0 }],
+        trochoids: vec![TrochoidMark {
+            layer: Some(0),
+            points: vec![[20.0, 40.0], [30.0, 40.0]],
+            loop_radius_mm: 2.0,
+            pitch_mm: None,
+            path: None,
+        }],
         charts: vec![line_chart(), bar_chart()],
     }
 }

@@ -12,7 +12,7 @@ use super::scene::{LayerInfo, Quantity, Scene, TrochoidMark};
 use super::trace::layer_of;
 use crate::core::analysis::samples::PathSamples;
 use crate::core::geometry::Pocket;
-use crate::core::insertion::{InsertionPlan, InsertionSpec};
+use crate::core::insertion::{InsertionPlan, InsertionSpec, Treatment, TreatmentKind};
 
 /// The path before the insertion.
 pub const BASE_PATH: &str = "base";
@@ -44,6 +44,22 @@ fn limited(samples: &PathSamples) -> PathSamples {
     out
 }
 
+/// The smallest pitch of the trochoids of loop radius `rho`, mm (of any trochoid when
+/// none reports that radius).
+fn loop_pitch(plan: &InsertionPlan, rho: f64) -> Option<f64> {
+    let trochoids = || plan.treatments.iter().filter(|t| t.kind == TreatmentKind::Trochoid);
+    let fits = |t: &&Treatment| {
+        let (lo, hi) = (t.loop_radius_min_mm.unwrap_or(f64::NAN), t.loop_radius_max_mm.unwrap_or(f64::NAN));
+        rho >= lo - RADIUS_MATCH_MM && rho <= hi + RADIUS_MATCH_MM
+    };
+    let smallest = |list: Vec<f64>| list.into_iter().filter(|p| p.is_finite() && *p > 0.0).reduce(f64::min);
+    smallest(trochoids().filter(fits).filter_map(|t| t.pitch_min_mm).collect())
+        .or_else(|| smallest(trochoids().filter_map(|t| t.pitch_min_mm).collect()))
+}
+
+/// How far a span's loop radius may be from a treatment's range to be of it, mm.
+const RADIUS_MATCH_MM: f64 = 1e-6;
+
 /// The scene of `plan` for `pocket`.
 pub fn insertion_scene(pocket: &Pocket, spec: &InsertionSpec, plan: &InsertionPlan) -> Scene {
     let layers = level_layers(spec.z_top_mm, &plan.levels_mm);
@@ -65,7 +81,13 @@ pub fn insertion_scene(pocket: &Pocket, spec: &InsertionSpec, plan: &InsertionPl
     let trochoids = d
         .trochoids
         .iter()
-        .map(|(points, rho)| TrochoidMark { layer: None, points: points.clone(), loop_radius_mm: *rho })
+        .map(|(points, rho)| TrochoidMark {
+            layer: None,
+            points: points.clone(),
+            loop_radius_mm: *rho,
+            pitch_mm: loop_pitch(plan, *rho),
+            path: Some(PLANNED_PATH.to_string()),
+        })
         .collect();
     let lines = [(BASE_PATH, &d.base_samples), ("planned (ramps, approach holes and z-cut regions apart)", &cutting)];
     let alpha = distance_chart(

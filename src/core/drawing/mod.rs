@@ -8,6 +8,7 @@ mod bar_chart;
 pub mod chart;
 pub mod charts;
 pub mod costing_scene;
+pub mod display_units;
 pub mod downsample;
 pub mod draw_options;
 pub mod feeds_scene;
@@ -27,6 +28,7 @@ pub mod svg;
 pub mod synthetic;
 pub mod ticks;
 pub mod trace;
+pub mod trochoid_marks;
 
 #[cfg(test)]
 mod golden_tests;

@@ -14,6 +14,7 @@ use super::palette::{self, quantity_bin_color, Rgb, ValueScale};
 use super::scene::{MedialClass, OutlineRole, Quantity, Run, Scene, ScenePath};
 use super::svg::{text_width, Anchor, Attrs, PathData, Svg};
 use super::ticks::value_label;
+use super::trochoid_marks::draw_trochoids;
 use std::collections::BTreeMap;
 
 /// Size unit: fonts and strokes scale with the width relative to this, px.
@@ -42,8 +43,6 @@ const MEDIAL_STROKE: f64 = 1.0;
 const REGION_BAND: f64 = 9.0;
 const MIN_REGION_BAND: f64 = 6.0;
 const MAX_REGION_BAND: f64 = 24.0;
-/// Narrowest trochoid band, px.
-const MIN_TROCHOID_BAND_PX: f64 = 3.0;
 /// The colour ramp's share of the inner width.
 const RAMP_FRACTION: f64 = 0.45;
 
@@ -88,7 +87,8 @@ pub fn render_drawing(scene: &Scene, options: &DrawOptions) -> Result<String, Dr
             });
         }
     }
-    if options.trochoids && draw_trochoids(&mut body, scene, &frame, &layer_ok) {
+    let drawn = resolved.path.map(|p| p.name.as_str());
+    if options.trochoids && draw_trochoids(&mut body, scene, &frame, k, (false, drawn), &layer_ok) {
         entries.push(Entry {
             class: "legend-trochoid",
             swatch: Swatch::Band { color: palette::TROCHOID, opacity: palette::TROCHOID_OPACITY },
@@ -147,6 +147,14 @@ pub fn render_drawing(scene: &Scene, options: &DrawOptions) -> Result<String, Dr
                 label: "no value".into(),
             });
         }
+    }
+    // Spans whose loops are too dense to see at this scale, over the path.
+    if options.trochoids && draw_trochoids(&mut body, scene, &frame, k, (true, drawn), &layer_ok) {
+        entries.push(Entry {
+            class: "legend-trochoid-clustered",
+            swatch: Swatch::Band { color: palette::TROCHOID, opacity: 1.0 },
+            label: "trochoid loops too dense to draw at this scale (zoom in)".into(),
+        });
     }
     draw_region_labels(&mut body, scene, &regions, &frame, k, band);
 
@@ -367,27 +375,6 @@ fn subpath(d: &mut PathData, points: impl IntoIterator<Item = (f64, f64)>) {
             d.line_to(p);
         }
     }
-}
-
-/// Draws the trochoid spans as bands 2ρ wide; returns whether any was drawn.
-fn draw_trochoids(svg: &mut Svg, scene: &Scene, frame: &Frame, layer_ok: &dyn Fn(Option<usize>) -> bool) -> bool {
-    let mut any = false;
-    for mark in scene.trochoids.iter().filter(|m| layer_ok(m.layer) && !m.points.is_empty()) {
-        svg.polyline(
-            mark.points.iter().map(|p| frame.px(*p)),
-            Attrs::new()
-                .class("trochoid")
-                .show("data-loop-radius", value_label(mark.loop_radius_mm))
-                .str("fill", "none")
-                .show("stroke", palette::TROCHOID)
-                .num("stroke-opacity", palette::TROCHOID_OPACITY)
-                .num("stroke-width", frame.len_px(2.0 * mark.loop_radius_mm).max(MIN_TROCHOID_BAND_PX))
-                .str("stroke-linecap", "round")
-                .str("stroke-linejoin", "round"),
-        );
-        any = true;
-    }
-    any
 }
 
 /// Draws the rapid runs as one dashed element; returns whether any was drawn.

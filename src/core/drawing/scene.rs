@@ -90,6 +90,15 @@ pub struct Run {
     /// the first vertex repeats the second's). `NaN` never appears: a vertex without a
     /// value (air, rapid) is stored as `null` and drawn in the "no value" colour.
     pub values: BTreeMap<Quantity, Vec<Option<f32>>>,
+    /// Per vertex, the tool's height, mm (empty in scenes stored before it was kept).
+    #[serde(default)]
+    pub z: Vec<f32>,
+    /// Per vertex, the NC line (or move number) of the move it ends (empty likewise).
+    #[serde(default)]
+    pub lines: Vec<u32>,
+    /// Per vertex, its path distance, mm: the x of the job's charts (empty likewise).
+    #[serde(default)]
+    pub s_mm: Vec<f64>,
 }
 
 /// A named tool path ("input", "planned", …).
@@ -144,6 +153,13 @@ pub struct TrochoidMark {
     pub points: Vec<[f64; 2]>,
     /// Loop radius ρ, mm.
     pub loop_radius_mm: f64,
+    /// Smallest pitch of the loops, mm (null in scenes stored before it was kept).
+    #[serde(default)]
+    pub pitch_mm: Option<f64>,
+    /// The path whose moves make the loops: only its drawing clusters dense spans (the
+    /// others show the spans under their own path).
+    #[serde(default)]
+    pub path: Option<String>,
 }
 
 /// One line of a line chart.

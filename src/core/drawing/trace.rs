@@ -213,8 +213,18 @@ impl Bins {
 #[derive(Debug, Clone, Copy)]
 struct Vertex {
     p: [f64; 2],
+    /// Height, NC line and path distance of the vertex.
+    at: At,
     values: Values,
     bins: BinKey,
+}
+
+/// Where a vertex is besides its XY: height (mm), NC line, path distance (mm).
+#[derive(Debug, Clone, Copy)]
+struct At {
+    z: f64,
+    line: u32,
+    s_mm: f64,
 }
 
 /// The run being built and its simplification state.
@@ -226,6 +236,7 @@ struct OpenRun {
     /// Kept vertices and their values.
     points: Vec<[f64; 2]>,
     values: Vec<Values>,
+    at: Vec<At>,
     /// The last vertex fed in and not yet kept (the candidate end of the current chord).
     last: Option<Vertex>,
     /// Bins of the stretch since the anchor.
@@ -292,7 +303,7 @@ impl Tracer {
                 }
             }
             let layer = if layers.is_empty() { None } else { layer_of(p.z, layers) };
-            self.feed(from, p, layer, rapid, values);
+            self.feed(from, p, layer, rapid, values, At { z: p.z, line: m.line, s_mm: s });
             from = p;
             s_prev = s;
         }
@@ -344,8 +355,8 @@ impl Tracer {
     }
 
     /// Feeds the segment `from` → `to`, starting a new run when its style changes.
-    fn feed(&mut self, from: P3, to: P3, layer: Option<usize>, rapid: bool, values: Values) {
-        let vertex = Vertex { p: [to.x, to.y], values, bins: self.bins.key(&values) };
+    fn feed(&mut self, from: P3, to: P3, layer: Option<usize>, rapid: bool, values: Values, at: At) {
+        let vertex = Vertex { p: [to.x, to.y], at, values, bins: self.bins.key(&values) };
         let continues = self.current.as_ref().is_some_and(|r| {
             r.layer == layer
                 && r.rapid == rapid
@@ -355,7 +366,8 @@ impl Tracer {
         });
         if !continues {
             self.finish_run();
-            self.current = Some(OpenRun::new(from, layer, rapid));
+            let start = At { z: from.z, line: at.line, s_mm: at.s_mm - dist3(from, to) };
+            self.current = Some(OpenRun::new(from, start, layer, rapid));
         }
         if let Some(run) = self.current.as_mut() {
             run.push(vertex, self.tolerance);
@@ -392,13 +404,14 @@ fn arc_segments(m: &Move, center: P3, plane: Plane, length: f64, tolerance: f64)
 }
 
 impl OpenRun {
-    fn new(start: P3, layer: Option<usize>, rapid: bool) -> OpenRun {
+    fn new(start: P3, at: At, layer: Option<usize>, rapid: bool) -> OpenRun {
         OpenRun {
             layer,
             rapid,
             end: start,
             points: vec![[start.x, start.y]],
             values: vec![[None; QUANTITIES]],
+            at: vec![at],
             last: None,
             stretch_bins: [NO_BIN; QUANTITIES],
             stretch_max: [None; QUANTITIES],
@@ -477,6 +490,7 @@ impl OpenRun {
     fn keep(&mut self, v: Vertex) {
         self.points.push(v.p);
         self.values.push(self.stretch_max);
+        self.at.push(v.at);
     }
 
     fn finish(mut self, present: &[Quantity]) -> Option<Run> {
@@ -491,8 +505,21 @@ impl OpenRun {
                 (q, self.values.iter().map(|v| v[s].map(|x| x as f32)).collect())
             })
             .collect();
-        Some(Run { layer: self.layer, rapid: self.rapid, points: self.points, values })
+        Some(Run {
+            layer: self.layer,
+            rapid: self.rapid,
+            points: self.points,
+            values,
+            z: self.at.iter().map(|a| a.z as f32).collect(),
+            lines: self.at.iter().map(|a| a.line).collect(),
+            s_mm: self.at.iter().map(|a| a.s_mm).collect(),
+        })
     }
+}
+
+/// The straight distance from `a` to `b`, mm.
+fn dist3(a: P3, b: P3) -> f64 {
+    ((b.x - a.x).powi(2) + (b.y - a.y).powi(2) + (b.z - a.z).powi(2)).sqrt()
 }
 
 /// `angle` wrapped into (−π, π].

@@ -323,3 +323,21 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn every_kept_vertex_says_its_height_line_and_path_distance() {
+    let mut moves = polyline(&[P3::new(0.0, 0.0, -1.0), P3::new(10.0, 0.0, -1.0), P3::new(10.0, 10.0, -3.0)]);
+    moves[1].line = 7;
+    let traced = trace_path("p", &toolpath(moves), &TraceValues::new(), &layers(), &options(0.01));
+    let ends: Vec<(f32, u32, f64)> = traced
+        .runs
+        .iter()
+        .flat_map(|r| r.z.iter().zip(&r.lines).zip(&r.s_mm).map(|((z, l), s)| (*z, *l, *s)))
+        .collect();
+    let runs_len: usize = traced.runs.iter().map(|r| r.points.len()).sum();
+    assert_eq!(ends.len(), runs_len);
+    let last = ends.last().unwrap();
+    assert_eq!((last.0, last.1), (-3.0, 7));
+    assert!((last.2 - (10.0 + 10.0_f64.hypot(2.0))).abs() < 1e-9, "{ends:?}");
+    assert!(ends.iter().any(|e| (e.0, e.1) == (-1.0, 1) && (e.2 - 10.0).abs() < 1e-9), "{ends:?}");
+}

@@ -4,6 +4,7 @@
 use super::model::{JobId, JobKind, JobStatus};
 use super::store;
 use crate::core::drawing::chart::render_chart;
+use crate::core::drawing::display_units::{in_unit, LengthUnit};
 use crate::core::drawing::frame::Extent;
 use crate::core::drawing::plan_view::{render_drawing, DrawOptions};
 use crate::core::drawing::scene::{Quantity, Scene};
@@ -128,10 +129,12 @@ pub struct ChartQuery {
     /// Height, px (200 to 4000, default 360).
     #[param(minimum = 200, maximum = 4000)]
     pub height: Option<u32>,
+    /// The unit of its path distances and feeds: `mm` (default) or `inch` (in, in/min).
+    pub units: Option<LengthUnit>,
 }
 
 /// The scene of a finished job, or why there is none.
-async fn scene_of(state: &AppState, caller: &Caller, id: &str) -> Result<Scene, ApiError> {
+pub(super) async fn scene_of(state: &AppState, caller: &Caller, id: &str) -> Result<Scene, ApiError> {
     let row = store::get_visible(&state.pool, caller, id).await?;
     let kind = row.kind()?;
     if !draws(kind) {
@@ -284,7 +287,8 @@ pub async fn get_chart(
             known.join(", ")
         )));
     };
-    let body = tokio::task::spawn_blocking(move || render_chart(&data, width, height))
+    let unit = query.units.unwrap_or_default();
+    let body = tokio::task::spawn_blocking(move || render_chart(&in_unit(&data, unit), width, height))
         .await
         .map_err(|e| ApiError::Internal(format!("chart: {e}")))?;
     Ok(svg(body))

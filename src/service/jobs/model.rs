@@ -142,6 +142,10 @@ pub struct JobLinks {
 pub struct Job {
     pub id: String,
     pub kind: JobKind,
+    /// What the user called the job on submit, if anything.
+    pub name: Option<String>,
+    /// Its tags, in the order given on submit.
+    pub tags: Vec<String>,
     pub status: JobStatus,
     /// Finished fraction, 0..1.
     pub progress: f64,
@@ -174,6 +178,10 @@ pub struct Job {
 pub struct JobSummary {
     pub id: String,
     pub kind: JobKind,
+    /// What the user called the job on submit, if anything.
+    pub name: Option<String>,
+    /// Its tags, in the order given on submit.
+    pub tags: Vec<String>,
     pub status: JobStatus,
     pub progress: f64,
     pub created_at: String,

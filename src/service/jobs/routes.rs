@@ -2,15 +2,17 @@
 
 use super::kind::Submission;
 use super::kinds::{self, off_runtime, JobInput, Registered, REGISTRY};
+use super::labels::{self, tag_fault, JobLabels, Tag, MAX_NAME_CHARS, MAX_TAGS};
 use super::lane::Lane;
 use super::model::{Job, JobId, JobKind, JobStatus, JobSummary, ProgramPart};
 use super::store;
+use super::upload;
 use crate::service::auth::Caller;
-use crate::service::error::{ApiError, Problem};
+use crate::service::error::{excerpt, ApiError, FieldError, Problem};
 use crate::service::extract::{parse_json, ApiPath, ApiQuery, JsonBytes};
 use crate::service::resources::{Page, DEFAULT_PAGE_LIMIT, MAX_PAGE_LIMIT};
 use crate::service::state::AppState;
-use axum::extract::State;
+use axum::extract::{FromRequest, Request, State};
 use axum::http::{header, HeaderMap, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
 use serde::{Deserialize, Serialize};
@@ -33,6 +35,13 @@ pub struct JobRequest {
     /// The input of that kind of job.
     #[schema(value_type = JobInput)]
     pub input: serde_json::Value,
+    /// What to call the job (1 to 200 characters, no control characters).
+    #[schema(min_length = 1, max_length = 200, pattern = r"^[^\u0000-\u001F\u007F]*$")]
+    pub name: Option<String>,
+    /// Up to 20 distinct tags, each 1 to 64 ASCII letters, digits and `-_.:/`.
+    #[serde(default)]
+    #[schema(max_items = 20, value_type = Vec<Tag>)]
+    pub tags: Vec<String>,
 }
 
 /// The `wait=N` preference of RFC 7240, if any, in seconds.
@@ -57,10 +66,21 @@ async fn submit(
     kind: JobKind,
     input: serde_json::Value,
     prefix: &str,
+    labels: (JobLabels, Vec<FieldError>),
     headers: &HeaderMap,
 ) -> Result<Response, ApiError> {
     let submission = Submission { pool: &state.pool, caller };
-    let accepted = kinds::accept(&submission, kind, input, prefix).await?;
+    let (labels, mut faults) = labels;
+    faults.extend(labels.faults(""));
+    // The faults of the input and of the labels come in one problem.
+    let accepted = match kinds::accept(&submission, kind, input, prefix).await {
+        Ok(accepted) if faults.is_empty() => accepted,
+        Ok(_) => return Err(ApiError::Validation(faults)),
+        Err(ApiError::Validation(input_faults)) => {
+            return Err(ApiError::Validation(input_faults.into_iter().chain(faults).collect()))
+        }
+        Err(other) => return Err(other),
+    };
     let id = uuid::Uuid::new_v4().to_string();
     let mut finished = state.jobs.subscribe();
     let mut stopping = state.jobs.stopping();
@@ -72,6 +92,7 @@ async fn submit(
         prepared: &accepted.prepared,
         key_id: caller.key_id(),
         lane,
+        labels: &labels,
     };
     store::insert(&state.pool, new).await?;
     state.jobs.wake();
@@ -174,7 +195,16 @@ pub async fn create_job(
     JsonBytes(body): JsonBytes,
 ) -> Result<Response, ApiError> {
     let request: JobRequest = off_runtime(move || parse_json(&body)).await?;
-    submit(&state, &caller, request.kind, request.input, "input.", &headers).await
+    submit(
+        &state,
+        &caller,
+        request.kind,
+        request.input,
+        "input.",
+        (JobLabels { name: request.name, tags: request.tags }, Vec::new()),
+        &headers,
+    )
+    .await
 }
 
 /// Reads a job: status, progress, timestamps, result or error (the input is at
@@ -220,6 +250,14 @@ pub async fn get_input(
 pub struct JobFilter {
     pub status: Option<JobStatus>,
     pub kind: Option<JobKind>,
+    /// Only jobs whose name contains this text, in any case (at most 200 characters).
+    #[param(min_length = 1, max_length = 200)]
+    pub name: Option<String>,
+    /// Only jobs that have this tag; repeated (`tag=a&tag=b`), only jobs that have every
+    /// one of them (at most 20).
+    #[serde(default)]
+    #[param(max_items = 20, value_type = Option<Vec<Tag>>, explode = true, style = Form)]
+    pub tag: Vec<String>,
     /// 1 to 500 (default 50).
     pub limit: Option<i64>,
     pub offset: Option<i64>,
@@ -233,7 +271,7 @@ pub struct JobFilter {
 pub async fn list_jobs(
     State(state): State<AppState>,
     caller: Caller,
-    ApiQuery(filter): ApiQuery<JobFilter>,
+    ApiQuery(filter): ApiQuery<JobFilter, true>,
 ) -> Result<axum::Json<Page<JobSummary>>, ApiError> {
     let limit = filter.limit.unwrap_or(DEFAULT_PAGE_LIMIT);
     let offset = filter.offset.unwrap_or(0);
@@ -243,8 +281,31 @@ pub async fn list_jobs(
             detail: format!("query parameter limit must be 1..={MAX_PAGE_LIMIT} and offset >= 0"),
         });
     }
-    let (rows, total) =
-        store::list(&state.pool, filter.status, filter.kind, caller.own_jobs_only(), limit, offset).await?;
+    if filter.name.as_ref().is_some_and(|name| name.chars().count() > MAX_NAME_CHARS) {
+        return Err(ApiError::BadRequest(format!("query parameter name: must be at most {MAX_NAME_CHARS} characters")));
+    }
+    if filter.tag.len() > MAX_TAGS {
+        return Err(ApiError::BadRequest(format!(
+            "query parameter tag: at most {MAX_TAGS} tags, got {}",
+            filter.tag.len()
+        )));
+    }
+    let bad_tags: Vec<String> = filter
+        .tag
+        .iter()
+        .filter_map(|tag| tag_fault(tag).map(|reason| format!("tag \"{}\" {reason}", excerpt(tag))))
+        .collect();
+    if !bad_tags.is_empty() {
+        return Err(ApiError::BadRequest(format!("query parameter tag: {}", bad_tags.join("; "))));
+    }
+    let list = store::ListFilter {
+        status: filter.status,
+        kind: filter.kind,
+        owner: caller.own_jobs_only(),
+        name: filter.name.as_deref(),
+        tags: &filter.tag,
+    };
+    let (rows, total) = store::list(&state.pool, &list, limit, offset).await?;
     let items = rows.iter().map(store::JobRow::to_summary).collect::<Result<Vec<_>, _>>()?;
     Ok(axum::Json(Page { items, total, limit, offset }))
 }
@@ -365,12 +426,15 @@ pub fn router() -> OpenApiRouter<AppState> {
     let template = <__path_create_job as utoipa::Path>::operation();
     REGISTRY.iter().fold(router, |router, registered| {
         let kind = registered.kind;
-        let create = move |State(state): State<AppState>,
-                           caller: Caller,
-                           headers: HeaderMap,
-                           JsonBytes(body): JsonBytes| async move {
-            let input = off_runtime(move || parse_json::<serde_json::Value>(&body)).await?;
-            submit(&state, &caller, kind, input, "", &headers).await
+        let create = move |State(state): State<AppState>, caller: Caller, headers: HeaderMap, request: Request| async move {
+            let mut input = if upload::takes_program(kind) && upload::is_multipart(&request) {
+                upload::read(request).await?
+            } else {
+                let JsonBytes(body) = JsonBytes::from_request(request, &state).await?;
+                off_runtime(move || parse_json::<serde_json::Value>(&body)).await?
+            };
+            let labels = labels::take(&mut input);
+            submit(&state, &caller, kind, input, "", labels, &headers).await
         };
         let mut paths = utoipa::openapi::Paths::new();
         paths.add_path_operation(registered.path, vec![HttpMethod::Post], operation_of(registered, template.clone()));
@@ -390,9 +454,15 @@ fn operation_of(registered: &Registered, mut operation: Operation) -> Operation 
         registered.description,
         registered.kind.as_str()
     ));
-    let content = ContentBuilder::new().schema(Some(Ref::from_schema_name((registered.request_schema)()))).build();
-    operation.request_body =
-        Some(RequestBodyBuilder::new().content(JSON, content).required(Some(Required::True)).build());
+    let body = crate::service::job_schema::submission_schema(registered.kind);
+    let content = ContentBuilder::new().schema(Some(Ref::from_schema_name(body))).build();
+    let mut body = RequestBodyBuilder::new().content(JSON, content).required(Some(Required::True));
+    if upload::takes_program(registered.kind) {
+        body = body
+            .content(upload::MULTIPART, upload::content())
+            .description(Some("The request as JSON, or the NC program as a file part `program` with the rest of the request as a JSON part `request` (multipart/form-data)."));
+    }
+    operation.request_body = Some(body.build());
     for (status, response) in operation.responses.responses.iter_mut() {
         if let RefOr::T(response) = response {
             match status.as_str() {

@@ -3,6 +3,7 @@
 //! in `job_blobs`, its NC programs in `job_programs` and its drawing in `job_scenes`, read
 //! only by the routes that serve them, as stored.
 
+use super::labels::{contains_pattern, JobLabels};
 use super::lane::Lane;
 use super::model::{Job, JobKind, JobLinks, JobStatus, JobSummary, ProgramPart};
 use crate::service::auth::Caller;
@@ -11,7 +12,7 @@ use crate::service::store::{Pool, Text};
 
 /// The columns of a [`JobRow`]: the row's own, and whether the job left a main program.
 const ROW_COLUMNS: &str = "id, kind, status, progress, error, error_title, attempts, cancel_requested, created_at,
-    started_at, finished_at, updated_at, key_id, lane, input_bytes, result_bytes, summary,
+    started_at, finished_at, updated_at, key_id, lane, input_bytes, result_bytes, summary, name, tags,
     EXISTS (SELECT 1 FROM job_programs p WHERE p.job_id = jobs.id AND p.part = 'main') AS has_program";
 
 /// A row of `jobs`: everything about a job but its blobs.
@@ -39,6 +40,10 @@ pub struct JobRow {
     pub result_bytes: Option<i64>,
     /// Headline figures of the result (a small JSON object).
     pub summary: Option<String>,
+    /// What the user called the job.
+    pub name: Option<String>,
+    /// Its tags (a JSON array of strings).
+    pub tags: String,
     /// The job left a main NC program.
     #[sqlx(try_from = "crate::service::store::Flag")]
     pub has_program: bool,
@@ -73,6 +78,11 @@ impl JobRow {
         })
     }
 
+    /// Its tags, read.
+    fn tags(&self) -> Result<Vec<String>, ApiError> {
+        Ok(self.stored("tags", Some(&self.tags))?.unwrap_or_default())
+    }
+
     /// The job as the API shows it, without its result (which the routes serve as stored:
     /// [`super::routes`]).
     pub fn to_job(&self) -> Result<Job, ApiError> {
@@ -80,6 +90,8 @@ impl JobRow {
         Ok(Job {
             id: self.id.clone(),
             kind: self.kind()?,
+            name: self.name.clone(),
+            tags: self.tags()?,
             status: self.status()?,
             progress: self.progress,
             attempts: self.attempts,
@@ -103,6 +115,8 @@ impl JobRow {
         Ok(JobSummary {
             id: self.id.clone(),
             kind: self.kind()?,
+            name: self.name.clone(),
+            tags: self.tags()?,
             status: self.status()?,
             progress: self.progress,
             created_at: self.created_at.clone(),
@@ -124,19 +138,35 @@ pub struct NewJob<'a> {
     pub prepared: &'a str,
     pub key_id: Option<i64>,
     pub lane: Lane,
+    /// Its name and tags.
+    pub labels: &'a JobLabels,
 }
 
 /// Inserts a queued job with its input and prepared form, in one transaction.
 pub async fn insert(pool: &Pool, job: NewJob<'_>) -> Result<(), ApiError> {
     let mut tx = crate::service::store::begin(pool).await?;
-    sqlx::query("INSERT INTO jobs (id, kind, status, key_id, lane, input_bytes) VALUES ($1, $2, 'queued', $3, $4, $5)")
-        .bind(job.id)
-        .bind(job.kind.as_str())
-        .bind(job.key_id)
-        .bind(job.lane.as_str())
-        .bind(i64::try_from(job.input.len()).unwrap_or(i64::MAX))
-        .execute(&mut *tx)
-        .await?;
+    let tags = serde_json::to_string(&job.labels.tags).map_err(|e| ApiError::Internal(format!("tags: {e}")))?;
+    sqlx::query(
+        "INSERT INTO jobs (id, kind, status, key_id, lane, input_bytes, name, name_key, tags)
+         VALUES ($1, $2, 'queued', $3, $4, $5, $6, $7, $8)",
+    )
+    .bind(job.id)
+    .bind(job.kind.as_str())
+    .bind(job.key_id)
+    .bind(job.lane.as_str())
+    .bind(i64::try_from(job.input.len()).unwrap_or(i64::MAX))
+    .bind(job.labels.name.as_deref())
+    .bind(job.labels.name_key())
+    .bind(tags)
+    .execute(&mut *tx)
+    .await?;
+    for tag in &job.labels.tags {
+        sqlx::query("INSERT INTO job_tags (job_id, tag) VALUES ($1, $2)")
+            .bind(job.id)
+            .bind(tag)
+            .execute(&mut *tx)
+            .await?;
+    }
     for (part, body) in [("input", job.input), ("prepared", job.prepared)] {
         sqlx::query("INSERT INTO job_blobs (job_id, part, body) VALUES ($1, $2, $3)")
             .bind(job.id)
@@ -194,35 +224,92 @@ pub async fn work(pool: &Pool, id: &str) -> Result<Option<(String, String)>, sql
     Ok(blob(pool, id, "input").await?.zip(blob(pool, id, "prepared").await?))
 }
 
-/// Lists jobs, newest first.
+/// Which jobs a list shows.
+#[derive(Debug, Default)]
+pub struct ListFilter<'a> {
+    pub status: Option<JobStatus>,
+    pub kind: Option<JobKind>,
+    /// Only this key's jobs (a planner's).
+    pub owner: Option<i64>,
+    /// Jobs whose name contains this, in any case.
+    pub name: Option<&'a str>,
+    /// Jobs that have every one of these tags.
+    pub tags: &'a [String],
+}
+
+impl ListFilter<'_> {
+    /// The `WHERE` clause, its placeholders numbered from `$1`, and the values they take.
+    fn clause(&self) -> (String, Vec<Bound>) {
+        let mut conditions = Vec::new();
+        let mut values: Vec<Bound> = Vec::new();
+        let mut bind = |condition: &str, value: Bound| {
+            values.push(value);
+            conditions.push(condition.replace('?', &format!("${}", values.len())));
+        };
+        if let Some(status) = self.status {
+            bind("status = ?", Bound::Text(status.as_str().to_string()));
+        }
+        if let Some(kind) = self.kind {
+            bind("kind = ?", Bound::Text(kind.as_str().to_string()));
+        }
+        if let Some(owner) = self.owner {
+            bind("key_id = ?", Bound::Int(owner));
+        }
+        if let Some(name) = self.name {
+            bind(r"name_key LIKE ? ESCAPE '\'", Bound::Text(contains_pattern(name)));
+        }
+        for tag in self.tags {
+            bind("EXISTS (SELECT 1 FROM job_tags t WHERE t.job_id = jobs.id AND t.tag = ?)", Bound::Text(tag.clone()));
+        }
+        let clause = if conditions.is_empty() { String::new() } else { format!("WHERE {}", conditions.join(" AND ")) };
+        (clause, values)
+    }
+}
+
+/// A value bound to a placeholder of a [`ListFilter`]'s clause.
+#[derive(Debug, Clone)]
+enum Bound {
+    Text(String),
+    Int(i64),
+}
+
+impl Bound {
+    fn bind_to<'q, O>(
+        self,
+        query: sqlx::query::QueryAs<'q, sqlx::Any, O, sqlx::any::AnyArguments>,
+    ) -> sqlx::query::QueryAs<'q, sqlx::Any, O, sqlx::any::AnyArguments> {
+        match self {
+            Bound::Text(text) => query.bind(text),
+            Bound::Int(n) => query.bind(n),
+        }
+    }
+}
+
+/// Lists the jobs `filter` selects, newest first, and counts them all.
 pub async fn list(
     pool: &Pool,
-    status: Option<JobStatus>,
-    kind: Option<JobKind>,
-    owner: Option<i64>,
+    filter: &ListFilter<'_>,
     limit: i64,
     offset: i64,
 ) -> Result<(Vec<JobRow>, i64), ApiError> {
-    let status = status.map(JobStatus::as_str);
-    let kind = kind.map(JobKind::as_str);
-    let total: i64 = sqlx::query_scalar(
-        "SELECT COUNT(*) FROM jobs WHERE ($1 IS NULL OR status = $1) AND ($2 IS NULL OR kind = $2) AND ($3 IS NULL OR key_id = $3)",
-    )
-    .bind(status)
-    .bind(kind)
-    .bind(owner)
-    .fetch_one(pool)
-    .await?;
+    let (clause, values) = filter.clause();
+    let count = format!("SELECT COUNT(*) FROM jobs {clause}");
+    let (total,): (i64,) = values
+        .iter()
+        .fold(sqlx::query_as(sqlx::AssertSqlSafe(count)), |q, v| v.clone().bind_to(q))
+        .fetch_one(pool)
+        .await?;
+    let n = values.len();
     let sql = format!(
-        "SELECT {ROW_COLUMNS} FROM jobs WHERE ($1 IS NULL OR status = $1) AND ($2 IS NULL OR kind = $2) AND ($5 IS NULL OR key_id = $5)
-         ORDER BY created_at DESC, rowid DESC LIMIT $3 OFFSET $4"
+        "SELECT {ROW_COLUMNS} FROM jobs {clause} ORDER BY created_at DESC, rowid DESC LIMIT ${} OFFSET ${}",
+        n + 1,
+        n + 2
     );
-    let rows = sqlx::query_as::<_, JobRow>(sqlx::AssertSqlSafe(sql))
-        .bind(status)
-        .bind(kind)
+    let rows = values
+        .iter()
+        .fold(sqlx::query_as::<_, JobRow>(sqlx::AssertSqlSafe(sql)), |q, v| v.clone().bind_to(q))
         .bind(limit)
         .bind(offset)
-        .bind(owner)
         .fetch_all(pool)
         .await?;
     Ok((rows, total))

@@ -7,7 +7,7 @@ use super::inputs::{read_contour, read_dxf, ContourInput};
 use super::kind::off_runtime_with;
 use super::output::{OutputOptions, DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM};
 use super::program_input::{read_program, ProgramContext, ProgramInput};
-use super::setup::{machine_limits, path_job_refs, resolve, PathSetup, Resolved};
+use super::setup::{machine_limits, path_job_refs, resolve, resolve_cost, CostSetup, PathSetup, Resolved};
 use super::trochoids_result::{ChangeFigures, TrochoidsResult};
 use crate::core::conditions::{feed_mm_min, CuttingConditions};
 use crate::core::cycles::trochoid::default_loop_radius_mm;
@@ -15,12 +15,12 @@ use crate::core::cycles::CutDirection;
 use crate::core::drawing::insertion_scene::insertion_scene;
 use crate::core::drawing::scene::Scene;
 use crate::core::geometry::Pocket;
-use crate::core::insertion::{check_plan, plan_insertion, InsertionPlan, InsertionSpec, LoopSize};
+use crate::core::insertion::{analysis_spec, check_plan, plan_insertion, InsertionPlan, InsertionSpec, LoopSize};
 use crate::core::kinematics::MachineLimits;
 use crate::core::medial::{CLASS_A_RATIO_MAX, CLASS_A_RATIO_MIN};
 use crate::core::nc::{write_program_mapped, WriterOptions};
 use crate::core::operation::Operation;
-use crate::core::progress::Progress;
+use crate::core::progress::{Progress, Stage};
 use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
@@ -136,6 +136,11 @@ pub struct TrochoidsPrepared {
     /// queued before they were kept).
     #[serde(default)]
     pub limits: Option<MachineLimits>,
+    /// The tool life, rates and machine the paths before and after are costed with (null
+    /// without tool-life data for the tool in the material, and in jobs queued before the
+    /// costs were kept: no wear or cost then).
+    #[serde(default)]
+    pub cost: Option<CostSetup>,
 }
 
 /// Checks the values of the request that need no database.
@@ -268,7 +273,10 @@ async fn resolve_conditions(
         faults.take(within_machine(name, &c, source, flutes, (machine_max_spindle_rpm, machine_max_feed_mm_min)))?;
     }
     let limits = Some(machine_limits(pool, base.machine.id).await?);
-    Ok(Some(TrochoidsPrepared { base, roughing, roughing_source, grooving, grooving_source, limits }))
+    // The costs before and after are figures of the result, not a condition of the job: a
+    // tool without tool-life data gets none, and no fault.
+    let cost = resolve_cost(pool, Some(&base), standard.as_ref(), None, None, &mut Validator::new()).await?;
+    Ok(Some(TrochoidsPrepared { base, roughing, roughing_source, grooving, grooving_source, limits, cost }))
 }
 
 /// Refuses conditions (`name`, from `source`) whose spindle speed or feed
@@ -363,6 +371,15 @@ fn to_written_lines(lines: &mut [u32], move_lines: &[u32]) {
     }
 }
 
+/// `path` with each move's line (its move number) replaced by the line written for it.
+fn relabelled(path: &Toolpath, move_lines: &[u32]) -> Toolpath {
+    let mut path = path.clone();
+    for (m, &line) in path.moves.iter_mut().zip(move_lines) {
+        m.line = line;
+    }
+    path
+}
+
 /// The program the insertion changed, with the base path's samples relabelled by its
 /// lines (so that the drawing's overloads of the base path name them): the G-code sent,
 /// as it was (its moves carry its lines already); else the path sent as moves or
@@ -374,8 +391,13 @@ fn base_program(request: &TrochoidsRequest, plan: &mut InsertionPlan, options: &
     }
     let written = write_program_mapped(&plan.drawing.base_path, options);
     to_written_lines(&mut plan.drawing.base_samples.line, &written.move_lines);
+    plan.drawing.base_path = relabelled(&plan.drawing.base_path, &written.move_lines);
     written.text
 }
+
+/// The share of a costed job's progress the insertion takes (the rest: the simulations
+/// of the paths before and after for their wear), about its share of the time.
+const PLANNING_SHARE: f64 = 0.75;
 
 /// What a run makes: the result, the program, the base program and the drawing.
 pub type Run = (TrochoidsResult, String, String, Scene);
@@ -386,15 +408,26 @@ pub fn run(request: TrochoidsRequest, prepared: TrochoidsPrepared, progress: &dy
     let radius_mm = prepared.base.tool.geometry.diameter_mm / 2.0;
     let (pocket, path) = Validator::collect(|faults| read_inputs(&request, radius_mm, faults)).map_err(reread)?;
     let spec = spec(&request, &prepared);
-    let mut plan = plan_insertion(&pocket, &spec, path.as_ref(), progress)?;
+    // With costs, the simulations of the paths before and after take the last part.
+    let planning = if prepared.cost.is_some() { PLANNING_SHARE } else { 1.0 };
+    let mut plan =
+        plan_insertion(&pocket, &spec, path.as_ref(), &Stage { inner: progress, from: 0.0, span: planning })?;
     let options = request.output.to_writer(&prepared.base);
     let written = write_program_mapped(&plan.toolpath, &options);
     let base = base_program(&request, &mut plan, &options);
     // The planned path's samples carry its move numbers: the drawing names the lines of
     // the job's program.
     to_written_lines(&mut plan.drawing.planned_samples.line, &written.move_lines);
+    // The drawing's moves name the lines of the program served too (a copy: the overloads
+    // of the result are found by move number).
+    let lines = relabelled(&plan.toolpath, &written.move_lines);
+    let numbered = std::mem::replace(&mut plan.toolpath, lines);
     let scene = insertion_scene(&pocket, &spec, &plan);
-    let figures = prepared.limits.as_ref().map(|l| ChangeFigures::of(&plan, l)).transpose()?;
+    plan.toolpath = numbered;
+    let simulation = analysis_spec(&pocket, &spec);
+    let costed = prepared.cost.as_ref().map(|setup| (&simulation, setup));
+    let costing = Stage { inner: progress, from: planning, span: 1.0 - planning };
+    let figures = prepared.limits.as_ref().map(|l| ChangeFigures::of(&plan, l, costed, &costing)).transpose()?;
     Ok((TrochoidsResult::new(prepared, path.is_some(), &written, plan, figures), written.text, base, scene))
 }
 

@@ -3,14 +3,19 @@
 //! arrays, the overloads with the lines of the written program, and the new path as JSON
 //! moves (the G-code is at the job's `program` link).
 
+use super::costing_result::CostReport;
 use super::feeds_result::ProgramInfo;
+use super::setup::CostSetup;
 use super::setup::{NamedRef, ToolRef};
 use super::trochoids::TrochoidsPrepared;
+use crate::core::analysis::AnalysisSpec;
 use crate::core::conditions::CuttingConditions;
+use crate::core::costing::estimate::estimate;
 use crate::core::insertion::{InsertionPlan, Overload, Treatment, Verification};
 use crate::core::kinematics::{machining_time, MachineLimits, TimeOptions};
 use crate::core::medial::{ClassInterval, CriticalInterval, NodeKind};
 use crate::core::nc::{toolpath_to_json, JsonProgram, WrittenProgram};
+use crate::core::progress::{Progress, Stage};
 use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 use serde::Serialize;
@@ -142,8 +147,9 @@ pub struct VerificationReport {
     pub overloads: Vec<OverloadReport>,
 }
 
-/// Lengths and times of one program, as the costing's kinematics gives them (MODEL.md §10).
-#[derive(Debug, Clone, Copy, Serialize, ToSchema)]
+/// Lengths, times, tool use and cost of one program, as the costing gives them (MODEL.md
+/// §9 and §10).
+#[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct ProgramFigures {
     /// Length of the feed moves, mm.
     pub feed_length_mm: f64,
@@ -154,36 +160,72 @@ pub struct ProgramFigures {
     pub nominal_time_min: f64,
     /// With the machine's feed, acceleration and jerk limits, min.
     pub kinematic_time_min: f64,
+    /// Length of the feed moves that cut nothing (the stock simulation's), mm; null
+    /// without tool-life data for the tool in the material (the simulation runs with the
+    /// costing).
+    pub air_cut_length_mm: Option<f64>,
+    /// Share of one tool's life the program uses (seed 002 Eq. 2–3 with MODEL.md §9);
+    /// null without tool-life data.
+    pub consumption: Option<f64>,
+    /// The costing's cost, `C = c_m·T_m + c_t·L_t/L_f` with the kinematic time (seed 002
+    /// Eq. 4), at the first cost rates and the tool's price; null without tool-life data.
+    pub cost: Option<CostReport>,
 }
 
 impl ProgramFigures {
-    /// The figures of `path` on a machine of `limits`.
-    pub fn of(path: &Toolpath, limits: &MachineLimits) -> Result<Self, CoreError> {
+    /// The figures of `path` on a machine of `limits`, with its wear and cost when
+    /// `costed` is given (the path's simulation in `spec`, costed by `setup`).
+    pub fn of(
+        path: &Toolpath,
+        limits: &MachineLimits,
+        costed: Option<(&AnalysisSpec, &CostSetup)>,
+        progress: &dyn Progress,
+    ) -> Result<Self, CoreError> {
         let t = machining_time(path, limits, &TimeOptions::default())?;
-        Ok(ProgramFigures {
+        let mut figures = ProgramFigures {
             feed_length_mm: t.feed_length_mm,
             rapid_length_mm: t.rapid_length_mm,
             nominal_time_min: t.nominal_min,
             kinematic_time_min: t.kinematic_min,
-        })
+            air_cut_length_mm: None,
+            consumption: None,
+            cost: None,
+        };
+        if let Some((spec, setup)) = costed {
+            let (analysis, estimate) = estimate(path, spec, &setup.cost_model(), progress)?;
+            figures.air_cut_length_mm = Some(analysis.summary.air_cut_length_mm);
+            figures.consumption = Some(estimate.wear.consumption.ratio);
+            figures.cost = Some(CostReport::new(setup, &estimate)?);
+        }
+        Ok(figures)
     }
 }
 
 /// What the insertion changes: the base path's figures and the planned path's.
-#[derive(Debug, Clone, Copy, Serialize, ToSchema)]
+#[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct ChangeFigures {
     /// The base path (generated or given), before the insertion.
     pub before: ProgramFigures,
     /// The planned path, with its trochoids and z-cut passes.
     pub after: ProgramFigures,
+    /// The cost rates of the costs (null without tool-life data: no wear or cost).
+    pub cost_rates: Option<NamedRef>,
 }
 
 impl ChangeFigures {
-    /// The figures of `plan`'s base path and planned path on a machine of `limits`.
-    pub fn of(plan: &InsertionPlan, limits: &MachineLimits) -> Result<Self, CoreError> {
+    /// The figures of `plan`'s base path and planned path on a machine of `limits`, with
+    /// their wear and cost when `costed` is given; the two simulations report as the two
+    /// halves of `progress`.
+    pub fn of(
+        plan: &InsertionPlan,
+        limits: &MachineLimits,
+        costed: Option<(&AnalysisSpec, &CostSetup)>,
+        progress: &dyn Progress,
+    ) -> Result<Self, CoreError> {
         Ok(ChangeFigures {
-            before: ProgramFigures::of(&plan.drawing.base_path, limits)?,
-            after: ProgramFigures::of(&plan.toolpath, limits)?,
+            before: ProgramFigures::of(&plan.drawing.base_path, limits, costed, &Stage::nth(progress, 0.0, 1.0, 0, 2))?,
+            after: ProgramFigures::of(&plan.toolpath, limits, costed, &Stage::nth(progress, 0.0, 1.0, 1, 2))?,
+            cost_rates: costed.map(|(_, setup)| setup.cost_rates.clone()),
         })
     }
 }

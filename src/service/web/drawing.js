@@ -1,7 +1,9 @@
 // The drawing of a finished job (GET /v1/jobs/{id}/views, then drawing.svg with the chosen
 // path, colour quantity, layer and layers of detail) with zoom and pan, and its charts.
 import { h, api, problemBox, svgNode } from './ui.js';
-import { zoomable, readoutLine } from './zoom.js';
+import { zoomable, readoutLine, frameOf } from './zoom.js';
+import { loadTrace, nearest, atDistance, describe, markLines } from './trace.js';
+import { units, MM_PER_INCH } from './units.js';
 
 const QUANTITIES = {
   alpha: 'Engagement angle α (°)',
@@ -49,7 +51,7 @@ const CLICK_SLOP_PX = 4;
  * Links the drawing with the program panel: a click on a critical region (its band or
  * its label) shows its NC lines; lines selected in the program mark the regions on them.
  */
-function linkToProgram(canvas, program, pathName) {
+function linkToProgram(canvas, program, pathName, linked) {
   if (!program) return;
   let press = null;
   canvas.addEventListener('pointerdown', (event) => {
@@ -63,14 +65,23 @@ function linkToProgram(canvas, program, pathName) {
     if (Number.isFinite(from)) program.show(program.partFor(pathName()), from, Number.isFinite(to) ? to : from);
   });
   program.onSelect((selection) => {
-    const svg = canvas.querySelector('svg');
-    if (!svg) return;
-    const same = selection && program.partFor(pathName()) === selection.part;
-    for (const mark of svg.querySelectorAll('.region, .region-label')) {
-      const [from, to] = (mark.getAttribute('data-lines') || '').split('-').map(Number);
-      mark.classList.toggle('linked', Boolean(same && from <= selection.to && to >= selection.from));
-    }
+    linked.selection = selection;
+    markSelection(canvas, program, pathName(), linked);
   });
+}
+
+/** Marks the regions on the selected NC lines and their moves (from the path's trace). */
+function markSelection(canvas, program, pathName, linked) {
+  const svg = canvas.querySelector('svg');
+  const selection = linked.selection;
+  if (!svg || !program) return;
+  const same = selection && program.partFor(pathName) === selection.part;
+  for (const mark of svg.querySelectorAll('.region, .region-label')) {
+    const [from, to] = (mark.getAttribute('data-lines') || '').split('-').map(Number);
+    mark.classList.toggle('linked', Boolean(same && from <= selection.to && to >= selection.from));
+  }
+  const trace = linked.trace?.path === pathName ? linked.trace : null;
+  markLines(svg, frameOf(svg), trace, same ? selection.from : null, same ? selection.to : null);
 }
 
 export function drawingPanel(job, program) {
@@ -84,9 +95,11 @@ export function drawingPanel(job, program) {
   }
   const body = h('div', {}, h('p', { class: 'muted' }, 'Loading the drawing…'));
   section.append(body);
+  // What the drawing and the charts share: the drawn path's trace and the selected lines.
+  const linked = { trace: null, selection: null, path: null };
   api('GET', job.links.views).then((views) => {
-    renderDrawing(views, body, job.kind, program);
-    renderCharts(views, chartsSection);
+    renderDrawing(views, body, job.kind, program, linked);
+    renderCharts(views, chartsSection, program, linked);
   }).catch((err) => {
     body.replaceChildren(problemBox(err, 'No drawing'));
     chartsSection.remove();
@@ -119,7 +132,7 @@ function compareStrip(views, paths, kind) {
     common ? h('p', { class: 'hint' }, `Both coloured by ${QUANTITIES[common] || common}, on one scale.`) : null];
 }
 
-function renderDrawing(views, body, kind, program) {
+function renderDrawing(views, body, kind, program, linked) {
   const paths = views.paths || [];
   const toggles = TOGGLES.filter(([, , , kinds]) => !kinds || kinds.includes(kind));
   const state = { path: paths.at(-1)?.name, color: null, layer: '', window: null, toggles: Object.fromEntries(toggles.map(([k, , v]) => [k, v])) };
@@ -129,7 +142,22 @@ function renderDrawing(views, body, kind, program) {
   const openLink = h('a', { target: '_blank', rel: 'noopener' }, 'Open the SVG');
   let zoom = () => {};
   let request = 0;
-  linkToProgram(canvas, program, () => state.path);
+  linkToProgram(canvas, program, () => state.path, linked);
+  // The trace of the path shown: read under the pointer, and marks the selected lines.
+  const traceOf = (path) => {
+    linked.path = path;
+    if (linked.trace?.path === path) return;
+    loadTrace(views.drawing, path).then((trace) => {
+      if (linked.path !== path) return;
+      linked.trace = trace;
+      markSelection(canvas, program, state.path, linked);
+    }).catch(() => { linked.trace = null; });
+  };
+  const probe = (x, y, radiusMm) => {
+    const trace = linked.trace?.path === state.path ? linked.trace : null;
+    const i = trace ? nearest(trace, x, y, radiusMm) : -1;
+    return i < 0 ? null : describe(trace, i);
+  };
 
   const url = () => {
     const q = new URLSearchParams();
@@ -153,7 +181,9 @@ function renderDrawing(views, body, kind, program) {
     canvas.classList.remove('loading');
     if (svg) {
       canvas.replaceChildren(svg);
-      zoom = zoomable(svg, canvas, { window: state.window, info, redraw: (window) => { state.window = window; draw(); } });
+      zoom = zoomable(svg, canvas, { window: state.window, info, probe, redraw: (window) => { state.window = window; draw(); } });
+      markSelection(canvas, program, state.path, linked);
+      traceOf(state.path);
     } else {
       canvas.replaceChildren(problemBox({ message: 'The drawing could not be loaded.' }));
     }
@@ -197,7 +227,37 @@ function renderDrawing(views, body, kind, program) {
   }
 }
 
-function renderCharts(views, section) {
+/** The path distance (mm) under a click on a line chart, from its x axis's scale; null off the plot. */
+function chartDistance(svg, event) {
+  const axis = svg.querySelector('.x-axis[data-x-min]');
+  const vb = svg.viewBox.baseVal;
+  if (!axis || !vb?.width) return null;
+  const n = (k) => Number(axis.getAttribute(`data-${k}`));
+  const r = svg.getBoundingClientRect();
+  const x = vb.x + ((event.clientX - r.left) / r.width) * vb.width;
+  if (x < n('left') || x > n('right')) return null;
+  const s = n('x-min') + ((x - n('left')) / (n('right') - n('left'))) * (n('x-max') - n('x-min'));
+  return svg.dataset.units === 'inch' ? s * MM_PER_INCH : s;
+}
+
+/** A click on a chart of path distance shows the NC line there (of the path drawn). */
+function linkChart(target, program, linked) {
+  if (!program) return;
+  target.addEventListener('click', (event) => {
+    const svg = target.querySelector('svg');
+    const s = svg ? chartDistance(svg, event) : null;
+    const trace = linked.trace;
+    if (s == null || !trace) return;
+    const i = atDistance(trace, s);
+    if (i < 0) return;
+    const line = trace.v.line[i];
+    target.dataset.line = String(line);
+    program.show(program.partFor(trace.path), line, line);
+  });
+  target.title = 'Click a point of the chart to show its NC line';
+}
+
+function renderCharts(views, section, program, linked) {
   const charts = views.charts || [];
   if (!charts.length) {
     section.remove();
@@ -207,6 +267,7 @@ function renderCharts(views, section) {
   const targets = charts.map((chart) => {
     const target = h('div', { class: 'chart-canvas' }, h('p', { class: 'muted' }, 'Loading…'));
     grid.append(h('figure', { class: 'chart', dataset: { chart: chart.id } }, h('figcaption', {}, chart.title || chart.id), target));
+    linkChart(target, program, linked);
     return [chart, target];
   });
   section.append(grid);
@@ -221,7 +282,10 @@ function renderCharts(views, section) {
     const url = new URL(chart.href, location.origin);
     url.searchParams.set('width', String(width));
     url.searchParams.set('height', String(Math.max(240, Math.min(420, Math.round(width * 0.5)))));
-    loadSvg(`${url.pathname}${url.search}`, target);
+    // Path distances and feeds in the page's display unit.
+    const unit = units();
+    if (unit === 'inch') url.searchParams.set('units', unit);
+    loadSvg(`${url.pathname}${url.search}`, target).then((svg) => { if (svg) svg.dataset.units = unit; });
   };
   requestAnimationFrame(() => targets.forEach(([chart, target]) => load(chart, target)));
   if (typeof ResizeObserver === 'function') {

@@ -1,6 +1,6 @@
 // One job: progress (polled), cancel, and once succeeded the key figures, the drawing with
 // its controls, the charts, the NC program download and the raw result.
-import { h, api, problemBox, pretty, num, minutes, when, duration, figures, table, badge, KIND_NAMES } from './ui.js';
+import { h, api, problemBox, pretty, num, minutes, when, duration, figures, table, badge, tagList, KIND_NAMES } from './ui.js';
 import { drawingPanel } from './drawing.js';
 import { savingsPanel, remaining } from './savings.js';
 import { programPanel } from './program-view.js';
@@ -151,8 +151,9 @@ export async function jobView(id) {
 
   head.append(
     h('p', { class: 'crumbs' }, h('a', { href: '#/jobs' }, 'Jobs'), ' / ', h('span', { class: 'mono' }, job.id.slice(0, 8))),
-    h('h1', {}, KIND_NAMES[job.kind] || job.kind),
-    h('p', { class: 'muted' }, `Job ${job.id} · created ${when(job.created_at)}`));
+    h('h1', {}, job.name || KIND_NAMES[job.kind] || job.kind),
+    h('p', { class: 'muted' }, `${job.name ? `${KIND_NAMES[job.kind] || job.kind} · ` : ''}Job ${job.id} · created ${when(job.created_at)}`),
+    ...[tagList(job.tags)].filter(Boolean));
 
   function renderStatus() {
     const running = job.status === 'queued' || job.status === 'running';
@@ -225,5 +226,5 @@ export async function jobView(id) {
   renderStatus();
   if (job.status === 'succeeded') renderResult();
   else if (job.status === 'queued' || job.status === 'running') timer = setTimeout(poll, POLL_MS);
-  return { node, title: `${job.kind} ${job.id.slice(0, 8)}`, cleanup: () => { stopped = true; clearTimeout(timer); } };
+  return { node, title: job.name || `${job.kind} ${job.id.slice(0, 8)}`, cleanup: () => { stopped = true; clearTimeout(timer); } };
 }

@@ -1,7 +1,7 @@
 // The "New job" form: operation, source (built-in example, pasted text, uploaded file),
 // tool and material from the database, the operation's key options, and the exact JSON
 // request, editable. Submits to the operation's endpoint and opens the job.
-import { h, api, problemBox, pretty, ENDPOINTS, KIND_NAMES, openapi } from './ui.js';
+import { h, api, problemBox, pretty, parseTags, ENDPOINTS, KIND_NAMES, openapi } from './ui.js';
 
 const OPERATIONS = [
   ['trochoids', 'Trochoids', 'Insert trochoid cycles where a pocket’s roughing path overloads the tool'],
@@ -101,7 +101,7 @@ export async function newJobView(params) {
   const state = {
     kind: 'trochoids', source: 'example', exampleId: null, text: '', fileName: '',
     toolId: '', materialId: materials[0] ? String(materials[0].id) : '', planType: 'square', diameters: new Set(),
-    values: {}, box: { x_min: '0', x_max: '100', y_min: '0', y_max: '50', z_min: '-10', z_max: '0' }, jsonEdited: false,
+    name: '', tags: '', values: {}, box: { x_min: '0', x_max: '100', y_min: '0', y_max: '50', z_min: '-10', z_max: '0' }, jsonEdited: false,
   };
   const exampleFor = (kind) => examples.filter((e) => POCKET_KINDS.has(e.kind) === POCKET_KINDS.has(kind))
     .sort((a, b) => (b.kind === kind) - (a.kind === kind));
@@ -165,6 +165,9 @@ export async function newJobView(params) {
       setPath(request, f.key, value);
     }
     if (request.output && !Object.keys(request.output).length) delete request.output;
+    if (state.name.trim()) request.name = state.name.trim();
+    const tags = parseTags(state.tags);
+    if (tags.length) request.tags = tags;
     if (!POCKET_KINDS.has(state.kind)) {
       const box = Object.fromEntries(BOX.map((k) => [k, state.box[k] === '' ? null : Number(state.box[k])]));
       request.stock = { ...(request.stock || {}), box };
@@ -304,6 +307,16 @@ export async function newJobView(params) {
     return out;
   }
 
+  // What to call the job and its tags: shown in the job and the list, and searched there.
+  function labelsSection() {
+    return h('fieldset', { class: 'card' }, h('legend', {}, 'Job'), h('div', { class: 'grid' },
+      field('job-name', 'Name', h('input', { id: 'job-name', type: 'text', maxlength: 200, value: state.name, placeholder: 'e.g. Die 4711, cavity A, roughing',
+        autocomplete: 'off', dataset: { field: 'name' }, oninput: onChange((t) => { state.name = t.value; }) }), { hint: 'Optional; up to 200 characters.' }),
+      field('job-tags', 'Tags', h('input', { id: 'job-tags', type: 'text', value: state.tags, placeholder: 'die:4711 roughing',
+        autocomplete: 'off', spellcheck: 'false', dataset: { field: 'tags' }, oninput: onChange((t) => { state.tags = t.value; }) }),
+      { hint: 'Optional; separated by spaces or commas: letters, digits and - _ . : / (up to 20).' })));
+  }
+
   function render() {
     // Re-rendering replaces the controls: keep the keyboard focus where it was.
     const active = document.activeElement;
@@ -312,7 +325,7 @@ export async function newJobView(params) {
       if (active.id) selector = `#${CSS.escape(active.id)}`;
       else if (active.name) selector = `[name="${CSS.escape(active.name)}"][value="${CSS.escape(active.value)}"]`;
     }
-    sections.replaceChildren(operationSection(), sourceSection(), toolSection(), ...optionsSection());
+    sections.replaceChildren(operationSection(), labelsSection(), sourceSection(), toolSection(), ...optionsSection());
     refreshJson();
     if (selector) root.querySelector(selector)?.focus();
   }

@@ -71,9 +71,13 @@ const ROWS = {
         ['kinematic-time', 'Time (kinematic)', b.kinematic_time_min, a.kinematic_time_min, minutes],
         ['length', 'Feed length', b.feed_length_mm, a.feed_length_mm, length],
         ['rapid-length', 'Rapid length', b.rapid_length_mm, a.rapid_length_mm, length],
+        ['air-cut', 'Air-cut length', b.air_cut_length_mm, a.air_cut_length_mm, length],
+        ['tool-use', 'Tool use (of one tool)', b.consumption, a.consumption, share],
+        ['cost', 'Cost', b.cost?.total, a.cost?.total, money(a.cost?.currency || b.cost?.currency)],
         ['max-alpha', 'Max. engagement α', r.base_max_alpha_deg, r.verification?.outside_zcut?.max_alpha_deg, (v) => num(v, 1, '°')],
       ],
-      note: 'Air-cut length, tool use and cost: run a costing of the program (they need a simulation of its wear).',
+      note: a.cost ? `Tool use and cost with the tool’s life in ${r.material?.name || 'the material'} and the rates “${f.cost_rates?.name || 'default'}”.`
+        : 'No tool-life data for this tool in this material: air-cut length, tool use and cost need it (add it under Database → Tool life).',
     };
   },
   plan(r) {

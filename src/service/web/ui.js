@@ -242,3 +242,13 @@ export function resolveSchema(doc, schema) {
   }
   return s;
 }
+
+/** A job's tags as links to the jobs list filtered by each. */
+export function tagList(tags) {
+  if (!tags?.length) return null;
+  return h('ul', { class: 'tags', 'aria-label': 'tags' }, tags.map((t) => h('li', {},
+    h('a', { class: 'tag', href: `#/jobs?tag=${encodeURIComponent(t)}`, title: `Jobs tagged ${t}` }, t))));
+}
+
+/** Tags typed in one box, separated by commas or spaces. */
+export const parseTags = (text) => [...new Set(String(text || '').split(/[\s,]+/).filter(Boolean))];

@@ -6,6 +6,7 @@
 // its px; the legend's ramp carries its scale, so a colour band's values can be read.
 import { h } from './ui.js';
 import { coordinate, lengthUnit } from './units.js';
+import { PROBE_RADIUS_PX } from './trace.js';
 
 /** The view is drawn anew this long after the last zoom or pan, ms. */
 const SETTLE_MS = 400;
@@ -46,20 +47,23 @@ const UNITS = { alpha: '°', feed: 'mm/min', force: 'N', wear: '%/m' };
 const NAMES = { alpha: 'α', feed: 'feed', force: 'force', wear: 'wear' };
 const round = (v) => (Math.abs(v) >= 100 ? Math.round(v) : Math.round(v * 10) / 10);
 
-/** What the pointer is over, as text. */
-function readout(svg, frame, point, target) {
+/** What the pointer is over, as text: the path's vertex under it (`probe`), else the position. */
+function readout(svg, frame, point, target, probe) {
   const [x, y] = toMm(frame, point);
-  const parts = [`X ${coordinate(x)}  Y ${coordinate(y)} ${lengthUnit()}`];
+  const vb = svg.viewBox.baseVal;
+  const screenPerMm = frame.scale * (svg.getBoundingClientRect().width / (vb.width || 1));
+  const probed = probe?.(x, y, PROBE_RADIUS_PX / (screenPerMm || 1));
+  const parts = [probed || `X ${coordinate(x)}  Y ${coordinate(y)} ${lengthUnit()}`];
   const mark = target.closest?.('.region, .region-label');
   const feed = target.closest?.('.feed');
   if (mark) {
     const [from, to] = (mark.getAttribute('data-lines') || '').split('-');
     const alpha = mark.getAttribute('data-max-alpha') || svg.querySelector(`.region[data-lines="${from}-${to}"]`)?.getAttribute('data-max-alpha');
     parts.push(`critical region · NC lines ${from}–${to}${alpha ? ` · α up to ${alpha}°` : ''} (click: show the lines)`);
-  } else if (feed?.hasAttribute('data-bin')) {
+  } else if (!probed && feed?.hasAttribute('data-bin')) {
     const v = binValues(svg, Number(feed.getAttribute('data-bin')));
     if (v) parts.push(`${NAMES[v[2]] || v[2]} ${round(v[0])}–${round(v[1])} ${UNITS[v[2]] || ''}`);
-  } else if (target.closest?.('.rapid')) {
+  } else if (!probed && target.closest?.('.rapid')) {
     parts.push('rapid');
   }
   return parts.join(' · ');
@@ -69,7 +73,7 @@ function readout(svg, frame, point, target) {
  * Makes `svg` (in `canvas`) zoomable and pannable. `redraw(window | null)` asks for the
  * drawing of a window in mm (null: the whole). Returns the buttons' action handler.
  */
-export function zoomable(svg, canvas, { window: current, redraw, info }) {
+export function zoomable(svg, canvas, { window: current, redraw, info, probe }) {
   const vb = svg.viewBox.baseVal;
   if (!vb || !vb.width) return () => {};
   const frame = frameOf(svg);
@@ -114,7 +118,7 @@ export function zoomable(svg, canvas, { window: current, redraw, info }) {
   });
   svg.addEventListener('pointermove', (event) => {
     if (!drag) {
-      if (frame && info) info.textContent = readout(svg, frame, toSvg(event), event.target);
+      if (frame && info) info.textContent = readout(svg, frame, toSvg(event), event.target, probe);
       return;
     }
     const r = svg.getBoundingClientRect();

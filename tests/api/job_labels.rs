@@ -1,0 +1,203 @@
+//! A job's name and tags (given on submit, returned, searched), and a program sent as a
+//! multipart file upload.
+
+use crate::common::{assert_problem, Answer, TestApp};
+use reqwest::StatusCode;
+use serde_json::{json, Value};
+
+const CUT: &str = "G21 G90 G17\nS9600 M3\nG0 X-10 Y4.5 Z5\nG1 Z-10 F1000\nG1 X110 F5760\nG0 Z5\nM30\n";
+
+fn stock() -> Value {
+    json!({"box": {"x_min": 0, "y_min": -40, "z_min": -10, "x_max": 100, "y_max": 0, "z_max": 0}})
+}
+
+fn analysis(name: &str, tags: &[&str]) -> Value {
+    json!({"program": {"gcode": CUT}, "tool_type": "square", "diameter_mm": 10, "stock": stock(),
+        "series_points": 10, "name": name, "tags": tags})
+}
+
+fn conditions(name: &str, tags: &[&str]) -> Value {
+    json!({"kind": "conditions", "input": {"tool_type": "square", "diameter_mm": 10}, "name": name, "tags": tags})
+}
+
+fn fields(a: &Answer) -> Vec<String> {
+    a.body["errors"].as_array().into_iter().flatten().filter_map(|e| e["field"].as_str().map(String::from)).collect()
+}
+
+fn names(page: &Value) -> Vec<&str> {
+    page["items"].as_array().unwrap().iter().filter_map(|j| j["name"].as_str()).collect()
+}
+
+/// A multipart body of `parts` (name, file name, bytes) with its content type.
+fn multipart(parts: &[(&str, Option<&str>, &[u8])]) -> (String, Vec<u8>) {
+    let boundary = "dieplan-test-boundary-7MA4YWxkTrZu0gW";
+    let mut body = Vec::new();
+    for (name, file, bytes) in parts {
+        body.extend_from_slice(format!("--{boundary}\r\n").as_bytes());
+        let file = file.map(|f| format!("; filename=\"{f}\"")).unwrap_or_default();
+        body.extend_from_slice(format!("Content-Disposition: form-data; name=\"{name}\"{file}\r\n\r\n").as_bytes());
+        body.extend_from_slice(bytes);
+        body.extend_from_slice(b"\r\n");
+    }
+    body.extend_from_slice(format!("--{boundary}--\r\n").as_bytes());
+    (format!("multipart/form-data; boundary={boundary}"), body)
+}
+
+async fn upload(app: &TestApp, path: &str, parts: &[(&str, Option<&str>, &[u8])]) -> Answer {
+    let (content_type, body) = multipart(parts);
+    let resp = app
+        .client
+        .post(app.url(path))
+        .header("content-type", content_type)
+        .header("prefer", "wait=10")
+        .body(body)
+        .send()
+        .await
+        .expect("request is answered");
+    let (status, headers) = (resp.status(), resp.headers().clone());
+    let text = resp.text().await.expect("body");
+    Answer { status, headers, body: serde_json::from_str(&text).unwrap_or(Value::Null), text }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_name_and_tags_given_on_submit_come_back_in_the_job_and_in_the_list() {
+    let app = TestApp::start().await;
+    let a = app.post_wait("/v1/analysis", analysis("Die 4711 roughing", &["die:4711", "rough"])).await;
+    assert_eq!(a.status, 201, "{}", a.text);
+    assert_eq!(
+        (a.body["name"].as_str(), a.body["tags"].clone()),
+        (Some("Die 4711 roughing"), json!(["die:4711", "rough"]))
+    );
+    let id = a.body["id"].as_str().unwrap();
+    let input = app.get(&format!("/v1/jobs/{id}/input")).await.body;
+    assert!(input.get("name").is_none() && input.get("tags").is_none(), "labels are not the input: {input}");
+    let b = app.post("/v1/jobs", conditions("Conditions for the D10", &[])).await;
+    assert_eq!(b.status, 202, "{}", b.text);
+    assert_eq!((b.body["name"].as_str(), b.body["tags"].clone()), (Some("Conditions for the D10"), json!([])));
+    let list = app.get("/v1/jobs").await.body;
+    assert_eq!(names(&list), ["Conditions for the D10", "Die 4711 roughing"]);
+    assert_eq!(list["items"][1]["tags"], json!(["die:4711", "rough"]));
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn jobs_are_found_by_a_part_of_their_name_in_any_case_and_by_every_tag_named() {
+    let app = TestApp::start_with(|c| c.workers = Some(0)).await;
+    for (name, tags) in [
+        ("Cavity A — Ébauche", &["die:4711", "rough"][..]),
+        ("Cavity B finish", &["die:4711", "finish"][..]),
+        ("Core 100% done_1", &["die:9"][..]),
+    ] {
+        assert_eq!(app.post("/v1/jobs", conditions(name, tags)).await.status, 202);
+    }
+    let a = &app;
+    let found = |q: &'static str| async move { a.get(&format!("/v1/jobs?{q}")).await.body };
+    assert_eq!(names(&found("name=cavity").await), ["Cavity B finish", "Cavity A — Ébauche"]);
+    assert_eq!(names(&found("name=%C3%89BAUCHE").await), ["Cavity A — Ébauche"]);
+    assert_eq!(names(&found("name=100%25").await), ["Core 100% done_1"], "% is a character, not a wildcard");
+    assert_eq!(found("name=y_a").await["total"], 0, "_ is a character, not a wildcard");
+    assert_eq!(names(&found("tag=die:4711").await), ["Cavity B finish", "Cavity A — Ébauche"]);
+    assert_eq!(names(&found("tag=die:4711&tag=rough").await), ["Cavity A — Ébauche"]);
+    assert_eq!(found("tag=die:4711&tag=die:9").await["total"], 0);
+    assert_eq!(names(&found("tag=die:4711&name=FINISH&kind=conditions&status=queued").await), ["Cavity B finish"]);
+    assert_eq!(found("tag=die").await["total"], 0, "a tag matches whole");
+    assert_problem(&app.get("/v1/jobs?tag=has%20space").await, 400, None);
+    assert_problem(&app.get("/v1/jobs?name=&limit=5").await, 400, None);
+    assert_problem(&app.get("/v1/jobs?limit=").await, 400, None);
+    assert_problem(&app.get(&format!("/v1/jobs?name={}", "n".repeat(201))).await, 400, None);
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn faults_of_the_name_and_tags_come_with_those_of_the_input_in_one_problem_and_store_nothing() {
+    let app = TestApp::start().await;
+    let mut tags: Vec<String> = (0..21).map(|i| format!("t{i}")).collect();
+    tags[2] = "bad tag".into();
+    let mut body = analysis(&"n".repeat(201), &[]);
+    body["tags"] = json!(tags);
+    body["diameter_mm"] = json!(-1);
+    let a = app.post("/v1/analysis", body).await;
+    assert_problem(&a, 422, Some("name"));
+    let f = fields(&a);
+    for field in ["diameter_mm", "name", "tags", "tags[2]"] {
+        assert!(f.contains(&field.to_string()), "{field} in {f:?}");
+    }
+    let b = app.post("/v1/jobs", json!({"kind": "conditions", "input": {"tool_type": "square", "diameter_mm": 10}, "tags": ["a", "a", ""], "name": 3})).await;
+    assert_problem(&b, 422, Some("name"));
+    let c = app
+        .post(
+            "/v1/jobs",
+            json!({"kind": "conditions", "input": {"tool_type": "square", "diameter_mm": 10}, "tags": ["a", "a", ""]}),
+        )
+        .await;
+    assert_eq!(fields(&c), ["tags[1]", "tags[2]"], "{}", c.text);
+    assert_eq!(app.get("/v1/jobs").await.body["total"], 0);
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_program_sent_as_a_file_part_runs_as_if_sent_in_the_json() {
+    let app = TestApp::start().await;
+    let request = json!({"tool_type": "square", "diameter_mm": 10, "stock": stock(), "series_points": 10,
+        "program": {"control": "linux_cnc"}, "name": "uploaded", "tags": ["upload"]});
+    let request = request.to_string();
+    let a = upload(
+        &app,
+        "/v1/analysis",
+        &[("program", Some("cut.nc"), CUT.as_bytes()), ("request", None, request.as_bytes())],
+    )
+    .await;
+    assert_eq!(a.status, StatusCode::CREATED, "{}", a.text);
+    assert_eq!((a.body["status"].as_str(), a.body["name"].as_str()), (Some("succeeded"), Some("uploaded")));
+    let mut json_body = analysis("x", &[]);
+    json_body["program"]["control"] = json!("linux_cnc");
+    let b = app.post_wait("/v1/analysis", json_body).await;
+    assert_eq!(a.body["result"]["summary"], b.body["result"]["summary"]);
+    let input = app.get(&format!("/v1/jobs/{}/input", a.body["id"].as_str().unwrap())).await.body;
+    assert_eq!(input["program"], json!({"control": "linux_cnc", "gcode": CUT}));
+    // Feeds, costing and trochoids take uploads too: their faults name the fields of the request part.
+    for path in ["/v1/feeds", "/v1/costing", "/v1/trochoids"] {
+        let a = upload(&app, path, &[("program", Some("cut.nc"), CUT.as_bytes())]).await;
+        assert_eq!(a.status, StatusCode::UNPROCESSABLE_ENTITY, "{path}: {}", a.text);
+        assert!(!fields(&a).iter().any(|f| f.starts_with("program")), "{path}: {}", a.text);
+    }
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_bad_upload_is_refused_naming_the_part() {
+    let app = TestApp::start().await;
+    let no_program = upload(&app, "/v1/analysis", &[("request", None, b"{}")]).await;
+    assert_problem(&no_program, 422, Some("program"));
+    let not_utf8 = upload(&app, "/v1/analysis", &[("program", Some("cut.nc"), b"G1 X\xff\xfe")]).await;
+    assert_problem(&not_utf8, 422, Some("program"));
+    let all =
+        upload(&app, "/v1/analysis", &[("program", None, b"G1 X1"), ("request", None, b"[1]"), ("extra", None, b"")])
+            .await;
+    assert_eq!(fields(&all), ["request", "extra"], "{}", all.text);
+    let twice = upload(
+        &app,
+        "/v1/analysis",
+        &[("program", None, b"G1 X1"), ("request", None, br#"{"program": {"gcode": "G0"}}"#)],
+    )
+    .await;
+    assert_problem(&twice, 422, Some("request.program"));
+    let small = TestApp::start_with(|c| c.body_limit = 1024).await;
+    let big = "G1 X1\n".repeat(400);
+    let too_large = upload(&small, "/v1/analysis", &[("program", Some("big.nc"), big.as_bytes())]).await;
+    assert_problem(&too_large, 413, None);
+    let broken = app
+        .client
+        .post(app.url("/v1/analysis"))
+        .header("content-type", "multipart/form-data")
+        .body("not multipart")
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(broken.status(), StatusCode::BAD_REQUEST);
+    let plan = upload(&app, "/v1/plans", &[("program", None, b"G1 X1")]).await;
+    assert_problem(&plan, 415, None);
+    assert_eq!(app.get("/v1/jobs").await.body["total"], 0);
+    small.stop().await;
+    app.stop().await;
+}
