@@ -10,6 +10,7 @@
 mod cleared;
 mod compose;
 mod coverage;
+mod observer;
 mod opening;
 pub mod pitch;
 mod report;
@@ -24,6 +25,7 @@ mod tests;
 
 pub use cleared::{ClearedZone, TrimReport};
 pub use compose::{append_over, RAMP_START_ABOVE_MM};
+pub use observer::SampleObserver;
 pub use report::{InsertionPlan, Treatment, TreatmentKind};
 pub use spec::{
     InsertionSpec, LoopSize, DEFAULT_INSERTION_ALPHA_LIMIT_DEG, DEFAULT_WALL_GAP_MM, PITCH_DESIGN_MARGIN_DEG,
@@ -220,7 +222,19 @@ pub fn plan_insertion(
     existing: Option<&Toolpath>,
     progress: &dyn Progress,
 ) -> Result<InsertionPlan, CoreError> {
-    plan_rounds(pocket, spec, existing, None, progress).map(|(plan, _)| plan)
+    plan_rounds(pocket, spec, existing, None, None, progress).map(|(plan, _)| plan)
+}
+
+/// [`plan_insertion`], handing the samples of the base path's check and of the
+/// verifications to `observer` (see [`SampleObserver`]).
+pub fn plan_insertion_observed(
+    pocket: &Pocket,
+    spec: &InsertionSpec,
+    existing: Option<&Toolpath>,
+    observer: &mut dyn SampleObserver,
+    progress: &dyn Progress,
+) -> Result<InsertionPlan, CoreError> {
+    plan_rounds(pocket, spec, existing, None, Some(observer), progress).map(|(plan, _)| plan)
 }
 
 /// [`plan_insertion`], keeping the geometry of every sample of the finished program as its
@@ -233,17 +247,19 @@ pub fn plan_insertion_sampled(
     force_model: ForceModel,
     progress: &dyn Progress,
 ) -> Result<(InsertionPlan, PathGeometry), CoreError> {
-    let (plan, geometry) = plan_rounds(pocket, spec, existing, Some(force_model), progress)?;
+    let (plan, geometry) = plan_rounds(pocket, spec, existing, Some(force_model), None, progress)?;
     Ok((plan, geometry.unwrap_or_else(|| PathGeometry::new(spec.r_mm()))))
 }
 
 /// The rounds of treatment; with `sampled`, each round's verification keeps its samples'
-/// geometry (the last round's is returned).
+/// geometry (the last round's is returned); `observer` sees the samples of the base check
+/// and of the verifications.
 fn plan_rounds(
     pocket: &Pocket,
     spec: &InsertionSpec,
     existing: Option<&Toolpath>,
     sampled: Option<ForceModel>,
+    mut observer: Option<&mut dyn SampleObserver>,
     progress: &dyn Progress,
 ) -> Result<(InsertionPlan, Option<PathGeometry>), CoreError> {
     spec.validate()?;
@@ -258,7 +274,11 @@ fn plan_rounds(
     let r = spec.r_mm();
     let empty = Zone::new(r);
     let base_roles = verify::MoveRoles { entry: &[], zcut: &[], zcut_zone: &empty };
-    let before = verify::check_engagement(&base, &analysis, &base_roles, progress, |_| {})?;
+    let before = verify::check_engagement(&base, &analysis, &base_roles, progress, |s| {
+        if let Some(o) = observer.as_deref_mut() {
+            o.base(s);
+        }
+    })?;
     // The verification of the rounds with the force model, when the samples are kept: it
     // changes no engagement, only adds the forces.
     let verifying = AnalysisSpec { force_model: sampled.or(analysis.force_model), ..analysis.clone() };
@@ -314,9 +334,15 @@ fn plan_rounds(
         let zcut_moves: Vec<bool> =
             composed.owner.iter().map(|&o| matches!(stretches.get(o), Some(Stretch::ZCut(_)))).collect();
         let roles = verify::MoveRoles { entry: &composed.entry, zcut: &zcut_moves, zcut_zone: &zcut };
+        if let Some(o) = observer.as_deref_mut() {
+            o.restart();
+        }
         let after = verify::check_engagement(&path, &verifying, &roles, progress, |s| {
             if let Some(g) = geometry.as_mut() {
                 g.samples.push(SampleGeometry::of(s, default_rpm));
+            }
+            if let Some(o) = observer.as_deref_mut() {
+                o.verified(s);
             }
         })?;
         if let Some(g) = geometry.as_mut() {

@@ -272,3 +272,41 @@ fn the_gouge_check_passing_over_points_far_from_the_walls_finds_what_measuring_e
     let (gouges, margin, _) = verify::check_gouges(&shifted, &pocket, &Boundary::of_pocket(&pocket), 5.0, 0.0, 0.0);
     assert!(gouges > 100 && margin < -2.9, "{gouges} {margin}");
 }
+
+/// Counts what the base check and the last verification hand an observer.
+#[derive(Default)]
+struct Tally {
+    base: (usize, f64),
+    verified: (usize, f64),
+    restarts: usize,
+}
+
+impl SampleObserver for Tally {
+    fn base(&mut self, sample: &crate::core::analysis::engine::SampleResult) {
+        self.base = (self.base.0 + 1, self.base.1 + sample.air_cut_mm());
+    }
+
+    fn restart(&mut self) {
+        self.verified = (0, 0.0);
+        self.restarts += 1;
+    }
+
+    fn verified(&mut self, sample: &crate::core::analysis::engine::SampleResult) {
+        self.verified = (self.verified.0 + 1, self.verified.1 + sample.air_cut_mm());
+    }
+}
+
+#[test]
+fn an_observer_sees_the_samples_an_analysis_of_the_base_path_and_of_the_finished_program_has() {
+    let (pocket, spec) = (box_with_slot(12.0), spec(-10.0));
+    let mut tally = Tally::default();
+    let plan = plan_insertion_observed(&pocket, &spec, None, &mut tally, &NoProgress).expect("plans");
+    assert_eq!(tally.restarts, plan.rounds);
+    let analysis = analysis_spec(&pocket, &spec);
+    for (path, (samples, air_cut_mm)) in [(&plan.drawing.base_path, tally.base), (&plan.toolpath, tally.verified)] {
+        let alone = crate::core::analysis::analyze(path, &analysis, &NoProgress).expect("analyses");
+        assert_eq!(samples, alone.summary.samples);
+        assert!((air_cut_mm - alone.summary.air_cut_length_mm).abs() <= 1e-6 * air_cut_mm.max(1.0), "{air_cut_mm}");
+    }
+    assert!(tally.verified.1 > 0.0 && tally.base.0 > 0);
+}

@@ -8,19 +8,21 @@ use super::kind::off_runtime_with;
 use super::output::{OutputOptions, DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM};
 use super::program_input::{read_program, ProgramContext, ProgramInput};
 use super::setup::{machine_limits, path_job_refs, resolve, resolve_cost, CostSetup, PathSetup, Resolved};
-use super::trochoids_result::{ChangeFigures, TrochoidsResult};
+use super::trochoids_result::{ChangeFigures, TrochoidsResult, WearObserver};
 use crate::core::conditions::{feed_mm_min, CuttingConditions};
 use crate::core::cycles::trochoid::default_loop_radius_mm;
 use crate::core::cycles::CutDirection;
 use crate::core::drawing::insertion_scene::insertion_scene;
 use crate::core::drawing::scene::Scene;
 use crate::core::geometry::Pocket;
-use crate::core::insertion::{analysis_spec, check_plan, plan_insertion, InsertionPlan, InsertionSpec, LoopSize};
+use crate::core::insertion::{
+    analysis_spec, check_plan, plan_insertion, plan_insertion_observed, InsertionPlan, InsertionSpec, LoopSize,
+};
 use crate::core::kinematics::MachineLimits;
 use crate::core::medial::{CLASS_A_RATIO_MAX, CLASS_A_RATIO_MIN};
 use crate::core::nc::{write_program_mapped, WriterOptions};
 use crate::core::operation::Operation;
-use crate::core::progress::{Progress, Stage};
+use crate::core::progress::Progress;
 use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
@@ -395,10 +397,6 @@ fn base_program(request: &TrochoidsRequest, plan: &mut InsertionPlan, options: &
     written.text
 }
 
-/// The share of a costed job's progress the insertion takes (the rest: the simulations
-/// of the paths before and after for their wear), about its share of the time.
-const PLANNING_SHARE: f64 = 0.75;
-
 /// What a run makes: the result, the program, the base program and the drawing.
 pub type Run = (TrochoidsResult, String, String, Scene);
 
@@ -408,10 +406,18 @@ pub fn run(request: TrochoidsRequest, prepared: TrochoidsPrepared, progress: &dy
     let radius_mm = prepared.base.tool.geometry.diameter_mm / 2.0;
     let (pocket, path) = Validator::collect(|faults| read_inputs(&request, radius_mm, faults)).map_err(reread)?;
     let spec = spec(&request, &prepared);
-    // With costs, the simulations of the paths before and after take the last part.
-    let planning = if prepared.cost.is_some() { PLANNING_SHARE } else { 1.0 };
-    let mut plan =
-        plan_insertion(&pocket, &spec, path.as_ref(), &Stage { inner: progress, from: 0.0, span: planning })?;
+    // With costs, the wear of the paths before and after is counted on the insertion's own
+    // simulations of them.
+    let simulation = analysis_spec(&pocket, &spec);
+    let (mut plan, counted) = match prepared.cost.as_ref() {
+        Some(setup) => {
+            setup.life.validate()?;
+            let mut observer = WearObserver::new(&setup.life, simulation.tool.flutes, simulation.default_spindle_rpm);
+            let plan = plan_insertion_observed(&pocket, &spec, path.as_ref(), &mut observer, progress)?;
+            (plan, Some((setup, observer.finish())))
+        }
+        None => (plan_insertion(&pocket, &spec, path.as_ref(), progress)?, None),
+    };
     let options = request.output.to_writer(&prepared.base);
     let written = write_program_mapped(&plan.toolpath, &options);
     let base = base_program(&request, &mut plan, &options);
@@ -424,10 +430,10 @@ pub fn run(request: TrochoidsRequest, prepared: TrochoidsPrepared, progress: &dy
     let numbered = std::mem::replace(&mut plan.toolpath, lines);
     let scene = insertion_scene(&pocket, &spec, &plan);
     plan.toolpath = numbered;
-    let simulation = analysis_spec(&pocket, &spec);
-    let costed = prepared.cost.as_ref().map(|setup| (&simulation, setup));
-    let costing = Stage { inner: progress, from: planning, span: 1.0 - planning };
-    let figures = prepared.limits.as_ref().map(|l| ChangeFigures::of(&plan, l, costed, &costing)).transpose()?;
+    let figures = match prepared.limits.as_ref() {
+        Some(limits) => Some(ChangeFigures::of(&plan, limits, counted)?),
+        None => None,
+    };
     Ok((TrochoidsResult::new(prepared, path.is_some(), &written, plan, figures), written.text, base, scene))
 }
 

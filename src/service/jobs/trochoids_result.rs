@@ -8,14 +8,15 @@ use super::feeds_result::ProgramInfo;
 use super::setup::CostSetup;
 use super::setup::{NamedRef, ToolRef};
 use super::trochoids::TrochoidsPrepared;
-use crate::core::analysis::AnalysisSpec;
+use crate::core::analysis::engine::SampleResult;
 use crate::core::conditions::CuttingConditions;
-use crate::core::costing::estimate::estimate;
-use crate::core::insertion::{InsertionPlan, Overload, Treatment, Verification};
+use crate::core::costing::estimate::estimate_with_wear;
+use crate::core::costing::wear::{WearCounter, WearReport};
+use crate::core::insertion::{InsertionPlan, Overload, SampleObserver, Treatment, Verification};
 use crate::core::kinematics::{machining_time, MachineLimits, TimeOptions};
 use crate::core::medial::{ClassInterval, CriticalInterval, NodeKind};
 use crate::core::nc::{toolpath_to_json, JsonProgram, WrittenProgram};
-use crate::core::progress::{Progress, Stage};
+use crate::core::tool_life::ToolLifeModel;
 use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 use serde::Serialize;
@@ -174,12 +175,12 @@ pub struct ProgramFigures {
 
 impl ProgramFigures {
     /// The figures of `path` on a machine of `limits`, with its wear and cost when
-    /// `costed` is given (the path's simulation in `spec`, costed by `setup`).
+    /// `costed` is given (its wear and air cut, counted on its simulation, costed by
+    /// `setup`).
     pub fn of(
         path: &Toolpath,
         limits: &MachineLimits,
-        costed: Option<(&AnalysisSpec, &CostSetup)>,
-        progress: &dyn Progress,
+        costed: Option<(&CostSetup, Counted)>,
     ) -> Result<Self, CoreError> {
         let t = machining_time(path, limits, &TimeOptions::default())?;
         let mut figures = ProgramFigures {
@@ -191,13 +192,61 @@ impl ProgramFigures {
             consumption: None,
             cost: None,
         };
-        if let Some((spec, setup)) = costed {
-            let (analysis, estimate) = estimate(path, spec, &setup.cost_model(), progress)?;
-            figures.air_cut_length_mm = Some(analysis.summary.air_cut_length_mm);
+        if let Some((setup, counted)) = costed {
+            let estimate = estimate_with_wear(path, counted.wear, &setup.cost_model())?;
+            figures.air_cut_length_mm = Some(counted.air_cut_mm);
             figures.consumption = Some(estimate.wear.consumption.ratio);
             figures.cost = Some(CostReport::new(setup, &estimate)?);
         }
         Ok(figures)
+    }
+}
+
+/// What one program's simulation gave for its cost: its wear and its air cut, mm.
+pub struct Counted {
+    pub wear: WearReport,
+    pub air_cut_mm: f64,
+}
+
+/// Counts the wear and the air cut of the base path and of the finished program from the
+/// insertion's own simulations of them (the base check and the last verification), so that
+/// costing them simulates nothing again.
+pub struct WearObserver<'a> {
+    model: &'a ToolLifeModel,
+    flutes: u32,
+    default_rpm: Option<f64>,
+    base: (WearCounter<'a>, f64),
+    planned: (WearCounter<'a>, f64),
+}
+
+impl<'a> WearObserver<'a> {
+    /// Counts with the tool life `model` for a tool of `flutes` turning at `default_rpm`
+    /// where the program has no S word (the insertion's analysis spec).
+    pub fn new(model: &'a ToolLifeModel, flutes: u32, default_rpm: Option<f64>) -> Self {
+        let counter = || (WearCounter::new(model, flutes, default_rpm), 0.0);
+        WearObserver { model, flutes, default_rpm, base: counter(), planned: counter() }
+    }
+
+    /// The base path's and the finished program's counts.
+    pub fn finish(self) -> (Counted, Counted) {
+        let counted = |(counter, air_cut_mm): (WearCounter, f64)| Counted { wear: counter.finish(), air_cut_mm };
+        (counted(self.base), counted(self.planned))
+    }
+}
+
+impl SampleObserver for WearObserver<'_> {
+    fn base(&mut self, sample: &SampleResult) {
+        self.base.0.add(sample);
+        self.base.1 += sample.air_cut_mm();
+    }
+
+    fn restart(&mut self) {
+        self.planned = (WearCounter::new(self.model, self.flutes, self.default_rpm), 0.0);
+    }
+
+    fn verified(&mut self, sample: &SampleResult) {
+        self.planned.0.add(sample);
+        self.planned.1 += sample.air_cut_mm();
     }
 }
 
@@ -214,18 +263,21 @@ pub struct ChangeFigures {
 
 impl ChangeFigures {
     /// The figures of `plan`'s base path and planned path on a machine of `limits`, with
-    /// their wear and cost when `costed` is given; the two simulations report as the two
-    /// halves of `progress`.
+    /// their wear and cost when `costed` is given (costed by the setup, from the counts of
+    /// the base path and the planned path).
     pub fn of(
         plan: &InsertionPlan,
         limits: &MachineLimits,
-        costed: Option<(&AnalysisSpec, &CostSetup)>,
-        progress: &dyn Progress,
+        costed: Option<(&CostSetup, (Counted, Counted))>,
     ) -> Result<Self, CoreError> {
+        let (setup, before, after) = match costed {
+            Some((setup, (before, after))) => (Some(setup), Some(before), Some(after)),
+            None => (None, None, None),
+        };
         Ok(ChangeFigures {
-            before: ProgramFigures::of(&plan.drawing.base_path, limits, costed, &Stage::nth(progress, 0.0, 1.0, 0, 2))?,
-            after: ProgramFigures::of(&plan.toolpath, limits, costed, &Stage::nth(progress, 0.0, 1.0, 1, 2))?,
-            cost_rates: costed.map(|(_, setup)| setup.cost_rates.clone()),
+            before: ProgramFigures::of(&plan.drawing.base_path, limits, setup.zip(before))?,
+            after: ProgramFigures::of(&plan.toolpath, limits, setup.zip(after))?,
+            cost_rates: setup.map(|s| s.cost_rates.clone()),
         })
     }
 }
