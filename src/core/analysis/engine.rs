@@ -78,16 +78,6 @@ pub struct SampleResult {
 }
 
 impl SampleResult {
-    /// The feed length this sample adds to the air cut, mm: its step when the tool moves at
-    /// a feed, in XY, and cuts nothing (as the analysis report counts it).
-    pub fn air_cut_mm(&self) -> f64 {
-        if self.sample.rapid || self.plunge || self.contact.alpha_rad > 0.0 {
-            0.0
-        } else {
-            self.sample.step_mm
-        }
-    }
-
     /// What bounds the chip of one tooth at this sample.
     pub fn tooth_cut(&self, tool_radius_mm: f64) -> ToothCut {
         ToothCut {

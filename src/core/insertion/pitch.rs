@@ -62,8 +62,8 @@ fn material_arc_cosine(d_mm: f64, w_mm: f64, r_mm: f64) -> f64 {
     (w_mm * w_mm - d_mm * d_mm - r_mm * r_mm) / (2.0 * r_mm * d_mm)
 }
 
-/// How much above cos(limit / 2) the cosine of a material arc must be for [`loop_exceeds`]
-/// to pass over it unmeasured: far above the rounding of either.
+/// How much above the cosine of half the peak so far the cosine of a material arc must be for
+/// [`loop_peak_deg`] to pass over it unmeasured: far above the rounding of either.
 const SHORT_ARC_MARGIN: f64 = 1e-9;
 
 /// `(sin φ, cos φ)` of the [`LOOP_ANGLE_STEPS`] angles around a loop, computed once.
@@ -86,31 +86,14 @@ pub fn loop_engagement_deg(rho_prev_mm: f64, rho_mm: f64, pitch_mm: f64, r_mm: f
     worst.to_degrees()
 }
 
-/// Whether the loop of [`loop_engagement_deg`] engages more than `limit_deg` anywhere: the
-/// same angles, but an angle whose material arc is no longer than the limit is passed over
-/// without measuring its leading half, and the first angle above the limit answers.
+/// Whether the loop of [`loop_engagement_deg`] engages more than `limit_deg` anywhere: its
+/// peak, found passing over the angles that cannot raise it ([`loop_peak_deg`]).
 pub fn loop_exceeds(rho_prev_mm: f64, rho_mm: f64, pitch_mm: f64, r_mm: f64, limit_deg: f64) -> bool {
-    let w = rho_prev_mm + r_mm;
-    if limit_deg >= 180.0 {
-        return false;
-    }
-    // The engagement is part of the material arc, 2·acos(κ): below the limit when κ is above
-    // cos(limit / 2), raised a little so that an angle at the limit itself is measured.
-    let short_arc = (0.5 * limit_deg.to_radians()).cos() + SHORT_ARC_MARGIN;
-    let angles = loop_angles();
-    let (lo, hi) = short_arc_indices(rho_mm, pitch_mm, w, r_mm, short_arc);
-    angles[..lo].iter().chain(&angles[hi..]).any(|&(s, c)| {
-        let v = (pitch_mm + rho_mm * c, rho_mm * s);
-        let d = (v.0 * v.0 + v.1 * v.1).sqrt();
-        if d > f64::EPSILON && material_arc_cosine(d, w, r_mm) >= short_arc {
-            return false;
-        }
-        engagement_at_rad(v, d, (-s, c), w, r_mm).to_degrees() > limit_deg
-    })
+    limit_deg < 180.0 && loop_peak_deg(rho_prev_mm, rho_mm, pitch_mm, r_mm, &mut 0) > limit_deg
 }
 
 /// The loop angles (indices `lo..hi` of [`loop_angles`]) whose material arc is certainly no
-/// longer than the cosine `short_arc` says, so [`loop_exceeds`] would pass over each of them.
+/// longer than the cosine `short_arc` says, so [`loop_peak_deg`] passes over each of them.
 ///
 /// The arc's cosine `κ(d) = (w² − r² − d²)/(2rd)` falls as the distance `d` of the tool
 /// centre from the previous loop's centre grows, and `d² = p² + ρ² + 2pρ·cos φ` grows with

@@ -93,6 +93,10 @@ pub struct InsertionPlan {
     pub verification: Verification,
     pub rounds: usize,
     pub pocket_area_mm2: f64,
+    /// Feed length that cut nothing, mm: of the base path (its check) and of the finished
+    /// program (its verification).
+    pub base_air_cut_length_mm: f64,
+    pub air_cut_length_mm: f64,
     pub warnings: Vec<String>,
     /// What the drawing of the plan needs beyond the above.
     #[serde(skip)]
@@ -323,6 +327,8 @@ pub(super) fn assemble(p: Parts) -> InsertionPlan {
         verification,
         rounds: p.rounds,
         pocket_area_mm2: coverage.pocket_area(),
+        base_air_cut_length_mm: p.base_check.air_cut_length_mm,
+        air_cut_length_mm: p.after.air_cut_length_mm,
         warnings,
         drawing: InsertionDrawing {
             trochoids: trochoid_loops(&p.stretches),

@@ -273,7 +273,8 @@ fn the_gouge_check_passing_over_points_far_from_the_walls_finds_what_measuring_e
     assert!(gouges > 100 && margin < -2.9, "{gouges} {margin}");
 }
 
-/// Counts what the base check and the last verification hand an observer.
+/// Counts what the base check and the last verification hand an observer: samples and
+/// their cutting length.
 #[derive(Default)]
 struct Tally {
     base: (usize, f64),
@@ -281,9 +282,18 @@ struct Tally {
     restarts: usize,
 }
 
+/// A sample's step where it cuts.
+fn cut_mm(sample: &crate::core::analysis::engine::SampleResult) -> f64 {
+    if sample.sample.rapid || sample.plunge || sample.contact.alpha_rad <= 0.0 {
+        0.0
+    } else {
+        sample.sample.step_mm
+    }
+}
+
 impl SampleObserver for Tally {
     fn base(&mut self, sample: &crate::core::analysis::engine::SampleResult) {
-        self.base = (self.base.0 + 1, self.base.1 + sample.air_cut_mm());
+        self.base = (self.base.0 + 1, self.base.1 + cut_mm(sample));
     }
 
     fn restart(&mut self) {
@@ -292,7 +302,7 @@ impl SampleObserver for Tally {
     }
 
     fn verified(&mut self, sample: &crate::core::analysis::engine::SampleResult) {
-        self.verified = (self.verified.0 + 1, self.verified.1 + sample.air_cut_mm());
+        self.verified = (self.verified.0 + 1, self.verified.1 + cut_mm(sample));
     }
 }
 
@@ -303,10 +313,16 @@ fn an_observer_sees_the_samples_an_analysis_of_the_base_path_and_of_the_finished
     let plan = plan_insertion_observed(&pocket, &spec, None, &mut tally, &NoProgress).expect("plans");
     assert_eq!(tally.restarts, plan.rounds);
     let analysis = analysis_spec(&pocket, &spec);
-    for (path, (samples, air_cut_mm)) in [(&plan.drawing.base_path, tally.base), (&plan.toolpath, tally.verified)] {
+    let cases = [
+        (&plan.drawing.base_path, tally.base, plan.base_air_cut_length_mm),
+        (&plan.toolpath, tally.verified, plan.air_cut_length_mm),
+    ];
+    for (path, (samples, cut_mm), air_cut_mm) in cases {
         let alone = crate::core::analysis::analyze(path, &analysis, &NoProgress).expect("analyses");
         assert_eq!(samples, alone.summary.samples);
-        assert!((air_cut_mm - alone.summary.air_cut_length_mm).abs() <= 1e-6 * air_cut_mm.max(1.0), "{air_cut_mm}");
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-6 * a.max(1.0);
+        assert!(close(cut_mm, alone.summary.cutting_length_mm), "{cut_mm}");
+        assert!(close(air_cut_mm, alone.summary.air_cut_length_mm), "{air_cut_mm}");
     }
-    assert!(tally.verified.1 > 0.0 && tally.base.0 > 0);
+    assert!(tally.verified.1 > 0.0 && plan.air_cut_length_mm > 0.0 && tally.base.0 > 0);
 }

@@ -148,6 +148,8 @@ pub struct EngagementOutcome {
     pub samples: PathSamples,
     /// Material the path removed, mm³.
     pub removed_volume_mm3: f64,
+    /// Feed length that cut nothing (the analysis's air cut), mm.
+    pub air_cut_length_mm: f64,
 }
 
 /// Which moves of a program are which, for [`check_engagement`].
@@ -183,6 +185,7 @@ pub fn check_engagement(
         overload_stretches: 0,
         samples: PathSamples::default(),
         removed_volume_mm3: 0.0,
+        air_cut_length_mm: 0.0,
     };
     let flag = |roles: &[bool], m: usize| roles.get(m).copied().unwrap_or(false);
     // The stretch of overloaded samples being followed, if the last sample was one.
@@ -245,6 +248,7 @@ pub fn check_engagement(
     close(&mut open, &mut out);
     out.samples = collector.finish();
     out.removed_volume_mm3 = simulated.summary.removed_volume_mm3;
+    out.air_cut_length_mm = simulated.summary.air_cut_length_mm;
     Ok(out)
 }
 

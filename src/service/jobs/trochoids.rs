@@ -414,7 +414,8 @@ pub fn run(request: TrochoidsRequest, prepared: TrochoidsPrepared, progress: &dy
             setup.life.validate()?;
             let mut observer = WearObserver::new(&setup.life, simulation.tool.flutes, simulation.default_spindle_rpm);
             let plan = plan_insertion_observed(&pocket, &spec, path.as_ref(), &mut observer, progress)?;
-            (plan, Some((setup, observer.finish())))
+            let counted = observer.finish(&plan);
+            (plan, Some((setup, counted)))
         }
         None => (plan_insertion(&pocket, &spec, path.as_ref(), progress)?, None),
     };

@@ -208,45 +208,45 @@ pub struct Counted {
     pub air_cut_mm: f64,
 }
 
-/// Counts the wear and the air cut of the base path and of the finished program from the
-/// insertion's own simulations of them (the base check and the last verification), so that
+/// Counts the wear of the base path and of the finished program from the insertion's own
+/// simulations of them (the base check and the last verification), so that
 /// costing them simulates nothing again.
 pub struct WearObserver<'a> {
     model: &'a ToolLifeModel,
     flutes: u32,
     default_rpm: Option<f64>,
-    base: (WearCounter<'a>, f64),
-    planned: (WearCounter<'a>, f64),
+    base: WearCounter<'a>,
+    planned: WearCounter<'a>,
 }
 
 impl<'a> WearObserver<'a> {
     /// Counts with the tool life `model` for a tool of `flutes` turning at `default_rpm`
     /// where the program has no S word (the insertion's analysis spec).
     pub fn new(model: &'a ToolLifeModel, flutes: u32, default_rpm: Option<f64>) -> Self {
-        let counter = || (WearCounter::new(model, flutes, default_rpm), 0.0);
+        let counter = || WearCounter::new(model, flutes, default_rpm);
         WearObserver { model, flutes, default_rpm, base: counter(), planned: counter() }
     }
 
-    /// The base path's and the finished program's counts.
-    pub fn finish(self) -> (Counted, Counted) {
-        let counted = |(counter, air_cut_mm): (WearCounter, f64)| Counted { wear: counter.finish(), air_cut_mm };
-        (counted(self.base), counted(self.planned))
+    /// The base path's and the finished program's counts, with their air cuts from `plan`.
+    pub fn finish(self, plan: &InsertionPlan) -> (Counted, Counted) {
+        (
+            Counted { wear: self.base.finish(), air_cut_mm: plan.base_air_cut_length_mm },
+            Counted { wear: self.planned.finish(), air_cut_mm: plan.air_cut_length_mm },
+        )
     }
 }
 
 impl SampleObserver for WearObserver<'_> {
     fn base(&mut self, sample: &SampleResult) {
-        self.base.0.add(sample);
-        self.base.1 += sample.air_cut_mm();
+        self.base.add(sample);
     }
 
     fn restart(&mut self) {
-        self.planned = (WearCounter::new(self.model, self.flutes, self.default_rpm), 0.0);
+        self.planned = WearCounter::new(self.model, self.flutes, self.default_rpm);
     }
 
     fn verified(&mut self, sample: &SampleResult) {
-        self.planned.0.add(sample);
-        self.planned.1 += sample.air_cut_mm();
+        self.planned.add(sample);
     }
 }
 
