@@ -6,9 +6,10 @@
 use crate::core::analysis::sampling::point_on;
 use crate::core::geometry::{Pocket, Point};
 use crate::core::medial::Boundary;
-use crate::core::stock::Capsule;
+use crate::core::stock::{ArcSweep, Capsule, MAX_ARC_SWEEP_RAD};
 use crate::core::toolpath::move_length;
-use crate::core::toolpath::{Motion, Move};
+use crate::core::toolpath::{Motion, Move, Plane};
+use std::f64::consts::TAU;
 
 /// Cells per tool radius of the coverage raster.
 pub const CELLS_PER_RADIUS: f64 = 25.0;
@@ -18,6 +19,13 @@ pub const MAX_CELLS: usize = 4_000_000;
 
 /// The chords that sweep an arc depart from it by at most this share of a cell.
 pub const CHORD_SAGITTA_CELLS: f64 = 0.25;
+
+/// Cells per side of the blocks whose clearances are measured against the same few boundary
+/// segments (see [`Coverage::new`]).
+const CLEARANCE_BLOCK_CELLS: usize = 16;
+
+/// Slack on the reach within which a block's boundary segments are gathered, for rounding, mm.
+const CLEARANCE_REACH_MARGIN_MM: f64 = 1e-9;
 
 /// Owner of a cell nothing removed.
 pub const NOBODY: u16 = u16::MAX;
@@ -54,16 +62,70 @@ impl Coverage {
             clearance: vec![0.0; w * h],
             owner: vec![NOBODY; w * h],
         };
-        for j in 0..h {
-            for i in 0..w {
-                let p = c.centre(i, j);
-                if pocket.contains(p.x, p.y) {
-                    c.inside[j * w + i] = true;
-                    c.clearance[j * w + i] = boundary.clearance_mm(p);
+        c.mark_inside(pocket);
+        c.measure_clearance(boundary);
+        c
+    }
+
+    /// Marks the cells whose centres lie inside the pocket, a row at a time: a centre lies
+    /// inside a loop when an odd number of the row's crossings with it lie beyond it, as
+    /// [`crate::core::geometry::Loop::contains`] counts them.
+    fn mark_inside(&mut self, pocket: &Pocket) {
+        let mut crossings = Vec::new();
+        let mut parity = vec![false; self.w];
+        for j in 0..self.h {
+            let y = self.centre(0, j).y;
+            let row = &mut self.inside[j * self.w..(j + 1) * self.w];
+            for (k, lp) in std::iter::once(&pocket.outer).chain(&pocket.islands).enumerate() {
+                crossings.clear();
+                lp.row_crossings(y, &mut crossings);
+                crossings.sort_unstable_by(f64::total_cmp);
+                let mut at_or_before = 0;
+                for (i, odd) in parity.iter_mut().enumerate() {
+                    let x = self.x0 + (i as f64 + 0.5) * self.cell_mm;
+                    while at_or_before < crossings.len() && crossings[at_or_before] <= x {
+                        at_or_before += 1;
+                    }
+                    *odd = (crossings.len() - at_or_before) % 2 == 1;
+                }
+                for (cell, odd) in row.iter_mut().zip(&parity) {
+                    // Inside the outer loop and outside every island.
+                    *cell = if k == 0 { *odd } else { *cell && !*odd };
                 }
             }
         }
-        c
+    }
+
+    /// The exact clearance of every cell centre inside the pocket, a block of cells at a
+    /// time: only the boundary segments that can be nearest to some cell of the block (see
+    /// [`Boundary::segments_within`]) are measured.
+    fn measure_clearance(&mut self, boundary: &Boundary) {
+        let mut near = Vec::new();
+        for bj in (0..self.h).step_by(CLEARANCE_BLOCK_CELLS) {
+            let rows = bj..(bj + CLEARANCE_BLOCK_CELLS).min(self.h);
+            for bi in (0..self.w).step_by(CLEARANCE_BLOCK_CELLS) {
+                let columns = bi..(bi + CLEARANCE_BLOCK_CELLS).min(self.w);
+                if !rows
+                    .clone()
+                    .any(|j| self.inside[j * self.w + columns.start..j * self.w + columns.end].contains(&true))
+                {
+                    continue;
+                }
+                let (first, last) = (self.centre(bi, bj), self.centre(columns.end - 1, rows.end - 1));
+                let middle = Point::new(0.5 * (first.x + last.x), 0.5 * (first.y + last.y));
+                let half_diagonal = 0.5 * (last.x - first.x).hypot(last.y - first.y);
+                let reach = boundary.clearance_mm(middle) + 2.0 * half_diagonal + CLEARANCE_REACH_MARGIN_MM;
+                boundary.segments_within(middle, reach, &mut near);
+                for j in rows.clone() {
+                    for i in columns.clone() {
+                        if self.inside[j * self.w + i] {
+                            self.clearance[j * self.w + i] =
+                                boundary.clearance_among(self.centre(i, j), near.iter().copied());
+                        }
+                    }
+                }
+            }
+        }
     }
 
     fn centre(&self, i: usize, j: usize) -> Point {
@@ -98,27 +160,52 @@ impl Coverage {
     /// along it) as removed by `owner` unless already removed.
     pub fn stamp_capsule(&mut self, a: Point, b: Point, r_mm: f64, owner: u16) {
         let capsule = Capsule::new((a.x, a.y), (b.x, b.y), r_mm);
-        let (y_lo, y_hi) = (a.y.min(b.y) - r_mm, a.y.max(b.y) + r_mm);
+        for j in self.rows_between(a.y.min(b.y) - r_mm, a.y.max(b.y) + r_mm) {
+            let y = self.y0 + (j as f64 + 0.5) * self.cell_mm;
+            if let Some((x_lo, x_hi)) = capsule.row_interval(y) {
+                self.fill_row(j, x_lo, x_hi, owner);
+            }
+        }
+    }
+
+    /// Marks the cells whose centres lie within `r_mm` of the arc of `sweep` (the tool swept
+    /// along it; at most [`MAX_ARC_SWEEP_RAD`] of it) as removed by `owner` unless already
+    /// removed.
+    fn stamp_arc(&mut self, sweep: &ArcSweep, r_mm: f64, owner: u16) {
+        let (_, (y_lo, y_hi)) = sweep.bounds(r_mm);
+        for j in self.rows_between(y_lo, y_hi) {
+            let y = self.y0 + (j as f64 + 0.5) * self.cell_mm;
+            for (x_lo, x_hi) in sweep.row_inside(y, r_mm).iter() {
+                self.fill_row(j, x_lo, x_hi, owner);
+            }
+        }
+    }
+
+    /// The rows whose centres lie between `y_lo` and `y_hi`.
+    fn rows_between(&self, y_lo: f64, y_hi: f64) -> std::ops::Range<usize> {
         let j0 = (((y_lo - self.y0) / self.cell_mm - 0.5).ceil().max(0.0)) as usize;
         let j1 = ((((y_hi - self.y0) / self.cell_mm - 0.5).floor() + 1.0).max(0.0) as usize).min(self.h);
-        for j in j0..j1 {
-            let y = self.y0 + (j as f64 + 0.5) * self.cell_mm;
-            let Some((x_lo, x_hi)) = capsule.row_interval(y) else { continue };
-            let i0 = ((x_lo - self.x0) / self.cell_mm - 0.5).ceil().max(0.0) as usize;
-            let i1 = (((x_hi - self.x0) / self.cell_mm - 0.5).floor() + 1.0).max(0.0) as usize;
-            for o in &mut self.owner[j * self.w + i0.min(self.w)..j * self.w + i1.min(self.w)] {
-                if *o == NOBODY {
-                    *o = owner;
-                }
+        j0..j1.max(j0)
+    }
+
+    /// Marks the cells of row `j` whose centres lie between `x_lo` and `x_hi` as removed by
+    /// `owner` unless already removed.
+    fn fill_row(&mut self, j: usize, x_lo: f64, x_hi: f64, owner: u16) {
+        let i0 = ((x_lo - self.x0) / self.cell_mm - 0.5).ceil().max(0.0) as usize;
+        let i1 = (((x_hi - self.x0) / self.cell_mm - 0.5).floor() + 1.0).max(0.0) as usize;
+        let (i0, i1) = (i0.min(self.w), i1.min(self.w));
+        for o in &mut self.owner[j * self.w + i0..j * self.w + i1.max(i0)] {
+            if *o == NOBODY {
+                *o = owner;
             }
         }
     }
 
     /// Stamps the tool along the moves of `moves` that reach down to `z_max_mm`. One owner
-    /// takes them all, so their order does not matter: each move is swept as capsules
-    /// between points along it (a straight move at the level in one; arcs in chords whose
-    /// sagitta is at most [`CHORD_SAGITTA_CELLS`] of a cell; a move crossing the level
-    /// every half cell, where it is below).
+    /// takes them all, so their order does not matter: a straight move at the level is swept
+    /// as one capsule, an arc in XY at the level as the exact area swept along it (a quarter
+    /// turn at a time), other arcs in chords whose sagitta is at most [`CHORD_SAGITTA_CELLS`]
+    /// of a cell, and a move crossing the level as capsules every half cell where it is below.
     pub fn stamp_moves(&mut self, moves: &[Move], r_mm: f64, z_max_mm: f64, owner: u16) {
         let fine = 0.5 * self.cell_mm;
         for m in moves {
@@ -129,6 +216,13 @@ impl Coverage {
             let length = move_length(m);
             let step = match m.motion {
                 _ if !(start_below && end_below) => fine,
+                Motion::Arc { center, clockwise, plane: Plane::Xy, turns } => {
+                    // The turn, bounded by the whole turns the move may make.
+                    let radius = (m.start.x - center.x).hypot(m.start.y - center.y);
+                    let sweep_rad = (length / radius).min(TAU * f64::from(turns.saturating_add(1)));
+                    self.stamp_arc_move(m, (center.x, center.y), !clockwise, sweep_rad, r_mm, owner);
+                    continue;
+                }
                 Motion::Arc { center, .. } => {
                     let radius = (m.start.x - center.x).hypot(m.start.y - center.y);
                     (8.0 * radius * CHORD_SAGITTA_CELLS * self.cell_mm).sqrt().max(fine)
@@ -147,6 +241,20 @@ impl Coverage {
                 self.stamp_capsule(previous.unwrap_or(here), here, r_mm, owner);
                 previous = Some(here);
             }
+        }
+    }
+
+    /// Stamps the tool along the arc move `m` in XY about `center`, counter-clockwise when
+    /// `ccw`, in pieces of at most [`MAX_ARC_SWEEP_RAD`] (`sweep_rad` bounds its turn from
+    /// above: a helix's length over its radius).
+    fn stamp_arc_move(&mut self, m: &Move, center: (f64, f64), ccw: bool, sweep_rad: f64, r_mm: f64, owner: u16) {
+        let pieces = if sweep_rad.is_finite() { (sweep_rad / MAX_ARC_SWEEP_RAD).ceil().max(1.0) as usize } else { 1 };
+        let mut previous = (m.start.x, m.start.y);
+        for k in 1..=pieces {
+            let (p, _) = point_on(m, k as f64 / pieces as f64);
+            let here = (p.x, p.y);
+            self.stamp_arc(&ArcSweep::new(center, previous, here, ccw), r_mm, owner);
+            previous = here;
         }
     }
 
@@ -261,6 +369,31 @@ fn transform_1d(f: &[f64]) -> Vec<f64> {
 mod tests {
     use super::*;
     use crate::core::geometry::Loop;
+
+    #[test]
+    fn cells_inside_and_their_clearances_are_exactly_those_of_the_pocket_point_by_point() {
+        use crate::core::geometry::Vertex;
+        let outer = crate::core::fixtures::case_study_pocket().outer;
+        let island = Loop::new(vec![Vertex::new(32.0, 35.0, 1.0), Vertex::new(48.0, 35.0, 1.0)]);
+        let square = Loop::rectangle(60.0, 20.0, 70.0, 50.0);
+        let pocket = Pocket::new(outer, vec![island, square]).expect("a valid pocket");
+        let boundary = Boundary::of_pocket(&pocket);
+        for r in [3.0, 5.0, 8.0] {
+            let c = Coverage::new(&pocket, &boundary, r);
+            let mut inside = 0;
+            for j in 0..c.h {
+                for i in 0..c.w {
+                    let (p, k) = (c.centre(i, j), j * c.w + i);
+                    assert_eq!(c.inside[k], pocket.contains(p.x, p.y), "cell ({i}, {j})");
+                    if c.inside[k] {
+                        inside += 1;
+                        assert_eq!(c.clearance[k].to_bits(), boundary.clearance_mm(p).to_bits(), "cell ({i}, {j})");
+                    }
+                }
+            }
+            assert!(inside > c.w * c.h / 2, "{inside} of {} cells inside", c.w * c.h);
+        }
+    }
 
     #[test]
     fn the_distance_transform_is_the_squared_distance_to_the_nearest_source() {

@@ -56,13 +56,28 @@ impl Boundary {
     /// The exact distance from `p` to the boundary (mm), by [`Segment::distance_mm`] over all
     /// segments (a segment whose box is farther than the best distance so far is skipped).
     pub fn clearance_mm(&self, p: Point) -> f64 {
+        self.clearance_among(p, 0..self.segments.len())
+    }
+
+    /// The distance from `p` to the nearest of the segments `candidates` (mm): the exact
+    /// clearance of `p` when they hold its nearest segment (see [`Boundary::segments_within`]).
+    pub fn clearance_among(&self, p: Point, candidates: impl IntoIterator<Item = usize>) -> f64 {
         let mut best = f64::INFINITY;
-        for (segment, bounds) in self.segments.iter().zip(&self.bounds) {
-            if box_distance_mm(bounds, p) < best {
-                best = best.min(segment.distance_mm(p));
+        for k in candidates {
+            if box_distance_mm(&self.bounds[k], p) < best {
+                best = best.min(self.segments[k].distance_mm(p));
             }
         }
         best
+    }
+
+    /// Puts into `out` (cleared first) the segments whose boxes come within `reach_mm` of `c`:
+    /// they hold the nearest segment of every point within `h` of `c` when `reach_mm` is at
+    /// least the clearance of `c` plus `2·h` (that point's nearest segment is at most its
+    /// clearance, at most `clearance(c) + h`, from it, so at most `clearance(c) + 2·h` from `c`).
+    pub fn segments_within(&self, c: Point, reach_mm: f64, out: &mut Vec<usize>) {
+        out.clear();
+        out.extend((0..self.segments.len()).filter(|&k| box_distance_mm(&self.bounds[k], c) <= reach_mm));
     }
 
     /// The boundary point nearest to `p`.
