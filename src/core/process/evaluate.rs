@@ -5,6 +5,7 @@
 
 use super::feeds::force_at_feed;
 use super::layer::{moved_down, LayerPlan, Step};
+use super::parallel::{self, Shares};
 use super::spec::{ProcessOptions, ToolCandidate};
 use crate::core::costing::cost::{cost, Cost, Rates};
 use crate::core::feed::blocks::BlockOptions;
@@ -12,7 +13,7 @@ use crate::core::feed::plan::FeedSpec;
 use crate::core::feed::rule::{FeedRule, FeedStrategy};
 use crate::core::insertion::{append_over, labelled_program};
 use crate::core::kinematics::{machining_time, MachiningTime, TimeOptions};
-use crate::core::progress::{Progress, Stage};
+use crate::core::progress::Progress;
 use crate::core::tool_life::{machined_surface_mm, Consumption, WearCut};
 use crate::core::toolpath::move_length;
 use crate::core::toolpath::{labels_of, Motion, Move, Section, Toolpath};
@@ -21,6 +22,9 @@ use serde::Serialize;
 
 /// Seconds per minute.
 const S_PER_MIN: f64 = 60.0;
+/// Share of an evaluation's progress taken by the layers' feed optimisation (the rest is the
+/// program's time and cost).
+const OPTIMISATION_SHARE: f64 = 0.95;
 
 /// Lengths, times and tool consumption of a part of the job (a step of a layer, a layer,
 /// or the whole).
@@ -219,11 +223,16 @@ pub fn evaluate(
 ) -> Result<Evaluation, CoreError> {
     let spec = feed_spec(candidate, options, force_factor);
     let originals: Vec<usize> = layers.iter().filter(|l| l.copy_of.is_none()).map(|l| l.index).collect();
+    // The distinct layers side by side, one per core.
+    let shares = Shares::new(progress, 0.0, OPTIMISATION_SHARE, originals.len());
+    let results = parallel::map(&originals, |k, &i| {
+        let part = shares.part(k);
+        part.checkpoint()?;
+        optimise_layer(&layers[i], candidate, &spec, &part)
+    });
     let mut optimised: Vec<Option<Optimised>> = (0..layers.len()).map(|_| None).collect();
-    for (k, &i) in originals.iter().enumerate() {
-        progress.checkpoint()?;
-        let stage = Stage::nth(progress, 0.0, 0.95, k, originals.len());
-        optimised[i] = Some(optimise_layer(&layers[i], candidate, &spec, &stage)?);
+    for (&i, result) in originals.iter().zip(results) {
+        optimised[i] = Some(result?);
     }
     // The program: every layer in order (copies moved down), joined over the safe height,
     // each part labelled with the cavity's layer.
