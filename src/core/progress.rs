@@ -29,6 +29,20 @@ impl Progress for NoProgress {
     }
 }
 
+/// Work running beside another part that reports the progress: reports nothing, and is
+/// cancelled when `inner` is or when the other part gave up (`abandoned`).
+pub struct Beside<'a> {
+    pub inner: &'a dyn Progress,
+    pub abandoned: &'a std::sync::atomic::AtomicBool,
+}
+
+impl Progress for Beside<'_> {
+    fn report(&self, _fraction: f64) {}
+    fn cancelled(&self) -> bool {
+        self.inner.cancelled() || self.abandoned.load(std::sync::atomic::Ordering::Relaxed)
+    }
+}
+
 /// A part of a longer computation: reports `from + fraction · span` of the whole to `inner`,
 /// and is cancelled when `inner` is.
 pub struct Stage<'a> {
@@ -51,5 +65,32 @@ impl Progress for Stage<'_> {
     }
     fn cancelled(&self) -> bool {
         self.inner.cancelled()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::atomic::{AtomicBool, Ordering};
+
+    struct Cancellable(AtomicBool);
+
+    impl Progress for Cancellable {
+        fn report(&self, _fraction: f64) {}
+        fn cancelled(&self) -> bool {
+            self.0.load(Ordering::Relaxed)
+        }
+    }
+
+    #[test]
+    fn work_beside_stops_when_the_job_is_cancelled_or_the_other_part_gives_up() {
+        let (job, abandoned) = (Cancellable(AtomicBool::new(false)), AtomicBool::new(false));
+        let beside = Beside { inner: &job, abandoned: &abandoned };
+        assert!(beside.checkpoint().is_ok());
+        abandoned.store(true, Ordering::Relaxed);
+        assert!(matches!(beside.checkpoint(), Err(CoreError::Cancelled)));
+        abandoned.store(false, Ordering::Relaxed);
+        job.0.store(true, Ordering::Relaxed);
+        assert!(matches!(beside.checkpoint(), Err(CoreError::Cancelled)));
     }
 }

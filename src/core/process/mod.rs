@@ -50,8 +50,9 @@ pub use spec::{ProcessOptions, ToolCandidate, DEFAULT_MAX_FORCE_FACTOR, DEFAULT_
 pub use tune::{Tuning, TuningOutcome};
 
 use crate::core::pocketing::unreachable_area_mm2;
-use crate::core::progress::{Progress, Stage};
+use crate::core::progress::{Beside, Progress, Stage};
 use crate::core::CoreError;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// A candidate that leaves more than this much more of the cavity unreachable than the
 /// smallest candidate cannot cut it, mm² per layer (**assumed**: a square millimetre, well
@@ -59,7 +60,7 @@ use crate::core::CoreError;
 pub const UNREACHABLE_TOLERANCE_MM2: f64 = 1.0;
 
 /// Share of the progress spent on the candidates (screening included); the rest goes to
-/// tuning and the baseline.
+/// tuning and the baseline (which runs beside them and is waited for at the end).
 const CANDIDATES_SHARE: f64 = 0.75;
 /// Share of the progress spent on the screening, when there is one.
 const SCREENING_SHARE: f64 = 0.35;
@@ -113,7 +114,10 @@ fn unplannable_unless_cancelled<T>(step: Result<T, CoreError>) -> Result<Result<
 }
 
 /// Plans `cavity` with each of `candidates`, chooses the cheapest complete one, tunes it, and
-/// (with `baseline`) plans the conventional baseline.
+/// (with `baseline`) plans the conventional baseline. The baseline depends on nothing else:
+/// it is planned beside the candidates, on a thread of its own, and reports no progress of
+/// its own (the last tenth of the progress waits for it); it stops when the job is cancelled
+/// or the candidates' planning fails.
 pub fn plan_process(
     input: &CavityInput,
     candidates: &[ToolCandidate],
@@ -123,6 +127,43 @@ pub fn plan_process(
 ) -> Result<ProcessPlan, CoreError> {
     check_process(input, candidates, options)?;
     let cavity = &input.whole();
+    let abandoned = AtomicBool::new(false);
+    let (chosen, baseline) = std::thread::scope(|scope| {
+        let side = baseline.map(|spec| {
+            let beside = Beside { inner: progress, abandoned: &abandoned };
+            scope.spawn(move || plan_baseline(cavity, spec, options, &beside))
+        });
+        let chosen = choose_and_tune(input, cavity, candidates, options, progress);
+        if chosen.is_err() {
+            abandoned.store(true, Ordering::Relaxed);
+        }
+        let baseline = side.map(|h| h.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)));
+        (chosen, baseline)
+    });
+    let Chosen { reports, chosen, layers, evaluation, tuning, warnings } = chosen?;
+    let baseline = baseline.transpose()?;
+    progress.report(1.0);
+    Ok(report::assemble(cavity, reports, chosen, &layers, evaluation, tuning, baseline, warnings))
+}
+
+/// The candidates' plans, the one chosen, and its tuning.
+struct Chosen {
+    reports: Vec<CandidateReport>,
+    chosen: usize,
+    layers: Vec<LayerPlan>,
+    evaluation: Evaluation,
+    tuning: Tuning,
+    warnings: Vec<String>,
+}
+
+/// Screens and plans the candidates, chooses the cheapest complete plan and tunes it.
+fn choose_and_tune(
+    input: &CavityInput,
+    cavity: &Cavity,
+    candidates: &[ToolCandidate],
+    options: &ProcessOptions,
+    progress: &dyn Progress,
+) -> Result<Chosen, CoreError> {
     let mut warnings = Vec::new();
     let concave = cavity.min_concave_radius_mm();
     if concave.is_some_and(|r| r <= crate::core::tolerance::LENGTH_EPS_MM) {
@@ -259,13 +300,5 @@ pub fn plan_process(
             tuning.tools_needed
         ));
     }
-    let baseline = match baseline {
-        Some(spec) => {
-            let stage = Stage { inner: progress, from: CANDIDATES_SHARE + TUNING_SHARE, span: 0.1 };
-            Some(plan_baseline(cavity, spec, options, &stage)?)
-        }
-        None => None,
-    };
-    progress.report(1.0);
-    Ok(report::assemble(cavity, reports, chosen, &layers, evaluation, tuning, baseline, warnings))
+    Ok(Chosen { reports, chosen, layers, evaluation, tuning, warnings })
 }
