@@ -12,6 +12,7 @@ mod compose;
 mod coverage;
 mod observer;
 mod opening;
+mod path_checks;
 pub mod pitch;
 mod report;
 mod spec;
@@ -337,14 +338,23 @@ fn plan_rounds(
         if let Some(o) = observer.as_deref_mut() {
             o.restart();
         }
-        let after = verify::check_engagement(&path, &verifying, &roles, progress, |s| {
-            if let Some(g) = geometry.as_mut() {
-                g.samples.push(SampleGeometry::of(s, default_rpm));
-            }
-            if let Some(o) = observer.as_deref_mut() {
-                o.verified(s);
-            }
-        })?;
+        // The path's geometric checks need no simulation: they run beside the verification
+        // (spent in vain when a further round follows).
+        let (after, checks) = std::thread::scope(|scope| {
+            let checks = scope.spawn(|| {
+                path_checks::check_path(pocket, &boundary, spec, stretches.len(), &per_level, &levels, &path)
+            });
+            let after = verify::check_engagement(&path, &verifying, &roles, progress, |s| {
+                if let Some(g) = geometry.as_mut() {
+                    g.samples.push(SampleGeometry::of(s, default_rpm));
+                }
+                if let Some(o) = observer.as_deref_mut() {
+                    o.verified(s);
+                }
+            });
+            (after, checks.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
+        });
+        let after = after?;
         if let Some(g) = geometry.as_mut() {
             g.removed_volume_mm3 = after.removed_volume_mm3;
         }
@@ -362,8 +372,6 @@ fn plan_rounds(
         };
         if after.outside.overloaded == 0 || rounds >= MAX_ROUNDS || (!grows && widen.is_empty()) {
             let plan = report::assemble(report::Parts {
-                pocket,
-                boundary: &boundary,
                 spec,
                 axis,
                 classes,
@@ -377,6 +385,7 @@ fn plan_rounds(
                 move_treatment: composed.owner,
                 move_entry: composed.entry,
                 after,
+                checks,
                 rounds,
                 existing: existing.is_some(),
                 base_path: base.clone(),

@@ -3,23 +3,18 @@
 
 use super::cleared::TrimReport;
 use super::compose::LevelMoves;
-use super::coverage::Coverage;
+use super::path_checks::PathChecks;
 use super::spec::InsertionSpec;
 use super::treatments::{interval_class, Stretch};
-use super::verify::{check_gouges, EngagementOutcome, Verification};
+use super::verify::{EngagementOutcome, Verification};
 use crate::core::analysis::samples::PathSamples;
 use crate::core::cycles::CycleReport;
-use crate::core::geometry::Pocket;
-use crate::core::medial::{Boundary, BranchClasses, CriticalBranches, CriticalInterval, MedialAxis, RadiusClass};
+use crate::core::medial::{BranchClasses, CriticalBranches, CriticalInterval, MedialAxis, RadiusClass};
 use crate::core::toolpath::Toolpath;
 use serde::Serialize;
 
 /// Most moves a warning names (all are in `verification.overloads`).
 const MAX_MOVES_IN_WARNING: usize = 8;
-
-/// Points closer than this to the reachable area's edge are not counted as left over, mm
-/// (the coverage raster's resolution).
-const COVERAGE_TOLERANCE_CELLS: f64 = 2.0;
 
 /// What a region got.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, utoipa::ToSchema)]
@@ -116,8 +111,6 @@ pub struct InsertionDrawing {
 
 /// Everything [`assemble`] needs.
 pub(super) struct Parts<'a> {
-    pub pocket: &'a Pocket,
-    pub boundary: &'a Boundary,
     pub spec: &'a InsertionSpec,
     pub axis: MedialAxis,
     pub classes: Vec<BranchClasses>,
@@ -131,6 +124,8 @@ pub(super) struct Parts<'a> {
     pub move_treatment: Vec<usize>,
     pub move_entry: Vec<bool>,
     pub after: EngagementOutcome,
+    /// The finished path's geometric checks (found beside its verification).
+    pub checks: PathChecks,
     pub rounds: usize,
     pub existing: bool,
     pub base_path: Toolpath,
@@ -144,25 +139,17 @@ fn range(values: impl Iterator<Item = f64>) -> (Option<f64>, Option<f64>) {
 
 pub(super) fn assemble(p: Parts) -> InsertionPlan {
     let spec = p.spec;
-    let r = spec.r_mm();
     let mut warnings = Vec::new();
     let bottom = p.levels.iter().copied().fold(f64::INFINITY, f64::min);
-    let mut coverage = Coverage::new(p.pocket, p.boundary, r);
-    let base_owner = u16::try_from(p.stretches.len()).unwrap_or(u16::MAX - 1);
-    if let Some(last) = p.per_level.last() {
-        for (i, moves) in last.stretch_moves.iter().enumerate() {
-            coverage.stamp_moves(
-                moves,
-                r,
-                bottom + super::cleared::SAME_LEVEL_MM,
-                u16::try_from(i).unwrap_or(base_owner),
-            );
-        }
-        coverage.stamp_moves(&last.base, r, bottom + super::cleared::SAME_LEVEL_MM, base_owner);
-    }
-    let tol = COVERAGE_TOLERANCE_CELLS * coverage.cell_mm;
-    let (uncleared, uncleared_at) =
-        if bottom.is_finite() { coverage.left_over(r, spec.allowance_mm, tol) } else { (coverage.pocket_area(), None) };
+    let PathChecks {
+        coverage,
+        base_owner,
+        uncleared_mm2: uncleared,
+        uncleared_at,
+        gouges,
+        min_margin_mm: min_margin,
+        first_gouge,
+    } = p.checks;
     if bottom > spec.z_bottom_mm + super::cleared::SAME_LEVEL_MM {
         warnings.push(format!(
             "the path's lowest cutting level is {bottom} mm, above the layer's bottom {} mm",
@@ -262,8 +249,6 @@ pub(super) fn assemble(p: Parts) -> InsertionPlan {
         rapid_length_mm: figures.rapid_length_mm,
         time_min: figures.time_min,
     });
-    let (gouges, min_margin, first_gouge) =
-        check_gouges(&p.path, p.pocket, p.boundary, r, spec.allowance_mm, spec.z_top_mm);
     if p.existing && gouges > 0 {
         warnings.push("the given path comes closer to the walls than the tool radius plus the allowance".to_string());
     }
