@@ -198,10 +198,11 @@ fn figures(kind: JobKind, r: &Value) -> String {
                     c.iter()
                         .map(|c| {
                             format!(
-                                "D{} {} {}",
+                                "D{} {}{}{}",
                                 c["diameter_mm"],
                                 c["status"].as_str().unwrap_or("?"),
-                                c["cost"].as_f64().map_or(String::new(), |v| format!("{v:.2}"))
+                                c["cost"].as_f64().map_or(String::new(), |v| format!(" {v:.2}")),
+                                c["estimated_cost"].as_f64().map_or(String::new(), |v| format!(" (estimated {v:.2})"))
                             )
                         })
                         .collect()
