@@ -2,8 +2,10 @@
 // in inches, a deep zoom, a program file sent as a multipart upload, and a job renamed
 // and retagged; desktop and phone screenshots.
 
-/** The whole drawing's frame in mm, and its text's size on the screen, px. */
+/** The drawing's frame in mm, and its text's size on the screen, px (once it is drawn). */
 async function frameOf(page) {
+  await page.waitForSelector('#drawing svg .frame', { state: 'attached', timeout: 30_000 });
+  await page.waitForFunction(() => !document.querySelector('#drawing.loading'));
   return page.$eval('#drawing svg', (svg) => {
     const f = svg.querySelector('.frame');
     const n = (k) => Number(f.getAttribute(`data-${k}`));
@@ -42,7 +44,10 @@ export async function drawingSteps({ page, step, check, shot, BASE, jobId }) {
   });
 
   await step('zoom goes deeper than 1/2000 of the drawing, to the detail its data keeps, with the text at its size', async () => {
-    await page.waitForFunction(() => !document.querySelector('#drawing.loading'));
+    // The page as it is after the units changed back: drawn anew, whole.
+    await page.goto(`${BASE}/#/jobs/${jobId}`);
+    await page.reload();
+    await page.waitForSelector('#drawing svg .frame[data-windowed="false"]', { state: 'attached', timeout: 30_000 });
     const whole = await frameOf(page);
     const views = await page.evaluate(async (id) => (await fetch(`/v1/jobs/${id}/views`)).json(), jobId);
     check(views.detail_mm > 0 && views.detail_mm < whole.width / 2000, `the views give no detail finer than 1/2000: ${views.detail_mm} of ${whole.width} mm`);
