@@ -10,7 +10,7 @@ use crate::service::openapi::api_parts;
 use crate::service::rate_limit::RateLimits;
 use crate::service::state::AppState;
 use axum::body::Body;
-use axum::extract::DefaultBodyLimit;
+use axum::extract::{DefaultBodyLimit, State};
 use axum::http::{header, HeaderName, HeaderValue, Method, Request, Response, StatusCode};
 use axum::Router;
 use std::net::SocketAddr;
@@ -79,7 +79,7 @@ pub fn router(state: AppState) -> Router {
             Duration::from_secs(config.request_timeout_s),
         ))
         .layer(CatchPanicLayer::custom(panic_response))
-        .layer(axum::middleware::map_response(problem_for_bare_errors))
+        .layer(axum::middleware::from_fn_with_state(config.body_limit, problem_for_bare_errors))
         .layer(CompressionLayer::new().gzip(true))
         .layer(cors(&config.cors_origins))
         .layer(axum::middleware::from_fn_with_state(AllowedHosts::new(&config.allowed_hosts), check_host))
@@ -136,8 +136,17 @@ fn panic_response(_: Box<dyn std::any::Any + Send + 'static>) -> Response<Body> 
 }
 
 /// Turns error answers made outside the handlers (405, 408, 413, 503 from layers) into
-/// problem documents.
-async fn problem_for_bare_errors(response: Response<Body>) -> Response<Body> {
+/// problem documents. A 413 says whether the body was refused up front for the length it
+/// declared (before any of it, or any part of an upload, was read) and names the limit and
+/// the setting that raises it.
+async fn problem_for_bare_errors(
+    State(body_limit): State<usize>,
+    request: Request<Body>,
+    next: axum::middleware::Next,
+) -> Response<Body> {
+    let declared =
+        request.headers().get(header::CONTENT_LENGTH).and_then(|v| v.to_str().ok()).and_then(|v| v.parse::<u64>().ok());
+    let response = next.run(request).await;
     let status = response.status();
     let is_problem =
         response.headers().get(header::CONTENT_TYPE).is_some_and(|v| v.as_bytes().starts_with(PROBLEM_JSON.as_bytes()));
@@ -146,7 +155,14 @@ async fn problem_for_bare_errors(response: Response<Body>) -> Response<Body> {
     }
     let detail = match status {
         StatusCode::METHOD_NOT_ALLOWED => "this route does not take that method".to_string(),
-        StatusCode::PAYLOAD_TOO_LARGE => "the request body is larger than the configured limit".to_string(),
+        StatusCode::PAYLOAD_TOO_LARGE => match declared {
+            Some(length) if length > body_limit as u64 => format!(
+                "the request declares a body of {length} bytes (Content-Length), more than the limit of {body_limit} bytes, so none of it was read; the service's --body-limit (DIEPLAN_BODY_LIMIT) raises it"
+            ),
+            _ => format!(
+                "the request body grew past the limit of {body_limit} bytes; the service's --body-limit (DIEPLAN_BODY_LIMIT) raises it"
+            ),
+        },
         StatusCode::SERVICE_UNAVAILABLE | StatusCode::REQUEST_TIMEOUT => {
             "the request took longer than the configured timeout".to_string()
         }

@@ -59,6 +59,33 @@ async fn upload(app: &TestApp, path: &str, parts: &[(&str, Option<&str>, &[u8])]
     Answer { status, headers, body: serde_json::from_str(&text).unwrap_or(Value::Null), text }
 }
 
+/// POSTs `body` in chunks (`Transfer-Encoding: chunked`, no `Content-Length`, as a client
+/// streaming a file sends it) and returns the raw answer.
+async fn chunked_post(app: &TestApp, path: &str, content_type: &str, body: &[u8]) -> String {
+    use tokio::io::{AsyncReadExt, AsyncWriteExt};
+    const CHUNK: usize = 256;
+    let url = reqwest::Url::parse(&app.url(path)).unwrap();
+    let mut stream = tokio::net::TcpStream::connect((url.host_str().unwrap(), url.port().unwrap())).await.unwrap();
+    let head = format!(
+        "POST {path} HTTP/1.1\r\nHost: {}\r\nContent-Type: {content_type}\r\nTransfer-Encoding: chunked\r\nConnection: close\r\n\r\n",
+        url.host_str().unwrap()
+    );
+    stream.write_all(head.as_bytes()).await.unwrap();
+    for chunk in body.chunks(CHUNK) {
+        // The service may answer and close before the whole body is sent.
+        if stream.write_all(format!("{:x}\r\n", chunk.len()).as_bytes()).await.is_err()
+            || stream.write_all(chunk).await.is_err()
+            || stream.write_all(b"\r\n").await.is_err()
+        {
+            break;
+        }
+    }
+    let _ = stream.write_all(b"0\r\n\r\n").await;
+    let mut answer = Vec::new();
+    let _ = stream.read_to_end(&mut answer).await;
+    String::from_utf8_lossy(&answer).into_owned()
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_name_and_tags_given_on_submit_come_back_in_the_job_and_in_the_list() {
     let app = TestApp::start().await;
@@ -184,8 +211,27 @@ async fn a_bad_upload_is_refused_naming_the_part() {
     assert_problem(&twice, 422, Some("request.program"));
     let small = TestApp::start_with(|c| c.body_limit = 1024).await;
     let big = "G1 X1\n".repeat(400);
+    // Refused up front by its declared length: said plainly, with the limit and the setting.
     let too_large = upload(&small, "/v1/analysis", &[("program", Some("big.nc"), big.as_bytes())]).await;
     assert_problem(&too_large, 413, None);
+    let detail = too_large.body["detail"].as_str().unwrap();
+    assert!(
+        detail.contains("Content-Length")
+            && detail.contains("limit of 1024 bytes")
+            && detail.contains("DIEPLAN_BODY_LIMIT"),
+        "{detail}"
+    );
+    // Streamed without a length: the part it grew past the limit in is named.
+    let request = br#"{"tool_type": "square", "diameter_mm": 10}"#;
+    let (content_type, body) = multipart(&[("request", None, request), ("program", Some("big.nc"), big.as_bytes())]);
+    let streamed = chunked_post(&small, "/v1/analysis", &content_type, &body).await;
+    assert!(streamed.starts_with("HTTP/1.1 413"), "{streamed}");
+    assert!(
+        streamed.contains("part program")
+            && streamed.contains("limit of 1024 bytes")
+            && streamed.contains("--body-limit"),
+        "{streamed}"
+    );
     let broken = app
         .client
         .post(app.url("/v1/analysis"))
@@ -199,5 +245,59 @@ async fn a_bad_upload_is_refused_naming_the_part() {
     assert_problem(&plan, 415, None);
     assert_eq!(app.get("/v1/jobs").await.body["total"], 0);
     small.stop().await;
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_job_is_renamed_and_retagged_with_the_rules_of_a_submit_and_found_by_its_new_labels() {
+    let app = TestApp::start_with(|c| c.workers = Some(0)).await;
+    let id = app.post("/v1/jobs", conditions("Cavity A", &["die:4711", "rough"])).await.body["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    let job = format!("/v1/jobs/{id}");
+    // A field left out stays; the list and the search follow the new labels.
+    let renamed = app.patch(&job, json!({"name": "Cavity A, finishing"})).await;
+    assert_eq!(renamed.status, 200, "{}", renamed.text);
+    assert_eq!(
+        (renamed.body["name"].as_str(), renamed.body["tags"].clone()),
+        (Some("Cavity A, finishing"), json!(["die:4711", "rough"]))
+    );
+    let retagged = app.patch(&job, json!({"tags": ["die:4711", "finish"]})).await;
+    assert_eq!(
+        (retagged.body["name"].as_str(), retagged.body["tags"].clone()),
+        (Some("Cavity A, finishing"), json!(["die:4711", "finish"]))
+    );
+    assert_eq!(names(&app.get("/v1/jobs?tag=finish&name=FINISHING").await.body), ["Cavity A, finishing"]);
+    assert_eq!(app.get("/v1/jobs?tag=rough").await.body["total"], 0, "the old tag is gone");
+    // Every fault at once, and a refused patch changes nothing.
+    let bad = app.patch(&job, json!({"name": "", "tags": ["ok", "bad tag", "ok"], "kind": "plan"})).await;
+    assert_problem(&bad, 422, Some("name"));
+    assert_eq!(fields(&bad), ["kind", "name", "tags[1]", "tags[2]"], "{}", bad.text);
+    let too_many: Vec<String> = (0..21).map(|i| format!("t{i}")).collect();
+    assert_eq!(fields(&app.patch(&job, json!({"tags": too_many, "name": 3})).await), ["name", "tags"]);
+    assert_eq!(app.get(&job).await.body["tags"], json!(["die:4711", "finish"]));
+    // null removes the name, [] the tags.
+    let cleared = app.patch(&job, json!({"name": null, "tags": []})).await;
+    assert_eq!(cleared.status, 200, "{}", cleared.text);
+    assert!(cleared.body["name"].is_null() && cleared.body["tags"] == json!([]), "{}", cleared.text);
+    assert_problem(&app.patch("/v1/jobs/00000000-0000-4000-8000-000000000000", json!({"name": "x"})).await, 404, None);
+    assert_problem(&app.patch("/v1/jobs/nope", json!({"name": "x"})).await, 400, None);
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn whoever_may_submit_jobs_may_relabel_their_own_and_no_one_elses() {
+    let app = TestApp::start_with(|c| c.workers = Some(0)).await;
+    let admin = app.make_key(None, "admin", "admin").await;
+    let alice = app.make_key(Some(&admin), "planner", "station A").await;
+    let bob = app.make_key(Some(&admin), "planner", "station B").await;
+    let reader = app.make_key(Some(&admin), "reader", "viewer").await;
+    let made = app.send_as(&alice, reqwest::Method::POST, "/v1/jobs", Some(conditions("A's job", &[]))).await;
+    let job = format!("/v1/jobs/{}", made.body["id"].as_str().unwrap());
+    for (key, status) in [(&alice, 200), (&bob, 404), (&reader, 403), (&admin, 200)] {
+        let a = app.send_as(key, reqwest::Method::PATCH, &job, Some(json!({"tags": ["mine"]}))).await;
+        assert_eq!(a.status, status, "{}", a.text);
+    }
     app.stop().await;
 }

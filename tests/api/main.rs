@@ -34,6 +34,7 @@ mod restarts;
 mod retention;
 mod schemathesis;
 mod tool_defaults;
+mod trace_lines;
 mod trochoids;
 mod validation;
 mod web;

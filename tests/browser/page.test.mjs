@@ -11,6 +11,7 @@ import { mkdtempSync, mkdirSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { labelSteps, linkSteps } from './workbench.steps.mjs';
+import { drawingSteps, uploadSteps } from './workbench3.steps.mjs';
 
 const BASE = (process.argv[2] || process.env.DIEPLAN || 'http://127.0.0.1:8080').replace(/\/$/, '');
 const SHOTS = resolve(process.env.SCREENSHOT_DIR || 'target/browser-screenshots');
@@ -339,7 +340,9 @@ try {
   });
 
   await linkSteps({ page, step, check, shot, BASE, jobId });
+  await drawingSteps({ page, step, check, shot, BASE, jobId });
   await labelSteps({ page, step, check, shot, BASE, consoleErrors });
+  await uploadSteps({ page, step, check, shot, BASE, consoleErrors });
 
   await step('once the service has keys, the page asks for one and keeps it', async () => {
     const made = await page.evaluate(async () => {

@@ -1,6 +1,7 @@
 //! What a plan view shows ([`DrawOptions`]) and why a request for one is refused
 //! ([`DrawError`]), with the checks that resolve the options against a scene.
 
+use super::display_units::LengthUnit;
 use super::frame::Extent;
 use super::scene::{Quantity, Scene, ScenePath};
 
@@ -30,6 +31,9 @@ pub struct DrawOptions {
     /// The part of the plane to draw, mm (a zoomed view: drawn anew at this scale, its
     /// labels and strokes at their usual size); `None`: the whole scene.
     pub window: Option<Extent>,
+    /// The unit the frame's coordinates, the scale bar, the feed legend and the length
+    /// labels are written in (the `frame` element stays in mm).
+    pub unit: LengthUnit,
 }
 
 impl Default for DrawOptions {
@@ -44,6 +48,7 @@ impl Default for DrawOptions {
             trochoids: true,
             width_px: DEFAULT_WIDTH_PX,
             window: None,
+            unit: LengthUnit::Mm,
         }
     }
 }
@@ -176,8 +181,12 @@ mod tests {
         Scene {
             layers: vec![LayerInfo { name: "L1".into(), z_top: 0.0, z_bottom: -1.0 }],
             paths: vec![
-                ScenePath { name: "input".into(), runs: vec![run(Quantity::Alpha)] },
-                ScenePath { name: "planned".into(), runs: vec![run(Quantity::Feed), run(Quantity::Force)] },
+                ScenePath { name: "input".into(), runs: vec![run(Quantity::Alpha)], detail_mm: None },
+                ScenePath {
+                    name: "planned".into(),
+                    runs: vec![run(Quantity::Feed), run(Quantity::Force)],
+                    detail_mm: None,
+                },
             ],
             ..Scene::default()
         }

@@ -3,6 +3,7 @@
 //! at them and commit them).
 
 use super::chart::render_chart;
+use super::display_units::LengthUnit;
 use super::plan_view::{render_drawing, DrawOptions};
 use super::scene::*;
 use super::svg::check_well_formed;
@@ -59,6 +60,7 @@ pub(super) fn small_scene() -> Scene {
         paths: vec![ScenePath {
             name: "planned".into(),
             runs: vec![run(outer, outer_alpha, 1200.0), rapid, run(inner, inner_alpha, 1500.0)],
+            detail_mm: Some(0.0025),
         }],
         medial: vec![
             medial(MedialClass::A, vec![[0.0, 0.0], [20.0, 20.0]]),
@@ -150,6 +152,12 @@ fn check_golden(name: &str, svg: &str) {
 #[test]
 fn the_small_scene_drawing_matches_its_golden_file() {
     check_golden("scene.svg", &render_drawing(&small_scene(), &DrawOptions::default()).expect("draws"));
+}
+
+#[test]
+fn the_small_scene_drawn_in_inches_matches_its_golden_file() {
+    let options = DrawOptions { unit: LengthUnit::Inch, color_by: Some(Quantity::Feed), ..DrawOptions::default() };
+    check_golden("scene_inch.svg", &render_drawing(&small_scene(), &options).expect("draws"));
 }
 
 #[test]

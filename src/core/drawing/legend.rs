@@ -1,6 +1,7 @@
 //! The legend of a plan view: the colour ramp with its ticks, the entries for what else
 //! is drawn, and the scale bar.
 
+use super::display_units::{caption_in, length_label, LengthUnit};
 use super::palette::{quantity_bin_color, Rgb, ValueScale, BINS, INK};
 use super::scene::Quantity;
 use super::svg::{text_width, Anchor, Attrs, Svg};
@@ -45,8 +46,16 @@ pub struct Entry {
 }
 
 /// Draws the colour ramp of `scale` from `(x, y)` (top left of the caption) `width` px
-/// wide, with min/max (and limit) ticks; returns the bottom of its labels.
-pub fn draw_ramp(svg: &mut Svg, at: (f64, f64), width: f64, k: f64, scale: &ValueScale, quantity: Quantity) -> f64 {
+/// wide, with min/max (and limit) ticks; returns the bottom of its labels. A feed's caption
+/// and labels are in `unit` per minute (its `data-` attributes stay in mm/min).
+pub fn draw_ramp(
+    svg: &mut Svg,
+    at: (f64, f64),
+    width: f64,
+    k: f64,
+    (scale, quantity): (&ValueScale, Quantity),
+    unit: LengthUnit,
+) -> f64 {
     let font = LEGEND_FONT * k;
     let (x, y) = at;
     // The scale in data attributes: the page reads a colour bin's values from them.
@@ -59,7 +68,9 @@ pub fn draw_ramp(svg: &mut Svg, at: (f64, f64), width: f64, k: f64, scale: &Valu
         group = group.show("data-limit", limit);
     }
     svg.group(group);
-    svg.text((x, y + font), font, Anchor::Start, quantity.caption(), Attrs::new().class("legend-caption"));
+    let caption = caption_in(quantity.caption(), unit);
+    svg.text((x, y + font), font, Anchor::Start, &caption, Attrs::new().class("legend-caption"));
+    let shown = |v: f64| if quantity == Quantity::Feed { unit.of_mm(v) } else { v };
     let ramp_top = y + font * 1.5;
     let ramp_h = RAMP_HEIGHT * k;
     let bin_w = width / BINS as f64;
@@ -83,8 +94,9 @@ pub fn draw_ramp(svg: &mut Svg, at: (f64, f64), width: f64, k: f64, scale: &Valu
     if let Some(l) = limit {
         ticks.push((l, format!("{} limit", value_label(l)), "legend-limit"));
     }
-    ticks.push((scale.min, value_label(scale.min), "legend-min"));
-    let top = if scale.top_clipped { format!("≥ {}", value_label(scale.max)) } else { value_label(scale.max) };
+    ticks.push((scale.min, value_label(shown(scale.min)), "legend-min"));
+    let max = value_label(shown(scale.max));
+    let top = if scale.top_clipped { format!("≥ {max}") } else { max };
     ticks.push((scale.max, top, "legend-max"));
     let mut placed: Vec<(f64, f64)> = Vec::new();
     for (value, text, class) in ticks {
@@ -156,22 +168,36 @@ pub fn draw_entries(svg: &mut Svg, entries: &[Entry], at: (f64, f64), max_x: f64
     y + ENTRY_ROW * k
 }
 
-/// Draws a scale bar of a round length (1, 2 or 5 × 10^k mm) ending at `right` (px),
-/// its bar at `y`, for a drawing of `px_per_mm` and `drawing_width` px.
-pub fn draw_scale_bar(svg: &mut Svg, right: f64, y: f64, px_per_mm: f64, drawing_width: f64, k: f64) {
-    let length_mm = round_down(drawing_width * SCALE_BAR_FRACTION / px_per_mm);
-    if length_mm <= 0.0 {
+/// Draws a scale bar of a round length (1, 2 or 5 × 10^k of `unit`) ending at `right`
+/// (px), its bar at `y`, for a drawing of `px_per_mm` and `drawing_width` px.
+pub fn draw_scale_bar(
+    svg: &mut Svg,
+    (right, y): (f64, f64),
+    px_per_mm: f64,
+    drawing_width: f64,
+    k: f64,
+    unit: LengthUnit,
+) {
+    let length = round_down(unit.of_mm(drawing_width * SCALE_BAR_FRACTION / px_per_mm));
+    if length <= 0.0 {
         return;
     }
+    let length_mm = length * unit.mm();
     let font = LEGEND_FONT * k;
     let w = length_mm * px_per_mm;
     let left = right - w;
     let stroke = Attrs::new().show("stroke", INK).num("stroke-width", 1.5 * k);
-    svg.group(Attrs::new().class("scale-bar").str("data-length-mm", &value_label(length_mm)));
+    svg.group(
+        Attrs::new()
+            .class("scale-bar")
+            .str("data-length-mm", &value_label(length_mm))
+            .str("data-length", &value_label(length))
+            .str("data-unit", unit.symbol()),
+    );
     svg.line((left, y), (right, y), stroke.clone());
     svg.line((left, y - SCALE_BAR_TICK * k), (left, y), stroke.clone());
     svg.line((right, y - SCALE_BAR_TICK * k), (right, y), stroke);
-    let label = format!("{} mm", value_label(length_mm));
+    let label = length_label(length_mm, unit);
     svg.text((left + w / 2.0, y - SCALE_BAR_TICK * k - font * 0.3), font, Anchor::Middle, &label, Attrs::new());
     svg.end_group();
 }

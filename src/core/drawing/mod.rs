@@ -13,6 +13,7 @@ pub mod downsample;
 pub mod draw_options;
 pub mod feeds_scene;
 pub mod frame;
+pub mod frame_axes;
 pub mod insertion_scene;
 pub mod labels;
 pub mod legend;

@@ -4,6 +4,7 @@
 use super::scene::{LayerInfo, Quantity, ScenePath};
 use super::trace::{trace_path, TraceOptions, TraceValues};
 use crate::core::analysis::samples::PathSamples;
+use crate::core::feed::edit::LineChange;
 use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Motion, Toolpath};
 
@@ -13,6 +14,48 @@ const MM_PER_M: f64 = 1000.0;
 /// The programmed feed of every move (`None` for rapids).
 pub fn move_feeds(path: &Toolpath) -> Vec<Option<f64>> {
     path.moves.iter().map(|m| if matches!(m.motion, Motion::Rapid) { None } else { m.feed_mm_min }).collect()
+}
+
+/// `path` with each move's line replaced by the line of the written program that ends it
+/// (`move_lines`, one per move, 1-based; a move without one keeps its line), so that a
+/// drawing of it names the lines of the program that is served.
+pub fn with_lines(path: &Toolpath, move_lines: &[u32]) -> Toolpath {
+    let mut path = path.clone();
+    for (m, &line) in path.moves.iter_mut().zip(move_lines) {
+        m.line = line;
+    }
+    path
+}
+
+/// Per move of `path` (the moves of a program whose text was edited, each carrying its
+/// line of the text sent), the line of the edited text that ends it: a block split into
+/// several (a changed line whose `after` holds several lines) pushes the lines after it
+/// down, and its k-th piece is on its k-th line.
+pub fn edited_move_lines(path: &Toolpath, changes: &[LineChange]) -> Vec<u32> {
+    // Each split line with the lines added up to and including it.
+    let mut added = 0u32;
+    let grown: Vec<(u32, u32, u32)> = changes
+        .iter()
+        .filter_map(|c| {
+            let lines = u32::try_from(c.after.split('\n').count()).unwrap_or(u32::MAX);
+            (lines > 1).then(|| {
+                added = added.saturating_add(lines - 1);
+                (c.line, lines, added)
+            })
+        })
+        .collect();
+    let mut previous = (0u32, 0u32);
+    path.moves
+        .iter()
+        .map(|m| {
+            let before = grown.partition_point(|g| g.0 < m.line);
+            let shift = before.checked_sub(1).map_or(0, |i| grown[i].2);
+            let piece = if previous.0 == m.line { previous.1 + 1 } else { 0 };
+            previous = (m.line, piece);
+            let pieces = grown.get(before).filter(|g| g.0 == m.line).map_or(1, |g| g.1);
+            m.line.saturating_add(shift).saturating_add(piece.min(pieces - 1))
+        })
+        .collect()
 }
 
 /// Tool-life consumption per metre of every move, % of one tool per m, from each
@@ -70,6 +113,19 @@ mod tests {
             tool: None,
             line: 1,
         }
+    }
+
+    #[test]
+    fn moves_of_an_edited_program_name_its_lines_after_the_blocks_split_before_them() {
+        let mut moves = vec![line(0.0, 1.0, Motion::Linear); 5];
+        for (m, l) in moves.iter_mut().zip([2, 3, 3, 3, 5]) {
+            m.line = l;
+        }
+        let path = Toolpath { moves, events: Vec::new(), source_units: Units::Mm, warnings: Vec::new() };
+        let change = |line: u32, after: &str| LineChange { line, before: String::new(), after: after.into() };
+        // Line 3 split in three pieces (two lines added), line 2 only got an F word.
+        let changes = [change(2, "G1 X1 F900"), change(3, "G1 X1 F800\nG1 X2 F700\nG1 X3 F600")];
+        assert_eq!(edited_move_lines(&path, &changes), [2, 3, 4, 5, 7]);
     }
 
     #[test]

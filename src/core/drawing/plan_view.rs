@@ -5,9 +5,11 @@
 //! `region-label`, `trochoid`, `legend-…`, `scale-bar`, `title`) and `data-` attributes
 //! (bin, class, kind, lines, …) for the web page and the tests.
 
+use super::display_units::{caption_in, layer_name};
 use super::draw_options::resolve;
 pub use super::draw_options::{DrawError, DrawOptions, DEFAULT_WIDTH_PX, MAX_WIDTH_PX, MIN_WIDTH_PX};
 use super::frame::{Extent, Frame};
+use super::frame_axes::draw_frame_axes;
 use super::labels::draw_region_labels;
 use super::legend::{draw_entries, draw_ramp, draw_scale_bar, Entry, Swatch, LEGEND_FONT};
 use super::palette::{self, quantity_bin_color, Rgb, ValueScale};
@@ -63,7 +65,7 @@ pub fn render_drawing(scene: &Scene, options: &DrawOptions) -> Result<String, Dr
     // The document's height is known only once the legend is laid out: the body and
     // the legend are drawn as fragments first.
     let layer_name = match resolved.layer {
-        Some(l) => scene.layers[l].name.clone(),
+        Some(l) => layer_name(&scene.layers[l], options.unit),
         None => "all layers".into(),
     };
     let path_name = resolved.path.map_or("no path", |p| p.name.as_str());
@@ -88,7 +90,7 @@ pub fn render_drawing(scene: &Scene, options: &DrawOptions) -> Result<String, Dr
         }
     }
     let drawn = resolved.path.map(|p| p.name.as_str());
-    if options.trochoids && draw_trochoids(&mut body, scene, &frame, k, (false, drawn), &layer_ok) {
+    if options.trochoids && draw_trochoids(&mut body, scene, &frame, k, (false, drawn, options.unit), &layer_ok) {
         entries.push(Entry {
             class: "legend-trochoid",
             swatch: Swatch::Band { color: palette::TROCHOID, opacity: palette::TROCHOID_OPACITY },
@@ -149,7 +151,7 @@ pub fn render_drawing(scene: &Scene, options: &DrawOptions) -> Result<String, Dr
         }
     }
     // Spans whose loops are too dense to see at this scale, over the path.
-    if options.trochoids && draw_trochoids(&mut body, scene, &frame, k, (true, drawn), &layer_ok) {
+    if options.trochoids && draw_trochoids(&mut body, scene, &frame, k, (true, drawn, options.unit), &layer_ok) {
         entries.push(Entry {
             class: "legend-trochoid-clustered",
             swatch: Swatch::Band { color: palette::TROCHOID, opacity: 1.0 },
@@ -157,15 +159,16 @@ pub fn render_drawing(scene: &Scene, options: &DrawOptions) -> Result<String, Dr
         });
     }
     draw_region_labels(&mut body, scene, &regions, &frame, k, band);
+    draw_frame_axes(&mut body, &frame, options.unit, k);
 
     // Legend: the ramp and the scale bar side by side, the entries below.
     let mut legend = Svg::fragment();
     let mut bottom = legend_top;
     if let (Some(q), Some(scale)) = (resolved.color_by, scale) {
-        bottom = draw_ramp(&mut legend, (margin, legend_top), inner * RAMP_FRACTION, k, &scale, q);
+        bottom = draw_ramp(&mut legend, (margin, legend_top), inner * RAMP_FRACTION, k, (&scale, q), options.unit);
     }
     let bar_y = legend_top + LEGEND_FONT * k * 3.0;
-    draw_scale_bar(&mut legend, width - margin, bar_y, frame.scale, inner, k);
+    draw_scale_bar(&mut legend, (width - margin, bar_y), frame.scale, inner, k, options.unit);
     bottom = bottom.max(bar_y + LEGEND_FONT * k);
     bottom = draw_entries(&mut legend, &entries, (margin, bottom + margin * 0.5), width - margin, k);
     let height = bottom + margin;
@@ -177,7 +180,7 @@ pub fn render_drawing(scene: &Scene, options: &DrawOptions) -> Result<String, Dr
     let title_font = (inner / text_width(&scene.title, 1.0)).min(TITLE_FONT * k).max(MIN_TITLE_SHRINK * TITLE_FONT * k);
     svg.text((margin, margin + TITLE_FONT * k), title_font, Anchor::Start, &scene.title, Attrs::new().class("title"));
     let coloured = match resolved.color_by {
-        Some(q) => format!("coloured by {}", q.caption()),
+        Some(q) => format!("coloured by {}", caption_in(q.caption(), options.unit)),
         None => "no values to colour by".into(),
     };
     let subtitle = format!("{path_name} — {layer_name} — {coloured}");
@@ -366,14 +369,30 @@ fn draw_medial(
     drawn
 }
 
-/// Appends a subpath through `points`.
+/// Vertices closer than this to the last one drawn are left out, px: the scene keeps more
+/// detail than a whole view can show (for the windows zoomed into), and a drawing never
+/// needs more than its pixels.
+const RENDER_DETAIL_PX: f64 = 0.25;
+
+/// Appends a subpath through `points`, leaving out the vertices within
+/// [`RENDER_DETAIL_PX`] of the last one drawn (the last vertex is always drawn).
 fn subpath(d: &mut PathData, points: impl IntoIterator<Item = (f64, f64)>) {
-    for (i, p) in points.into_iter().enumerate() {
-        if i == 0 {
-            d.move_to(p);
-        } else {
-            d.line_to(p);
+    let mut last: Option<(f64, f64)> = None;
+    let mut skipped: Option<(f64, f64)> = None;
+    for p in points {
+        match last {
+            None => d.move_to(p),
+            Some(l) if (p.0 - l.0).hypot(p.1 - l.1) < RENDER_DETAIL_PX => {
+                skipped = Some(p);
+                continue;
+            }
+            Some(_) => d.line_to(p),
         }
+        last = Some(p);
+        skipped = None;
+    }
+    if let Some(p) = skipped {
+        d.line_to(p);
     }
 }
 

@@ -4,12 +4,23 @@
 
 use super::charts::bar_chart;
 use super::outlines::pocket_outlines;
-use super::paths::{move_feeds, traced, wear_rates};
+use super::paths::{move_feeds, traced, wear_rates, with_lines};
 use super::scene::{BarGroup, ChartBody, ChartData, LayerInfo, Quantity, Scene};
 use crate::core::process::{CandidateStatus, Cavity, ProcessPlan, Step};
 
 /// The chosen tool's program.
 pub const PROGRAM_PATH: &str = "program";
+/// The conventional ball-end baseline's program.
+pub const BASELINE_PATH: &str = "baseline";
+
+/// The lines of the written programs, per move (1-based): the plan's program and its
+/// baseline's ([`crate::core::nc::WrittenProgram::move_lines`]), so that the drawing's
+/// vertices name the lines of the programs served.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct WrittenLines<'a> {
+    pub program: &'a [u32],
+    pub baseline: Option<&'a [u32]>,
+}
 
 fn status_name(status: CandidateStatus) -> &'static str {
     match status {
@@ -117,8 +128,10 @@ fn baseline_chart(plan: &ProcessPlan, currency: &str) -> Option<ChartData> {
     ))
 }
 
-/// The scene of `plan` for `cavity`.
-pub fn process_scene(cavity: &Cavity, plan: &ProcessPlan) -> Scene {
+/// The scene of `plan` for `cavity`: the baseline's program (when planned), then the
+/// chosen tool's program, their vertices named by the lines written (`lines`; every
+/// layer of the plan is a part of its one program, so a layer's vertices name lines of it).
+pub fn process_scene(cavity: &Cavity, plan: &ProcessPlan, lines: WrittenLines) -> Scene {
     let layers: Vec<LayerInfo> = plan
         .layers
         .iter()
@@ -128,17 +141,21 @@ pub fn process_scene(cavity: &Cavity, plan: &ProcessPlan) -> Scene {
             z_bottom: l.z_bottom_mm,
         })
         .collect();
-    let program = &plan.evaluation.program;
+    let program = with_lines(&plan.evaluation.program, lines.program);
     let path = traced(
         PROGRAM_PATH,
-        program,
+        &program,
         None,
         vec![
-            (Quantity::Feed, move_feeds(program)),
-            (Quantity::Wear, wear_rates(program, &plan.evaluation.move_consumption)),
+            (Quantity::Feed, move_feeds(&program)),
+            (Quantity::Wear, wear_rates(&program, &plan.evaluation.move_consumption)),
         ],
         &layers,
     );
+    let baseline = plan.baseline.as_ref().map(|b| {
+        let program = with_lines(&b.program, lines.baseline.unwrap_or_default());
+        traced(BASELINE_PATH, &program, None, vec![(Quantity::Feed, move_feeds(&program))], &layers)
+    });
     let mut outlines = Vec::new();
     for (k, layer) in cavity.layers.iter().enumerate() {
         if k == 0 || cavity.layers[k - 1].pocket != layer.pocket {
@@ -162,7 +179,7 @@ pub fn process_scene(cavity: &Cavity, plan: &ProcessPlan) -> Scene {
         alpha_limit_deg: None,
         outlines,
         layers,
-        paths: vec![path],
+        paths: baseline.into_iter().chain([path]).collect(),
         medial: Vec::new(),
         regions: Vec::new(),
         trochoids: Vec::new(),

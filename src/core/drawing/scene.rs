@@ -106,6 +106,11 @@ pub struct Run {
 pub struct ScenePath {
     pub name: String,
     pub runs: Vec<Run>,
+    /// The finest detail the runs keep, mm: the tolerance they were traced to (the path
+    /// is within it everywhere). A drawing can be zoomed until it spans a few px, no
+    /// further. `None` in scenes stored before it was kept.
+    #[serde(default)]
+    pub detail_mm: Option<f64>,
 }
 
 /// The class of a medial-axis stretch by R/r (seed 004 §2.3, Figure 6).
@@ -244,6 +249,21 @@ impl Scene {
         found.sort();
         found.dedup();
         found
+    }
+
+    /// The finest detail any path keeps, mm (`None`: no path says).
+    pub fn detail_mm(&self) -> Option<f64> {
+        self.paths.iter().filter_map(|p| p.detail_mm).reduce(f64::min)
+    }
+
+    /// Renames the NC lines of the critical regions of path `name`: `to` maps a line they
+    /// were found on (a line of the program the path was edited from) to the line of the
+    /// program that is served for the path.
+    pub fn relabel_regions(&mut self, name: &str, to: impl Fn(u32) -> u32) {
+        for region in self.regions.iter_mut().filter(|r| r.path == name) {
+            region.start_line = to(region.start_line);
+            region.end_line = to(region.end_line);
+        }
     }
 
     pub fn chart(&self, id: &str) -> Option<&ChartData> {

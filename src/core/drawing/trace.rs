@@ -23,12 +23,15 @@ use crate::core::toolpath::{Motion, Move, Plane, Toolpath, P3};
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
 
-/// Default tolerance as a fraction of the path's XY extent (0.5 px of a 1000 px drawing).
-pub const DEFAULT_TOLERANCE_FRACTION: f64 = 1.0 / 2000.0;
+/// Default tolerance as a fraction of the path's XY extent: 0.05 px of a 1000 px drawing
+/// of the whole, so that a window zoomed in 10 times and more still shows the path
+/// within half a pixel (a drawing leaves out what its pixels cannot show).
+pub const DEFAULT_TOLERANCE_FRACTION: f64 = 1.0 / 20000.0;
 /// Default number of colour bins per quantity.
 pub const DEFAULT_VALUE_BINS: usize = 32;
-/// Smallest tolerance, mm (a path without extent).
-pub const MIN_TOLERANCE_MM: f64 = 1e-6;
+/// Smallest tolerance, mm: a micrometre, below any machine's resolution (and the
+/// smallest window a drawing shows).
+pub const MIN_TOLERANCE_MM: f64 = 1e-3;
 /// A vertex is in a layer when its z is within the layer's range widened by this, mm.
 pub const LAYER_Z_TOLERANCE_MM: f64 = 1e-6;
 /// Moves shorter than this draw nothing, mm.
@@ -124,7 +127,7 @@ pub fn trace_path(
         s += length;
     }
     tracer.finish_run();
-    ScenePath { name: name.to_string(), runs: tracer.runs }
+    ScenePath { name: name.to_string(), runs: tracer.runs, detail_mm: Some(tolerance) }
 }
 
 /// The index of `q` in a value array.

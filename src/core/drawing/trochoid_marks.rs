@@ -4,6 +4,7 @@
 //! clustered instead, drawn over the path as one band with a label giving its loops and
 //! pitch; zoomed in far enough to separate them, the loops themselves are drawn.
 
+use super::display_units::{length_label, LengthUnit};
 use super::frame::Frame;
 use super::labels::REGION_FONT;
 use super::palette;
@@ -49,13 +50,14 @@ fn midpoint(points: &[[f64; 2]]) -> [f64; 2] {
 }
 
 /// Draws the spans that are (`dense`) or are not clustered at `frame`'s scale; returns
-/// whether any was drawn. The open ones go under the path, the clustered ones over it.
+/// whether any was drawn. The open ones go under the path, the clustered ones over it;
+/// a clustered span's label gives its pitch in `unit`.
 pub fn draw_trochoids(
     svg: &mut Svg,
     scene: &Scene,
     frame: &Frame,
     k: f64,
-    (dense, drawn): (bool, Option<&str>),
+    (dense, drawn, unit): (bool, Option<&str>, LengthUnit),
     layer_ok: &dyn Fn(Option<usize>) -> bool,
 ) -> bool {
     let mut any = false;
@@ -81,7 +83,7 @@ pub fn draw_trochoids(
         let length_mm = polyline_mm(&mark.points);
         if let (true, Some(pitch)) = (dense && frame.len_px(length_mm) >= MIN_LABELLED_SPAN_PX, mark.pitch_mm) {
             let loops = (length_mm / pitch).round();
-            let text = format!("≈{} loops, pitch {} mm", value_label(loops), value_label(pitch));
+            let text = format!("≈{} loops, pitch {}", value_label(loops), length_label(pitch, unit));
             let (x, y) = frame.px(midpoint(&mark.points));
             let font = REGION_FONT * k;
             // A white halo keeps the label readable over the band and the path.
@@ -122,8 +124,8 @@ mod tests {
         let scene = Scene { trochoids: vec![mark(Some(0.5))], ..Scene::default() };
         let mut svg = Svg::fragment();
         let planned = Some("planned");
-        assert!(!draw_trochoids(&mut svg, &scene, &frame(2.0), 1.0, (false, planned), &|_| true));
-        assert!(draw_trochoids(&mut svg, &scene, &frame(2.0), 1.0, (true, planned), &|_| true));
+        assert!(!draw_trochoids(&mut svg, &scene, &frame(2.0), 1.0, (false, planned, LengthUnit::Mm), &|_| true));
+        assert!(draw_trochoids(&mut svg, &scene, &frame(2.0), 1.0, (true, planned, LengthUnit::Mm), &|_| true));
         let out = svg.finish_fragment();
         assert!(out.contains("class=\"trochoid clustered\"") && out.contains("≈200 loops, pitch 0.5 mm"), "{out}");
     }

@@ -69,6 +69,10 @@ pub struct JobViews {
     pub drawing: String,
     pub critical_regions: usize,
     pub trochoids: usize,
+    /// The finest detail the drawn paths keep, mm (the tolerance they were traced to): a
+    /// window can be drawn down to a few times this, and no smaller than 0.001 mm; null for
+    /// a job drawn before it was kept.
+    pub detail_mm: Option<f64>,
 }
 
 /// Query of `GET /v1/jobs/{id}/drawing.svg`.
@@ -78,7 +82,7 @@ pub struct JobViews {
 pub struct DrawingQuery {
     /// The path to draw (default: the last one, e.g. `planned`); `getJobViews` lists a
     /// job's paths.
-    #[param(pattern = "^(input|optimised|base|planned|program)$")]
+    #[param(pattern = "^(input|optimised|base|planned|program|baseline)$")]
     pub path: Option<String>,
     /// Colour the path by `alpha`, `feed`, `force` or `wear` (default: alpha where known).
     #[param(pattern = "^(alpha|feed|force|wear)$")]
@@ -105,6 +109,10 @@ pub struct DrawingQuery {
     pub y_min: Option<f64>,
     pub x_max: Option<f64>,
     pub y_max: Option<f64>,
+    /// The unit of the frame's coordinates, the scale bar, the feed legend and the length
+    /// labels: `mm` (default) or `inch` (in, in/min). The window and the `frame` element
+    /// stay in mm.
+    pub units: Option<LengthUnit>,
 }
 
 impl DrawingQuery {
@@ -205,6 +213,7 @@ pub async fn get_views(
         drawing: format!("/v1/jobs/{id}/drawing.svg"),
         critical_regions: scene.regions.len(),
         trochoids: scene.trochoids.len(),
+        detail_mm: scene.detail_mm(),
     };
     Ok(axum::Json(views).into_response())
 }
@@ -244,6 +253,7 @@ pub async fn get_drawing(
         trochoids: query.trochoids.unwrap_or(defaults.trochoids),
         width_px: query.width.unwrap_or(defaults.width_px),
         window,
+        unit: query.units.unwrap_or_default(),
     };
     let scene = scene_of(&state, &caller, &id).await?;
     let body = tokio::task::spawn_blocking(move || render_drawing(&scene, &options))

@@ -11,6 +11,7 @@ use super::program_input::{ProgramInput, ReadProgram};
 use super::setup::{path_job_refs, read_inputs, reread_inputs, resolve, CostSetup, PathSetup};
 use crate::core::analysis::{check, sample_count, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_ALPHA_LIMIT_DEG};
 use crate::core::drawing::feeds_scene::feeds_scene;
+use crate::core::drawing::paths::edited_move_lines;
 use crate::core::drawing::scene::Scene;
 use crate::core::feed::blocks::{BlockOptions, DEFAULT_FEED_STEP_MM_MIN, DEFAULT_FEED_TOLERANCE, DEFAULT_MIN_BLOCK_MM};
 use crate::core::feed::costed::{optimize_costed, Costed};
@@ -22,7 +23,7 @@ use crate::core::feed::surface::{
     self, optimize_surface_finishing, ContactNormal, SurfaceSpec, DEFAULT_SURFACE_FIT_HALF_WIDTH_MM,
 };
 use crate::core::kinematics::{machining_time, MachineLimits, TimeOptions};
-use crate::core::nc::{write_program, ProgramMap};
+use crate::core::nc::{write_program_mapped, ProgramMap};
 use crate::core::progress::Progress;
 use crate::core::tool::ToolType;
 use crate::core::toolpath::Toolpath;
@@ -373,15 +374,20 @@ pub fn run(
         (None, Some(surface)) => (optimize_surface_finishing(&job.path, surface, &job.spec, progress)?, None),
         (None, None) => return Err(CoreError::invalid("mode", "nothing to optimise")),
     };
-    // G-code is edited (only its F words change); JSON moves are written anew.
-    let (program, edit) = match (&request.program.gcode, &job.map) {
+    // G-code is edited (only its F words change); JSON moves are written anew. Either way
+    // the optimised path's drawing names the lines of the program served.
+    let (program, edit, served_lines) = match (&request.program.gcode, &job.map) {
         (Some(text), Some(map)) => {
             let edited = edit_feeds(text, &job.path, map, &plan.pieces);
-            (edited.text.clone(), Some(edited))
+            let lines = edited_move_lines(&plan.path, &edited.changes);
+            (edited.text.clone(), Some(edited), lines)
         }
-        _ => (write_program(&plan.path, &request.output.to_writer(&prepared.base)), None),
+        _ => {
+            let written = write_program_mapped(&plan.path, &request.output.to_writer(&prepared.base));
+            (written.text, None, written.move_lines)
+        }
     };
-    let scene = feeds_scene(&job.path, &plan, job.analysis.as_ref());
+    let scene = feeds_scene(&job.path, &plan, job.analysis.as_ref(), &served_lines);
     let times = match (&costed, &prepared.limits) {
         (Some(c), _) => Some((c.before.time.clone(), c.after.time.clone())),
         (None, Some(limits)) => {

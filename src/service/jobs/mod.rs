@@ -28,6 +28,7 @@ pub mod plans;
 pub mod plans_result;
 pub mod program_input;
 pub mod queue;
+pub mod relabel;
 pub mod routes;
 pub mod setup;
 pub mod store;

@@ -10,11 +10,11 @@ use super::plan_rows;
 use super::plans_result::PlanResult;
 use super::setup::NamedRef;
 use crate::core::conditions::{standard_centres, CuttingConditions};
-use crate::core::drawing::process_scene::process_scene;
+use crate::core::drawing::process_scene::{process_scene, WrittenLines};
 use crate::core::drawing::scene::Scene;
 use crate::core::insertion::DEFAULT_INSERTION_ALPHA_LIMIT_DEG;
 use crate::core::kinematics::MachineLimits;
-use crate::core::nc::{write_program, write_program_mapped};
+use crate::core::nc::write_program_mapped;
 use crate::core::process::{
     check_process, plan_process, BaselineSpec, Cavity, CavityInput, CavityLayer, ProcessOptions, ToolCandidate,
     DEFAULT_MAX_FORCE_FACTOR, DEFAULT_TARGET_CONSUMPTION, MAX_CAVITY_LAYERS,
@@ -381,15 +381,19 @@ pub fn run(request: PlanRequest, prepared: PlanPrepared, progress: &dyn Progress
     writer_base.tool.geometry = chosen.tool.into();
     let written = write_program_mapped(&plan.evaluation.program, &request.output.to_writer(&writer_base));
     // The baseline's program: the same output options, with the ball, its name and its speed.
-    let baseline_program = plan.baseline.as_ref().zip(prepared.baseline.as_ref()).map(|(b, p)| {
+    let baseline = plan.baseline.as_ref().zip(prepared.baseline.as_ref()).map(|(b, p)| {
         let mut writer_base = prepared.writer_base.clone();
         writer_base.tool.id = p.tool_id;
         writer_base.tool.name = p.name.clone();
         writer_base.tool.geometry = p.tool.into();
         writer_base.default_spindle_rpm = Some(p.conditions.spindle_rpm);
-        write_program(&b.program, &request.output.to_writer(&writer_base))
+        write_program_mapped(&b.program, &request.output.to_writer(&writer_base))
     });
-    let scene = process_scene(&cavity.whole(), &plan);
+    // The drawing's vertices name the lines of the programs served (the plan's, the baseline's).
+    let lines =
+        WrittenLines { program: &written.move_lines, baseline: baseline.as_ref().map(|b| b.move_lines.as_slice()) };
+    let scene = process_scene(&cavity.whole(), &plan, lines);
+    let baseline_program = baseline.map(|b| b.text);
     let result = PlanResult::new(&prepared, &plan, &written, baseline_program.as_deref().unwrap_or_default());
     Ok(PlanOutput { result, program: written.text, baseline_program, scene })
 }

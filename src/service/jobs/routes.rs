@@ -141,7 +141,7 @@ async fn submit(
 
 /// A job as JSON with `status`: its row, and its result spliced in as stored, never parsed
 /// (a result may be tens of megabytes).
-async fn job_response(
+pub(super) async fn job_response(
     pool: &crate::service::store::Pool,
     status: StatusCode,
     row: &store::JobRow,
@@ -420,7 +420,7 @@ fn makes(kind: JobKind, part: ProgramPart) -> bool {
 pub fn router() -> OpenApiRouter<AppState> {
     let router = OpenApiRouter::new()
         .routes(routes!(create_job, list_jobs))
-        .routes(routes!(get_job, cancel_job))
+        .routes(routes!(get_job, cancel_job, super::relabel::relabel_job))
         .routes(routes!(get_program))
         .routes(routes!(get_input));
     let template = <__path_create_job as utoipa::Path>::operation();
@@ -428,7 +428,7 @@ pub fn router() -> OpenApiRouter<AppState> {
         let kind = registered.kind;
         let create = move |State(state): State<AppState>, caller: Caller, headers: HeaderMap, request: Request| async move {
             let mut input = if upload::takes_program(kind) && upload::is_multipart(&request) {
-                upload::read(request).await?
+                upload::read(request, state.config.body_limit).await?
             } else {
                 let JsonBytes(body) = JsonBytes::from_request(request, &state).await?;
                 off_runtime(move || parse_json::<serde_json::Value>(&body)).await?

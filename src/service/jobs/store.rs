@@ -160,13 +160,7 @@ pub async fn insert(pool: &Pool, job: NewJob<'_>) -> Result<(), ApiError> {
     .bind(tags)
     .execute(&mut *tx)
     .await?;
-    for tag in &job.labels.tags {
-        sqlx::query("INSERT INTO job_tags (job_id, tag) VALUES ($1, $2)")
-            .bind(job.id)
-            .bind(tag)
-            .execute(&mut *tx)
-            .await?;
-    }
+    insert_tags(&mut tx, job.id, &job.labels.tags).await?;
     for (part, body) in [("input", job.input), ("prepared", job.prepared)] {
         sqlx::query("INSERT INTO job_blobs (job_id, part, body) VALUES ($1, $2, $3)")
             .bind(job.id)
@@ -176,6 +170,47 @@ pub async fn insert(pool: &Pool, job: NewJob<'_>) -> Result<(), ApiError> {
             .await?;
     }
     tx.commit().await?;
+    Ok(())
+}
+
+/// Gives a job the name and tags `change` makes of its current ones (its row and its
+/// `job_tags`), read and written in one transaction that no other such write interleaves
+/// with (two clients changing the name and the tags at once keep both changes).
+pub async fn relabel(
+    pool: &Pool,
+    id: &str,
+    change: impl FnOnce(JobLabels) -> Result<JobLabels, ApiError>,
+) -> Result<(), ApiError> {
+    let mut tx = crate::service::store::begin_exclusive(pool).await?;
+    let (name, tags): (Option<String>, String) = sqlx::query_as("SELECT name, tags FROM jobs WHERE id = $1")
+        .bind(id)
+        .fetch_optional(&mut *tx)
+        .await?
+        .ok_or_else(|| ApiError::not_found(format!("no job with id {}", excerpt(id))))?;
+    let labels = change(JobLabels { name, tags: serde_json::from_str(&tags).unwrap_or_default() })?;
+    let tags = serde_json::to_string(&labels.tags).map_err(|e| ApiError::Internal(format!("tags: {e}")))?;
+    sqlx::query("UPDATE jobs SET name = $1, name_key = $2, tags = $3 WHERE id = $4")
+        .bind(labels.name.as_deref())
+        .bind(labels.name_key())
+        .bind(tags)
+        .bind(id)
+        .execute(&mut *tx)
+        .await?;
+    sqlx::query("DELETE FROM job_tags WHERE job_id = $1").bind(id).execute(&mut *tx).await?;
+    insert_tags(&mut tx, id, &labels.tags).await?;
+    tx.commit().await?;
+    Ok(())
+}
+
+/// Adds the rows of `job_tags` of job `id`.
+async fn insert_tags(
+    tx: &mut crate::service::store::Transaction,
+    id: &str,
+    tags: &[String],
+) -> Result<(), sqlx::Error> {
+    for tag in tags {
+        sqlx::query("INSERT INTO job_tags (job_id, tag) VALUES ($1, $2)").bind(id).bind(tag).execute(&mut **tx).await?;
+    }
     Ok(())
 }
 

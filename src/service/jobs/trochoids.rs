@@ -13,6 +13,7 @@ use crate::core::conditions::{feed_mm_min, CuttingConditions};
 use crate::core::cycles::trochoid::default_loop_radius_mm;
 use crate::core::cycles::CutDirection;
 use crate::core::drawing::insertion_scene::insertion_scene;
+use crate::core::drawing::paths::with_lines;
 use crate::core::drawing::scene::Scene;
 use crate::core::geometry::Pocket;
 use crate::core::insertion::{
@@ -373,15 +374,6 @@ fn to_written_lines(lines: &mut [u32], move_lines: &[u32]) {
     }
 }
 
-/// `path` with each move's line (its move number) replaced by the line written for it.
-fn relabelled(path: &Toolpath, move_lines: &[u32]) -> Toolpath {
-    let mut path = path.clone();
-    for (m, &line) in path.moves.iter_mut().zip(move_lines) {
-        m.line = line;
-    }
-    path
-}
-
 /// The program the insertion changed, with the base path's samples relabelled by its
 /// lines (so that the drawing's overloads of the base path name them): the G-code sent,
 /// as it was (its moves carry its lines already); else the path sent as moves or
@@ -393,7 +385,7 @@ fn base_program(request: &TrochoidsRequest, plan: &mut InsertionPlan, options: &
     }
     let written = write_program_mapped(&plan.drawing.base_path, options);
     to_written_lines(&mut plan.drawing.base_samples.line, &written.move_lines);
-    plan.drawing.base_path = relabelled(&plan.drawing.base_path, &written.move_lines);
+    plan.drawing.base_path = with_lines(&plan.drawing.base_path, &written.move_lines);
     written.text
 }
 
@@ -427,7 +419,7 @@ pub fn run(request: TrochoidsRequest, prepared: TrochoidsPrepared, progress: &dy
     to_written_lines(&mut plan.drawing.planned_samples.line, &written.move_lines);
     // The drawing's moves name the lines of the program served too (a copy: the overloads
     // of the result are found by move number).
-    let lines = relabelled(&plan.toolpath, &written.move_lines);
+    let lines = with_lines(&plan.toolpath, &written.move_lines);
     let numbered = std::mem::replace(&mut plan.toolpath, lines);
     let scene = insertion_scene(&pocket, &spec, &plan);
     plan.toolpath = numbered;

@@ -8,7 +8,9 @@
 //!   control, the tool table, …; and the job's `name` and `tags`).
 //!
 //! A part that is missing, repeated, unknown, not UTF-8 or not JSON is a 422 naming the
-//! part; a body that is not multipart at all a 400; one larger than the body limit a 413.
+//! part; a body that is not multipart at all a 400; one larger than the body limit a 413
+//! naming the part it grew past the limit in (a body whose declared `Content-Length` is
+//! over the limit is refused before it is read: app.rs says so, with the limit).
 
 use super::model::JobKind;
 use crate::service::error::{excerpt, ApiError, FieldError};
@@ -43,12 +45,25 @@ pub fn is_multipart(request: &Request) -> bool {
         .is_some_and(|m| m.type_() == mime::MULTIPART && m.subtype() == mime::FORM_DATA)
 }
 
-/// A multipart error, as a problem naming `part` when it is about one.
-fn refused(e: MultipartError, part: Option<&str>) -> ApiError {
+/// Where in an upload the reading stopped: in a part, or between parts (after the last
+/// one read, if any).
+#[derive(Debug, Clone, Copy)]
+enum At<'a> {
+    In(&'a str),
+    After(Option<&'a str>),
+}
+
+/// A multipart error, as a problem naming the part being read when it is known; a body
+/// over the limit says the limit and the setting that raises it.
+fn refused(e: MultipartError, at: At, body_limit: usize) -> ApiError {
     let status = e.status();
-    let what = part.map(|p| format!("part {p}: ")).unwrap_or_default();
+    let (what, reading) = match at {
+        At::In(part) => (format!("part {part}: "), format!("while reading part {part}")),
+        At::After(Some(part)) => (format!("after part {part}: "), format!("while reading the part after {part}")),
+        At::After(None) => (String::new(), "before its first part".to_string()),
+    };
     let detail = if status == axum::http::StatusCode::PAYLOAD_TOO_LARGE {
-        format!("{what}the request body is larger than the configured limit")
+        format!("{what}the request body grew past the limit of {body_limit} bytes {reading}; the service's --body-limit (DIEPLAN_BODY_LIMIT) raises it")
     } else {
         format!("{what}malformed multipart/form-data: {}", excerpt(&e.body_text()))
     };
@@ -56,17 +71,22 @@ fn refused(e: MultipartError, part: Option<&str>) -> ApiError {
 }
 
 /// Reads an upload into the JSON submission it stands for: the `request` part (or an
-/// empty object) with the `program` part as `program.gcode`.
-pub async fn read(request: Request) -> Result<Value, ApiError> {
+/// empty object) with the `program` part as `program.gcode`. `body_limit` is the
+/// service's (a body over it is refused naming the part it was in).
+pub async fn read(request: Request, body_limit: usize) -> Result<Value, ApiError> {
     let mut multipart = Multipart::from_request(request, &())
         .await
         .map_err(|e| ApiError::BadRequest(format!("malformed multipart/form-data: {}", e.body_text())))?;
     let mut faults = Vec::new();
     let mut fail = |field: &str, reason: String| faults.push(FieldError { field: field.to_string(), reason });
     let (mut program, mut rest): (Option<String>, Option<Value>) = (None, None);
-    while let Some(field) = multipart.next_field().await.map_err(|e| refused(e, None))? {
+    let mut last: Option<String> = None;
+    while let Some(field) =
+        multipart.next_field().await.map_err(|e| refused(e, At::After(last.as_deref()), body_limit))?
+    {
         let name = field.name().unwrap_or_default().to_string();
-        let bytes = field.bytes().await.map_err(|e| refused(e, Some(&name)))?;
+        let bytes = field.bytes().await.map_err(|e| refused(e, At::In(&name), body_limit))?;
+        last = Some(name.clone());
         match name.as_str() {
             PROGRAM_PART if program.is_some() => fail(PROGRAM_PART, "is sent more than once".into()),
             PROGRAM_PART => match String::from_utf8(bytes.to_vec()) {

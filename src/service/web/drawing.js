@@ -3,7 +3,7 @@
 import { h, api, problemBox, svgNode } from './ui.js';
 import { zoomable, readoutLine, frameOf } from './zoom.js';
 import { loadTrace, nearest, atDistance, describe, markLines } from './trace.js';
-import { units, MM_PER_INCH } from './units.js';
+import { units, MM_PER_INCH, coordinate, lengthUnit } from './units.js';
 
 const QUANTITIES = {
   alpha: 'Engagement angle α (°)',
@@ -11,7 +11,7 @@ const QUANTITIES = {
   feed: 'Feed (mm/min)',
   wear: 'Tool wear (% of a tool per m)',
 };
-const PATHS = { input: 'Input path', base: 'Base path (before trochoids)', planned: 'Planned path', optimised: 'Optimised path' };
+const PATHS = { input: 'Input path', base: 'Base path (before trochoids)', planned: 'Planned path', optimised: 'Optimised path', program: 'Planned program', baseline: 'Ball-end baseline' };
 const pathLabel = (name) => PATHS[name] || name.charAt(0).toUpperCase() + name.slice(1).replace(/_/g, ' ');
 /** Layers of detail: query parameter, label, shown at first, the job kinds that have them. */
 const TOGGLES = [
@@ -42,6 +42,12 @@ async function loadSvg(href, target) {
     target.replaceChildren(problemBox(err, 'Could not draw this'));
     return null;
   }
+}
+
+/** A layer's name with its heights in the display unit (the API's names are in mm). */
+function layerName(l) {
+  const head = (l.name || `layer ${l.index + 1}`).split(' (z')[0];
+  return units() === 'inch' || !l.name ? `${head} (z ${coordinate(l.z_top)} → ${coordinate(l.z_bottom)} ${lengthUnit()})` : l.name;
 }
 
 /** Pointer travel below which a press on the drawing is a click, not a pan, px. */
@@ -108,7 +114,7 @@ export function drawingPanel(job, program) {
 }
 
 /** What a job changes, by kind: the quantity both sides of its before-and-after strip are coloured by. */
-const CHANGED = { feeds: 'feed', trochoids: 'alpha', plan: 'alpha' };
+const CHANGED = { feeds: 'feed', trochoids: 'alpha', plan: 'feed' };
 
 // Before and after side by side (the first and the last path, e.g. the base path with
 // its overloads and the planned one with its trochoids), as images: the job at a glance.
@@ -118,7 +124,8 @@ function compareStrip(views, paths, kind) {
   if (paths.length < 2) return [];
   const [first, last] = [paths[0], paths.at(-1)];
   const wanted = CHANGED[kind] || 'alpha';
-  const common = [wanted, 'alpha'].find((q) => first.quantities.includes(q) && last.quantities.includes(q));
+  const common = [wanted, 'alpha', 'feed'].find((q) => first.quantities.includes(q) && last.quantities.includes(q));
+  const [before, after] = kind === 'plan' ? ['Baseline', 'Plan'] : ['Before', 'After'];
   const figure = (path, caption) => {
     const q = new URLSearchParams({ path: path.name, width: String(COMPARE_WIDTH_PX), rapids: 'false' });
     if (common) q.set('color', common);
@@ -128,7 +135,7 @@ function compareStrip(views, paths, kind) {
         h('img', { src, alt: `${caption}: ${pathLabel(path.name)}`, loading: 'lazy' })),
       h('figcaption', {}, h('strong', {}, caption), ` · ${pathLabel(path.name)}`));
   };
-  return [h('div', { class: 'compare', dataset: { color: common || '' } }, figure(first, 'Before'), figure(last, 'After')),
+  return [h('div', { class: 'compare', dataset: { color: common || '' } }, figure(first, before), figure(last, after)),
     common ? h('p', { class: 'hint' }, `Both coloured by ${QUANTITIES[common] || common}, on one scale.`) : null];
 }
 
@@ -167,6 +174,8 @@ function renderDrawing(views, body, kind, program, linked) {
     for (const [k, v] of Object.entries(state.toggles)) q.set(k, String(v));
     q.set('width', String(Math.max(320, Math.min(2400, Math.round(canvas.clientWidth || 900)))));
     if (state.window) for (const k of ['x_min', 'y_min', 'x_max', 'y_max']) q.set(k, String(state.window[k]));
+    // The frame's coordinates, the scale bar and the feed legend in the display unit.
+    if (units() === 'inch') q.set('units', 'inch');
     return `${views.drawing}?${q}`;
   };
   let drawnWidth = 0;
@@ -181,7 +190,7 @@ function renderDrawing(views, body, kind, program, linked) {
     canvas.classList.remove('loading');
     if (svg) {
       canvas.replaceChildren(svg);
-      zoom = zoomable(svg, canvas, { window: state.window, info, probe, redraw: (window) => { state.window = window; draw(); } });
+      zoom = zoomable(svg, canvas, { window: state.window, info, probe, detail: views.detail_mm, redraw: (window) => { state.window = window; draw(); } });
       markSelection(canvas, program, state.path, linked);
       traceOf(state.path);
     } else {
@@ -197,7 +206,7 @@ function renderDrawing(views, body, kind, program, linked) {
     controls.replaceChildren(...[
       paths.length > 1 ? select('draw-path', 'Path', paths.map((p) => [p.name, pathLabel(p.name)]), state.path, (v) => { state.path = v; }) : null,
       current.quantities.length ? select('draw-color', 'Colour by', current.quantities.map((q) => [q, QUANTITIES[q] || q]), state.color, (v) => { state.color = v; }) : null,
-      (views.layers || []).length > 1 ? select('draw-layer', 'Layer', [['', 'All layers'], ...views.layers.map((l) => [l.index, l.name || `layer ${l.index + 1} (z ${l.z_top} → ${l.z_bottom} mm)`])], state.layer, (v) => { state.layer = v; }) : null,
+      (views.layers || []).length > 1 ? select('draw-layer', 'Layer', [['', 'All layers'], ...views.layers.map((l) => [l.index, layerName(l)])], state.layer, (v) => { state.layer = v; }) : null,
       h('fieldset', { class: 'toggles' }, h('legend', {}, 'Show'), toggles.map(([key, label]) => h('label', {},
         h('input', { type: 'checkbox', checked: state.toggles[key], onchange: (e) => { state.toggles[key] = e.target.checked; draw(); } }), ` ${label}`))),
       h('div', { class: 'zoom', role: 'group', 'aria-label': 'zoom' },

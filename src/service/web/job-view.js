@@ -1,6 +1,6 @@
 // One job: progress (polled), cancel, and once succeeded the key figures, the drawing with
 // its controls, the charts, the NC program download and the raw result.
-import { h, api, problemBox, pretty, num, minutes, when, duration, figures, table, badge, tagList, KIND_NAMES } from './ui.js';
+import { h, api, problemBox, pretty, num, minutes, when, duration, figures, table, badge, tagList, parseTags, KIND_NAMES } from './ui.js';
 import { drawingPanel } from './drawing.js';
 import { savingsPanel, remaining } from './savings.js';
 import { programPanel } from './program-view.js';
@@ -149,11 +149,48 @@ export async function jobView(id) {
   const body = h('div', { class: 'job-body' });
   const node = h('div', {}, head, status, body);
 
-  head.append(
-    h('p', { class: 'crumbs' }, h('a', { href: '#/jobs' }, 'Jobs'), ' / ', h('span', { class: 'mono' }, job.id.slice(0, 8))),
-    h('h1', {}, job.name || KIND_NAMES[job.kind] || job.kind),
-    h('p', { class: 'muted' }, `${job.name ? `${KIND_NAMES[job.kind] || job.kind} · ` : ''}Job ${job.id} · created ${when(job.created_at)}`),
-    ...[tagList(job.tags)].filter(Boolean));
+  // The job's name and tags, and an editor for them (PATCH /v1/jobs/{id}).
+  function renderHead() {
+    const edit = h('button', { type: 'button', class: 'link', id: 'edit-labels', onclick: () => editLabels() }, 'Rename or retag');
+    head.replaceChildren(
+      h('p', { class: 'crumbs' }, h('a', { href: '#/jobs' }, 'Jobs'), ' / ', h('span', { class: 'mono' }, job.id.slice(0, 8))),
+      h('h1', {}, job.name || KIND_NAMES[job.kind] || job.kind),
+      h('p', { class: 'muted' }, `${job.name ? `${KIND_NAMES[job.kind] || job.kind} · ` : ''}Job ${job.id} · created ${when(job.created_at)} · `, edit),
+      ...[tagList(job.tags)].filter(Boolean));
+  }
+
+  function editLabels() {
+    const name = h('input', { id: 'label-name', type: 'text', maxlength: 200, value: job.name || '', autocomplete: 'off', placeholder: 'no name' });
+    const tags = h('input', { id: 'label-tags', type: 'text', value: (job.tags || []).join(' '), autocomplete: 'off', spellcheck: 'false', placeholder: 'die:4711 roughing' });
+    const slot = h('div', { 'aria-live': 'polite' });
+    const field = (id, label, control, hint) => h('div', { class: 'field' }, h('label', { for: id }, label), control, h('small', { class: 'hint' }, hint));
+    const form = h('form', { class: 'card labels-editor', id: 'labels-editor', onsubmit: async (event) => {
+      event.preventDefault();
+      slot.replaceChildren();
+      form.querySelectorAll('.field-error').forEach((e) => e.remove());
+      try {
+        job = await api('PATCH', `/v1/jobs/${job.id}`, { name: name.value.trim() || null, tags: parseTags(tags.value) });
+        renderHead();
+      } catch (err) {
+        slot.append(problemBox(err, 'The name or tags were refused'));
+        for (const e of err.problem?.errors || []) {
+          const input = e.field === 'name' ? name : e.field.startsWith('tags') ? tags : null;
+          input?.setAttribute('aria-invalid', 'true');
+          input?.closest('.field').append(h('small', { class: 'field-error' }, e.reason));
+        }
+      }
+    } },
+    h('div', { class: 'grid' },
+      field('label-name', 'Name', name, 'Up to 200 characters; empty for none.'),
+      field('label-tags', 'Tags', tags, 'Separated by spaces or commas: letters, digits and - _ . : / (up to 20).')),
+    slot,
+    h('div', { class: 'actions' }, h('button', { type: 'submit', class: 'primary', id: 'save-labels' }, 'Save'),
+      h('button', { type: 'button', onclick: () => renderHead() }, 'Cancel')));
+    head.querySelector('#labels-editor')?.remove();
+    head.append(form);
+    name.focus();
+  }
+  renderHead();
 
   function renderStatus() {
     const running = job.status === 'queued' || job.status === 'running';

@@ -13,6 +13,9 @@ const OPERATIONS = [
 
 /** Path jobs take a program and a stock box; pocket jobs a contour (or DXF) and depths. */
 const POCKET_KINDS = new Set(['trochoids', 'plan']);
+/** The kinds whose program file is sent as a file (multipart/form-data: the `program`
+ * part and the rest of the request as the `request` part); pasted text goes as JSON. */
+const UPLOAD_KINDS = new Set(['analysis', 'feeds', 'costing']);
 const REQUEST_SCHEMAS = {
   analysis: 'AnalysisRequest', trochoids: 'TrochoidsRequest', feeds: 'FeedsRequest',
   costing: 'CostingRequest', plan: 'PlanRequest',
@@ -99,7 +102,7 @@ export async function newJobView(params) {
   ]);
   const allowed = (kind) => new Set(Object.keys(doc.components.schemas[REQUEST_SCHEMAS[kind]]?.properties || {}));
   const state = {
-    kind: 'trochoids', source: 'example', exampleId: null, text: '', fileName: '',
+    kind: 'trochoids', source: 'example', exampleId: null, text: '', fileName: '', file: null,
     toolId: '', materialId: materials[0] ? String(materials[0].id) : '', planType: 'square', diameters: new Set(),
     name: '', tags: '', values: {}, box: { x_min: '0', x_max: '100', y_min: '0', y_max: '50', z_min: '-10', z_max: '0' }, jsonEdited: false,
   };
@@ -138,6 +141,9 @@ export async function newJobView(params) {
     else resetValues();
   }
 
+  /** `true` when the job is sent as a file upload (a program file of a kind that takes one). */
+  const uploading = () => state.source === 'file' && Boolean(state.file) && UPLOAD_KINDS.has(state.kind);
+
   /** The request the form describes. */
   function buildRequest() {
     const keep = allowed(state.kind);
@@ -145,6 +151,9 @@ export async function newJobView(params) {
     const request = {};
     if (state.source === 'example' && example) {
       for (const [k, v] of Object.entries(structuredClone(example.input))) if (keep.has(k)) request[k] = v;
+    } else if (uploading()) {
+      // The program goes as the file part; the request part is the rest.
+      delete request.program;
     } else if (state.text.trim()) {
       if (POCKET_KINDS.has(state.kind)) request.dxf = state.text;
       else request.program = { gcode: state.text };
@@ -189,7 +198,9 @@ export async function newJobView(params) {
   const submit = h('button', { type: 'submit', class: 'primary', id: 'submit-job' }, 'Run');
 
   function refreshJson() {
-    endpointLine.textContent = `POST ${ENDPOINTS[state.kind]}  (content-type: application/json)`;
+    endpointLine.textContent = uploading()
+      ? `POST ${ENDPOINTS[state.kind]}  (multipart/form-data: program = ${state.fileName}, request = the JSON below)`
+      : `POST ${ENDPOINTS[state.kind]}  (content-type: application/json)`;
     submit.textContent = `Run ${KIND_NAMES[state.kind].toLowerCase()}`;
     jsonNote.replaceChildren();
     if (state.jsonEdited) {
@@ -232,15 +243,22 @@ export async function newJobView(params) {
       current ? h('p', { class: 'hint' }, current.description) : h('p', { class: 'hint' }, 'No example for this operation.'));
     } else {
       if (state.source === 'file') {
-        body.push(field('file', `File with ${pocket ? 'the pocket (DXF)' : 'the NC program'}`, h('input', { id: 'file', type: 'file',
+        body.push(field('file', `File with ${pocket ? 'the pocket (DXF)' : 'the NC program'}`, h('input', { id: 'file', type: 'file', dataset: { field: pocket ? 'dxf' : 'program' },
           accept: pocket ? '.dxf,.txt' : '.nc,.ngc,.tap,.gcode,.cnc,.txt,.iso,.eia',
           onchange: async (e) => {
             const file = e.target.files[0];
             if (!file) return;
             state.text = await file.text();
             state.fileName = file.name;
+            state.file = file;
             render();
-          } }), { hint: state.fileName ? `Loaded ${state.fileName}: ${state.text.split('\n').length} lines. You can edit it below.` : 'Read in the browser as text and sent in the request.' }));
+          } }), { hint: state.fileName
+          ? `${state.fileName}: ${state.text.split('\n').length} lines${UPLOAD_KINDS.has(state.kind) ? ', sent as a file (multipart upload).' : '. You can edit it below.'}`
+          : UPLOAD_KINDS.has(state.kind) ? 'Sent as a file (multipart upload), as it is.' : 'Read in the browser as text and sent in the request.' }));
+        if (uploading()) {
+          return h('fieldset', { class: 'card' }, h('legend', {}, 'Source'), radios, body,
+            h('pre', { class: 'code file-preview', 'aria-label': 'the file’s first lines' }, state.text.split('\n').slice(0, 8).join('\n')));
+        }
       }
       const area = h('textarea', { id: 'source-text', class: 'code', rows: 10, spellcheck: 'false', dataset: { field: pocket ? 'dxf' : 'program' },
         placeholder: pocket ? '0\nSECTION\n2\nENTITIES\n…' : 'G21 G90 G17\nS9600 M3\nG0 X-10 Y20 Z5\nG1 Z-10 F1000\n…', value: state.text,
@@ -296,7 +314,7 @@ export async function newJobView(params) {
       const boxMessage = h('small', { class: 'hint', 'aria-live': 'polite' });
       const guess = state.source === 'example' ? null : h('button', { type: 'button',
         onclick: () => {
-          const e = programExtent(buildRequest().program?.gcode || '');
+          const e = programExtent(uploading() ? state.text : buildRequest().program?.gcode || '');
           if (!e) { boxMessage.textContent = ' Paste or upload a program with cutting moves (G1, G2, G3) first.'; return; }
           for (const k of BOX) state.box[k] = String(e[k]);
           render();
@@ -358,7 +376,13 @@ export async function newJobView(params) {
     submit.disabled = true;
     submit.textContent = 'Submitting…';
     try {
-      const job = await api('POST', ENDPOINTS[state.kind], body);
+      let sent = body;
+      if (uploading()) {
+        sent = new FormData();
+        sent.append('program', state.file, state.fileName);
+        sent.append('request', new Blob([JSON.stringify(body)], { type: 'application/json' }));
+      }
+      const job = await api('POST', ENDPOINTS[state.kind], sent);
       location.hash = `#/jobs/${job.id}`;
     } catch (err) {
       problemSlot.append(problemBox(err, 'The service refused the job'));

@@ -215,7 +215,9 @@ export function programPanel(job) {
     /** The program a drawn path's lines refer to. */
     partFor(pathName) {
       if (job.kind === 'trochoids') return pathName === 'base' ? 'base' : 'main';
-      if (['feeds', 'analysis', 'costing'].includes(job.kind)) return 'input';
+      if (job.kind === 'feeds') return pathName === 'optimised' ? 'main' : 'input';
+      if (job.kind === 'plan') return pathName === 'baseline' ? 'baseline' : 'main';
+      if (['analysis', 'costing'].includes(job.kind)) return 'input';
       return 'main';
     },
   };

@@ -51,7 +51,10 @@ const KEY_ATTEMPTS = 3;
  */
 export async function api(method, path, body, { contentType = 'application/json', text = false } = {}) {
   const init = { method, headers: { accept: text ? '*/*' : 'application/json' } };
-  if (body !== undefined) {
+  if (body instanceof FormData) {
+    // A multipart upload: the browser writes its content type with the boundary.
+    init.body = body;
+  } else if (body !== undefined) {
     init.headers['content-type'] = contentType;
     init.body = typeof body === 'string' ? body : JSON.stringify(body);
   }

@@ -5,14 +5,19 @@
 // size, and dense regions separate. The drawing's `frame` element says how mm map onto
 // its px; the legend's ramp carries its scale, so a colour band's values can be read.
 import { h } from './ui.js';
-import { coordinate, lengthUnit } from './units.js';
+import { coordinate, lengthUnit, feed as feedText } from './units.js';
 import { PROBE_RADIUS_PX } from './trace.js';
 
 /** The view is drawn anew this long after the last zoom or pan, ms. */
 const SETTLE_MS = 400;
-/** Zoom bounds relative to the whole drawing. */
+/** Zoom bounds: out to the whole drawing; in until the window is this many times the
+ * finest detail the job's drawing keeps (`detail_mm` of its views: the tolerance its paths
+ * were traced to), and never below the smallest window the service draws. */
 const MAX_ZOOM_OUT = 1;
-const MAX_ZOOM_IN = 1 / 2000;
+const DETAIL_SPAN = 4;
+const MIN_WINDOW_MM = 0.001;
+/** The detail of a drawing stored before it was kept: this fraction of its extent. */
+const OLD_DETAIL_FRACTION = 1 / 2000;
 /** Colour bins of the drawing's ramps and where the hot part starts (palette.rs). */
 const BINS = 32;
 const COOL_BINS = 24;
@@ -62,7 +67,8 @@ function readout(svg, frame, point, target, probe) {
     parts.push(`critical region · NC lines ${from}–${to}${alpha ? ` · α up to ${alpha}°` : ''} (click: show the lines)`);
   } else if (!probed && feed?.hasAttribute('data-bin')) {
     const v = binValues(svg, Number(feed.getAttribute('data-bin')));
-    if (v) parts.push(`${NAMES[v[2]] || v[2]} ${round(v[0])}–${round(v[1])} ${UNITS[v[2]] || ''}`);
+    if (v && v[2] === 'feed') parts.push(`feed ${feedText(v[0]).replace(/ .*$/, '')}–${feedText(v[1])}`);
+    else if (v) parts.push(`${NAMES[v[2]] || v[2]} ${round(v[0])}–${round(v[1])} ${UNITS[v[2]] || ''}`);
   } else if (!probed && target.closest?.('.rapid')) {
     parts.push('rapid');
   }
@@ -73,7 +79,7 @@ function readout(svg, frame, point, target, probe) {
  * Makes `svg` (in `canvas`) zoomable and pannable. `redraw(window | null)` asks for the
  * drawing of a window in mm (null: the whole). Returns the buttons' action handler.
  */
-export function zoomable(svg, canvas, { window: current, redraw, info, probe }) {
+export function zoomable(svg, canvas, { window: current, redraw, info, probe, detail }) {
   const vb = svg.viewBox.baseVal;
   if (!vb || !vb.width) return () => {};
   const frame = frameOf(svg);
@@ -95,9 +101,14 @@ export function zoomable(svg, canvas, { window: current, redraw, info, probe }) 
       else redraw({ x_min: cx - hx, y_min: cy - hy, x_max: cx + hx, y_max: cy + hy, whole });
     }, SETTLE_MS);
   };
+  // The narrowest window, mm: from the data's detail, not a share of the drawing.
+  const finest = Math.max(MIN_WINDOW_MM, DETAIL_SPAN * (detail > 0 ? detail : OLD_DETAIL_FRACTION * (whole?.width || 1)));
   const zoom = (factor, cx = vb.x + vb.width / 2, cy = vb.y + vb.height / 2) => {
+    // The window's sides in mm per view-box unit at this drawing's scale.
+    const side = frame ? Math.min(frame.xMax - frame.xMin, frame.yMax - frame.yMin) / home.width : 0;
     const depth = whole && frame ? (frame.xMax - frame.xMin) / whole.width : 1;
-    const width = Math.min(home.width * (MAX_ZOOM_OUT / depth), Math.max(home.width * (MAX_ZOOM_IN / depth), vb.width * factor));
+    const least = side > 0 ? finest / side : home.width / 2000;
+    const width = Math.min(home.width * (MAX_ZOOM_OUT / depth), Math.max(least, vb.width * factor));
     const f = width / vb.width;
     set(cx - (cx - vb.x) * f, cy - (cy - vb.y) * f, vb.width * f, vb.height * f);
     settle();
