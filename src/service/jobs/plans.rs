@@ -443,6 +443,7 @@ impl JobKindSpec for Plan {
             baseline_program: out.baseline_program,
             base_program: None,
             scene: Some(out.scene),
+            stock: None,
         })
     }
 }
