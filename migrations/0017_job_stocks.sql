@@ -1,6 +1,6 @@
 -- The stock a finished job's simulation left (issue 32 item 3), kept so that another job
 -- can start from it (`"stock": {"from_job": "<id>"}`): one row per job that simulated a
--- program on a stock (analysis, feeds, costing), removed with its job.
+-- program on a stock (analysis, costing), removed with its job.
 --   format     the version of the encoding of body (src/service/jobs/kept_stock.rs says
 --              what each holds); a stock whose format this version does not read is
 --              refused with a 422, never read wrongly

@@ -128,3 +128,20 @@ async fn a_job_not_succeeded_or_without_a_kept_stock_or_of_an_unknown_format_is_
     assert!(c.text.contains("kept no stock"), "{}", c.text);
     app.stop().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_costing_starts_from_a_kept_stock_and_keeps_its_own_and_a_feeds_job_refuses_one() {
+    let app = TestApp::start().await;
+    let id = rough(&app).await;
+    let c = app.post_wait("/v1/costing", intermediate(&id)).await;
+    assert_eq!((c.status.as_u16(), c.body["status"].as_str()), (201, Some("succeeded")), "{}", c.text);
+    assert!(close(&c.body["result"]["removed_volume_mm3"], 2_000.0, 40.0), "{}", c.text);
+    // The costing's own stock: the wall stepped into is gone.
+    let again = app.post_wait("/v1/analysis", intermediate(c.body["id"].as_str().unwrap())).await;
+    assert!(close(&again.body["result"]["summary"]["removed_volume_mm3"], 0.0, 1.0), "{}", again.text);
+    let mut feeds = intermediate(&id);
+    feeds["mode"] = json!("side_milling");
+    let f = app.post("/v1/feeds", feeds).await;
+    assert_problem(&f, 422, Some("stock.from_job"));
+    app.stop().await;
+}

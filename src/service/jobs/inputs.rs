@@ -69,7 +69,7 @@ pub struct StockInput {
     pub z_bottom: Option<f64>,
     #[serde(default)]
     pub open: Vec<OpenRegionInput>,
-    /// A finished job (analysis, feeds or costing) whose simulated stock the layer starts
+    /// A finished job (analysis or costing) whose simulated stock the layer starts
     /// from, given alone: the layer, its z range, its grid and the material left in each
     /// of its slices are that job's (the program's own z levels take, each, the material
     /// the kept stock has anywhere over their z range; see the README, "Stock carried
