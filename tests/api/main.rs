@@ -33,6 +33,7 @@ mod replicas;
 mod restarts;
 mod retention;
 mod schemathesis;
+mod stock_carry;
 mod tool_defaults;
 mod trace_lines;
 mod trochoids;

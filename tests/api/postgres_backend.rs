@@ -16,7 +16,7 @@
 use super::postgres::BACKEND_VARIABLE;
 
 /// The modules (or tests) run against PostgreSQL: test-name filters.
-const MODULES: [&str; 26] = [
+const MODULES: [&str; 27] = [
     "analysis::",
     "ball_tools::",
     "concurrency::",
@@ -40,6 +40,7 @@ const MODULES: [&str; 26] = [
     "replicas::",
     "restarts::",
     "retention::",
+    "stock_carry::",
     "tool_defaults::",
     "trochoids::",
     "web::every_built_in_example",

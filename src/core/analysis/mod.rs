@@ -8,12 +8,14 @@ pub mod engages;
 pub mod engine;
 pub mod feed_cap;
 pub mod geometry;
+pub mod kept;
 pub mod lines;
 pub mod outside;
 pub mod probe;
 pub mod recent;
 pub mod region;
 pub mod report;
+pub mod rest;
 pub mod same_below;
 pub mod samples;
 pub mod sampling;
@@ -29,11 +31,13 @@ use crate::core::tool::EndMill;
 use crate::core::toolpath::{Motion, Toolpath};
 use crate::core::CoreError;
 use engine::{simulate, Cutter};
+use kept::KeptStock;
 use outside::{ForceOverload, OutsideModel};
 pub use region::StockRegion;
 use report::{CriticalRegion, FinishedReport, HistogramBin, ReportBuilder, Series, Stats};
+use rest::RestMaterial;
 use serde::Serialize;
-use stack::Stack;
+pub use stack::Stack;
 
 /// Engagement above this is critical by default (seed 002 §2.4, seed 004 §2.1), deg.
 pub const DEFAULT_ALPHA_LIMIT_DEG: f64 = 40.0;
@@ -115,6 +119,13 @@ pub struct Summary {
     /// Feed moves at their programmed feeds plus rapids at the machine's rapid rate, min.
     pub time_at_programmed_feeds_min: f64,
     pub removed_volume_mm3: f64,
+    /// Volume of the stock left in the layer after the path, mm³ (the slices' material
+    /// areas times their heights).
+    pub remaining_volume_mm3: f64,
+    /// What is left inside the cavity, where the stock was a pocket's (a contour or a
+    /// DXF, or the stock a job on one left); null for a box, whose material is not all to
+    /// be cut.
+    pub rest_material: Option<RestMaterial>,
     /// Engagement angle α, deg.
     pub alpha_deg: Stats,
     /// Maximum undeformed chip thickness at the programmed feed, µm.
@@ -222,20 +233,45 @@ pub fn analyze_with(
     path: &Toolpath,
     spec: &AnalysisSpec,
     progress: &dyn Progress,
-    mut sink: impl FnMut(&engine::SampleResult),
+    sink: impl FnMut(&engine::SampleResult),
 ) -> Result<Analysis, CoreError> {
+    analyze_from(path, spec, None, progress, sink).map(|(analysis, _)| analysis)
+}
+
+/// Analyses `path` as [`analyze_with`] does, on the stock `start` when given (the stock
+/// another job left, see [`kept`]: its grid and slices replace the painting of
+/// `spec.stock`, which then only bounds the layer), and hands back the stock the
+/// simulation left.
+pub fn analyze_from(
+    path: &Toolpath,
+    spec: &AnalysisSpec,
+    start: Option<&KeptStock>,
+    progress: &dyn Progress,
+    mut sink: impl FnMut(&engine::SampleResult),
+) -> Result<(Analysis, Stack), CoreError> {
     check(path, spec)?;
     let bounds = region::union_bounds(&spec.stock);
     let levels = slices::slice_levels(path, spec.z_bottom, spec.z_top);
-    let (spacing, cell) = resolution(spec, bounds, levels.len() - 1);
+    let (spacing, painted_cell) = resolution(spec, bounds, levels.len() - 1);
     let total_samples: usize =
         path.moves.iter().map(|m| ((crate::core::toolpath::move_length(m) / spacing).ceil() as usize).max(1)).sum();
-    // Painting and simulating share the progress by their expected times.
-    let painting = Raster::cell_count(bounds, cell) as f64 / PAINTED_CELLS_PER_SAMPLE;
-    let paint_share = painting / (painting + total_samples as f64);
-    let paint_stage = Stage { inner: progress, from: 0.0, span: paint_share };
-    let mut slices =
-        Stack::build(&levels, bounds, cell, |raster| region::paint(raster, &spec.stock, &spec.open, &paint_stage))?;
+    let (mut slices, paint_share, cavity) = match start {
+        Some(kept) => {
+            let stack = Stack::carried(&levels, kept).map_err(|e| CoreError::invalid("stock.from_job", e))?;
+            (stack, 0.0, kept.cavity)
+        }
+        None => {
+            // Painting and simulating share the progress by their expected times.
+            let painting = Raster::cell_count(bounds, painted_cell) as f64 / PAINTED_CELLS_PER_SAMPLE;
+            let paint_share = painting / (painting + total_samples as f64);
+            let paint_stage = Stage { inner: progress, from: 0.0, span: paint_share };
+            let stack = Stack::build(&levels, bounds, painted_cell, |raster| {
+                region::paint(raster, &spec.stock, &spec.open, &paint_stage)
+            })?;
+            (stack, paint_share, spec.stock.iter().any(|r| matches!(r, StockRegion::Pocket(_))))
+        }
+    };
+    let cell = slices.raster(0).cell_mm();
     let initial: Vec<f64> = (0..slices.len()).map(|k| slices.raster(k).material_area_mm2()).collect();
 
     let total_length: f64 = path.moves.iter().map(crate::core::toolpath::move_length).sum();
@@ -261,7 +297,9 @@ pub fn analyze_with(
     })?;
     progress.report(1.0);
     let report = builder.finish();
-    Ok(assemble(path, spec, report, &slices, &initial, spacing, cell))
+    let mut analysis = assemble(path, spec, report, &slices, &initial, spacing, cell);
+    analysis.summary.rest_material = cavity.then(|| RestMaterial::of(&slices));
+    Ok((analysis, slices))
 }
 
 fn assemble(
@@ -335,6 +373,8 @@ fn assemble(
             rapid_length_mm: rapid_length,
             time_at_programmed_feeds_min: minutes,
             removed_volume_mm3,
+            remaining_volume_mm3: rest::remaining_volume_mm3(slices),
+            rest_material: None,
             alpha_deg: report.alpha_deg,
             t_m_um: report.t_m_um,
             force_n: report.force_n,
@@ -352,6 +392,8 @@ fn assemble(
 
 #[cfg(test)]
 mod accuracy_tests;
+#[cfg(test)]
+mod kept_tests;
 #[cfg(test)]
 mod physical_tests;
 #[cfg(test)]

@@ -11,6 +11,7 @@
 //! below; a copy behaves exactly as the stock it was taken from (same cells, same versions,
 //! same remembered capsule), so the simulation is the same as with a raster per slice.
 
+use super::kept::{KeptSlice, KeptStock};
 use super::slices::{SliceStock, Z_CONTACT_EPS_MM};
 use crate::core::stock::{Raster, Rect};
 use crate::core::CoreError;
@@ -117,6 +118,55 @@ impl Stack {
     pub fn own(&mut self, k: usize) -> &mut SliceStock {
         self.separate(k);
         self.slices[k].own.as_mut().expect("separated")
+    }
+
+    /// The stock the slices hold now, kept as plain data: each shared raster once.
+    /// `cavity` says the stock was a pocket's (see [`KeptStock::cavity`]).
+    pub fn keep(&self, cavity: bool) -> KeptStock {
+        let mut rasters: Vec<Vec<i8>> = Vec::new();
+        let slices = self
+            .slices
+            .iter()
+            .enumerate()
+            .map(|(k, s)| {
+                if k == 0 || self.slices[k - 1].own.is_some() {
+                    // The first slice of a run sharing one raster: the run's raster.
+                    rasters.push(Vec::new());
+                }
+                KeptSlice { z_top: s.z_top, z_bottom: s.z_bottom, raster: rasters.len() - 1 }
+            })
+            .collect::<Vec<_>>();
+        // A run's raster is its last slice's, the one that owns it.
+        for (k, s) in slices.iter().enumerate() {
+            if self.slices[k].own.is_some() {
+                rasters[s.raster] = self.raster(k).cells().to_vec();
+            }
+        }
+        KeptStock { grid: self.raster(self.len() - 1).layout_grid(), slices, rasters, cavity }
+    }
+
+    /// The slices between `levels` (top first, at least two) holding the material of
+    /// `kept`, mapped onto them as [`super::kept`] says; slices that hold one kept raster
+    /// share it. `Err` when a kept raster does not fit its grid.
+    pub fn carried(levels: &[f64], kept: &KeptStock) -> Result<Stack, String> {
+        let n = levels.len().saturating_sub(1).max(1);
+        let held: Vec<usize> = (0..n)
+            .map(|k| {
+                let top = levels.get(k).copied().unwrap_or(0.0);
+                kept.raster_for(top, levels.get(k + 1).copied().unwrap_or(top))
+            })
+            .collect();
+        let mut slices = Vec::with_capacity(n);
+        for (k, &raster) in held.iter().enumerate() {
+            let owner = held.get(k + 1) != Some(&raster);
+            let own = match owner {
+                true => Some(SliceStock::new(Raster::from_cells(kept.grid, kept.rasters[raster].clone())?)),
+                false => None,
+            };
+            let z_top = levels.get(k).copied().unwrap_or(0.0);
+            slices.push(Slice { z_top, z_bottom: levels.get(k + 1).copied().unwrap_or(0.0), own });
+        }
+        Ok(Stack { slices })
     }
 
     /// Memory the slices' rasters take, bytes (a shared stock counts once).

@@ -4,8 +4,9 @@
 //! feeds job's before-and-after figures both come from here.
 
 use super::cost::{cost, Cost, Rates};
-use super::wear::{path_wear, WearReport};
-use crate::core::analysis::{Analysis, AnalysisSpec};
+use super::wear::{path_wear_from, WearReport};
+use crate::core::analysis::kept::KeptStock;
+use crate::core::analysis::{Analysis, AnalysisSpec, Stack};
 use crate::core::kinematics::{machining_time, MachineLimits, MachiningTime, TimeOptions};
 use crate::core::progress::Progress;
 use crate::core::tool_life::ToolLifeModel;
@@ -45,7 +46,19 @@ pub fn estimate(
     model: &CostModel,
     progress: &dyn Progress,
 ) -> Result<(Analysis, Estimate), CoreError> {
-    let (analysis, wear) = path_wear(path, spec, &model.life, progress)?;
+    estimate_from(path, spec, None, model, progress).map(|(analysis, estimate, _)| (analysis, estimate))
+}
+
+/// As [`estimate`], on the stock `start` another simulation left when given (see
+/// [`crate::core::analysis::analyze_from`]), handing back the stock this one leaves.
+pub fn estimate_from(
+    path: &Toolpath,
+    spec: &AnalysisSpec,
+    start: Option<&KeptStock>,
+    model: &CostModel,
+    progress: &dyn Progress,
+) -> Result<(Analysis, Estimate, Stack), CoreError> {
+    let (analysis, wear, stack) = path_wear_from(path, spec, start, &model.life, progress)?;
     let estimate = estimate_with_wear(path, wear, model)?;
-    Ok((analysis, estimate))
+    Ok((analysis, estimate, stack))
 }

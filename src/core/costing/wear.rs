@@ -3,9 +3,10 @@
 //! them; the result says how much of a tool the path uses and where.
 
 use crate::core::analysis::engine::SampleResult;
+use crate::core::analysis::kept::KeptStock;
 use crate::core::analysis::report::HISTOGRAM_BIN_DEG;
 use crate::core::analysis::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE_BINS};
-use crate::core::analysis::{analyze_with, Analysis, AnalysisSpec};
+use crate::core::analysis::{analyze_from, Analysis, AnalysisSpec, Stack};
 use crate::core::progress::Progress;
 use crate::core::tool_life::{machined_surface_mm, Consumption, ToolLifeModel, WearCut};
 use crate::core::CoreError;
@@ -174,17 +175,29 @@ pub fn path_wear(
     model: &ToolLifeModel,
     progress: &dyn Progress,
 ) -> Result<(Analysis, WearReport), CoreError> {
+    path_wear_from(path, spec, None, model, progress).map(|(analysis, report, _)| (analysis, report))
+}
+
+/// As [`path_wear`], on the stock `start` another simulation left when given (see
+/// [`crate::core::analysis::analyze_from`]), handing back the stock this one leaves.
+pub fn path_wear_from(
+    path: &crate::core::toolpath::Toolpath,
+    spec: &AnalysisSpec,
+    start: Option<&KeptStock>,
+    model: &ToolLifeModel,
+    progress: &dyn Progress,
+) -> Result<(Analysis, WearReport, Stack), CoreError> {
     model.validate()?;
     let mut counter = WearCounter::new(model, spec.tool.flutes, spec.default_spindle_rpm);
     let total_length_mm: f64 = path.moves.iter().map(crate::core::toolpath::move_length).sum();
     let mut drawing = SampleCollector::new(total_length_mm, DRAWING_SAMPLE_BINS);
-    let analysis = analyze_with(path, spec, progress, |r| {
+    let (analysis, stack) = analyze_from(path, spec, start, progress, |r| {
         counter.add(r);
         drawing.add(r);
     })?;
     let mut report = counter.finish();
     report.samples = drawing.finish();
-    Ok((analysis, report))
+    Ok((analysis, report, stack))
 }
 
 #[cfg(test)]

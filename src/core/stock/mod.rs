@@ -16,6 +16,7 @@ mod arc_sweep;
 mod band;
 mod capsule;
 mod capsule_rows;
+mod cells;
 mod certified_air;
 mod compare;
 #[cfg(test)]
@@ -26,6 +27,7 @@ pub use arc_rows::ArcRows;
 pub use arc_sweep::{ArcSweep, MAX_ARC_SWEEP_RAD};
 pub use capsule::Capsule;
 pub use capsule_rows::CapsuleRows;
+pub use cells::Grid;
 pub use compare::CellRect;
 pub use tiles::Certified;
 use tiles::Tiles;

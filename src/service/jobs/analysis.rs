@@ -2,12 +2,14 @@
 //! overloads the tool.
 
 use super::analysis_result::AnalysisResult;
-use super::inputs::StockInput;
+use super::inputs::{check_from_job, StockInput};
+use super::kept_stock::{self, CarriedStock};
 use super::kind::off_runtime_with;
 use super::program_input::ProgramInput;
 use super::setup::{path_job_refs, read_inputs, resolve, PathJobRefs, PathSetup, Sampling};
+use crate::core::analysis::kept::KeptStock;
 use crate::core::analysis::samples::{SampleCollector, DRAWING_SAMPLE_BINS};
-use crate::core::analysis::{analyze_with, check, AnalysisSpec, MAX_ALPHA_LIMIT_DEG, MAX_SERIES_POINTS};
+use crate::core::analysis::{analyze_from, check, AnalysisSpec, MAX_ALPHA_LIMIT_DEG, MAX_SERIES_POINTS};
 use crate::core::drawing::analysis_scene::analysis_scene;
 use crate::core::drawing::scene::Scene;
 use crate::core::progress::Progress;
@@ -18,7 +20,6 @@ use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
 use crate::service::jobs::kind::{JobKindSpec, Produced, Submission};
 use crate::service::jobs::model::JobKind;
-use crate::service::store::Pool;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -77,16 +78,26 @@ pub fn check_request(request: &AnalysisRequest, v: &mut Validator) {
         v.within("cell_mm", c, 1e-3, 5.0);
     }
     v.check(request.series_points <= MAX_SERIES_POINTS, "series_points", format!("at most {MAX_SERIES_POINTS}"));
+    check_from_job(&request.stock, v);
+    if request.stock.from_job.is_some() && request.cell_mm.is_some() {
+        v.fail("cell_mm", "not with stock.from_job: the stock keeps the cell of the job that left it");
+    }
 }
 
 /// Resolves the request and reads its program and stock, adding every fault to `faults`;
 /// then, when it has none, checks the analysis as the core will run it.
 pub async fn prepare(
-    pool: &Pool,
+    submission: &Submission<'_>,
     request: AnalysisRequest,
     faults: &mut Validator,
 ) -> Result<Option<PathSetup>, ApiError> {
-    let setup = resolve(pool, &request.path_job(), faults).await?.map(|r| r.prepared);
+    let carried = match &request.stock.from_job {
+        Some(id) if !faults.refused(kept_stock::FIELD) => faults.take(kept_stock::carried(submission, id).await)?,
+        _ => None,
+    };
+    let setup = resolve(submission.pool, &request.path_job(), faults)
+        .await?
+        .map(|r| PathSetup { carried_stock: carried, ..r.prepared });
     // Parse and check everything now, off the async runtime, so that bad input is a 4xx
     // at submission and never a job that fails later.
     let checked = setup.clone();
@@ -123,14 +134,16 @@ pub fn run(
     request: AnalysisRequest,
     prepared: PathSetup,
     progress: &dyn Progress,
-) -> Result<(AnalysisResult, Scene), CoreError> {
+) -> Result<(AnalysisResult, Scene, KeptStock), CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
     let (path, spec) = build(&request, &prepared).map_err(reread)?;
     let total_length_mm: f64 = path.moves.iter().map(move_length).sum();
     let mut collector = SampleCollector::new(total_length_mm, DRAWING_SAMPLE_BINS);
-    let analysis = analyze_with(&path, &spec, progress, |r| collector.add(r))?;
+    let start = prepared.carried_stock.as_ref().map(CarriedStock::decode).transpose().map_err(reread)?;
+    let (analysis, stack) = analyze_from(&path, &spec, start.as_ref(), progress, |r| collector.add(r))?;
     let scene = analysis_scene(&path, &spec, &analysis, &collector.finish());
-    Ok((AnalysisResult::new(prepared, path.moves.len(), analysis), scene))
+    let kept = stack.keep(analysis.summary.rest_material.is_some());
+    Ok((AnalysisResult::new(prepared, path.moves.len(), analysis), scene, kept))
 }
 
 /// Reads the program and the stock and puts the analysis together.
@@ -162,7 +175,7 @@ impl JobKindSpec for Analysis {
         request: AnalysisRequest,
         faults: &mut Validator,
     ) -> Result<Option<PathSetup>, ApiError> {
-        prepare(submission.pool, request, faults).await
+        prepare(submission, request, faults).await
     }
 
     fn run(
@@ -170,7 +183,7 @@ impl JobKindSpec for Analysis {
         prepared: PathSetup,
         progress: &dyn Progress,
     ) -> Result<Produced<AnalysisResult>, CoreError> {
-        let (result, scene) = run(request, prepared, progress)?;
-        Ok(Produced::drawn(result, scene))
+        let (result, scene, kept) = run(request, prepared, progress)?;
+        Ok(Produced::drawn(result, scene).keeping(kept))
     }
 }

@@ -41,11 +41,14 @@ pub struct AnalysisResult {
     pub summary: PathSummary,
     pub critical_regions: Vec<CriticalRegion>,
     pub series: Option<Series>,
+    /// The job whose stock the layer started from (`stock.from_job`), if any.
+    pub stock_from_job: Option<String>,
 }
 
 impl AnalysisResult {
     pub fn new(prepared: PathSetup, moves: usize, a: Analysis) -> AnalysisResult {
         let regions = a.critical_regions.len();
+        let stock_from_job = prepared.carried_stock.as_ref().map(|c| c.from_job.clone());
         AnalysisResult {
             material: prepared.material,
             tool: prepared.tool,
@@ -54,6 +57,7 @@ impl AnalysisResult {
             summary: PathSummary::new(moves, a.summary, regions),
             critical_regions: a.critical_regions,
             series: a.series,
+            stock_from_job,
         }
     }
 }

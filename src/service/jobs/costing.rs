@@ -2,14 +2,16 @@
 //! tool-life consumption and cost of machining an NC program.
 
 use super::costing_result::CostingResult;
-use super::inputs::StockInput;
+use super::inputs::{check_from_job, StockInput};
+use super::kept_stock::{self, CarriedStock};
 use super::kind::off_runtime_with;
 use super::model::{JobId, ProgramPart};
 use super::program_input::ProgramInput;
 use super::setup::{path_job_refs, read_inputs, resolve, resolve_cost, CostSetup, PathSetup, Sampling};
 use super::store;
+use crate::core::analysis::kept::KeptStock;
 use crate::core::analysis::{check, AnalysisSpec};
-use crate::core::costing::estimate::estimate;
+use crate::core::costing::estimate::estimate_from;
 use crate::core::drawing::costing_scene::costing_scene;
 use crate::core::drawing::scene::Scene;
 use crate::core::progress::Progress;
@@ -103,6 +105,10 @@ impl CostingRequest {
 /// Checks the values of the request that need no database.
 pub fn check_request(request: &CostingRequest, v: &mut Validator) {
     v.check(request.program.is_some() != request.job_id.is_some(), "program", "give exactly one of program and job_id");
+    check_from_job(&request.stock, v);
+    if request.stock.from_job.is_some() && request.cell_mm.is_some() {
+        v.fail("cell_mm", "not with stock.from_job: the stock keeps the cell of the job that left it");
+    }
     if let Some(p) = request.tool_price {
         v.within("tool_price", p, 0.0, crate::service::resources::tools::MAX_PRICE);
     }
@@ -153,9 +159,13 @@ pub async fn prepare(
         Some(_) => None,
         None => Some((None, None)),
     };
+    let carried = match &request.stock.from_job {
+        Some(id) if !faults.refused(kept_stock::FIELD) => faults.take(kept_stock::carried(submission, id).await)?,
+        _ => None,
+    };
     let refs = path_job_refs!(request, request.machine_id, request.spindle_rpm);
     let resolved = resolve(pool, &refs, faults).await?;
-    let (base, standard) = resolved.map(|r| (r.prepared, r.standard)).unzip();
+    let (base, standard) = resolved.map(|r| (PathSetup { carried_stock: carried, ..r.prepared }, r.standard)).unzip();
     let cost = resolve_cost(
         pool,
         base.as_ref(),
@@ -194,12 +204,15 @@ pub fn run(
     request: CostingRequest,
     prepared: CostingPrepared,
     progress: &dyn Progress,
-) -> Result<(CostingResult, Scene), CoreError> {
+) -> Result<(CostingResult, Scene, KeptStock), CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
     let (path, spec) = request.analysis(&prepared).map_err(reread)?;
-    let (report, estimate) = estimate(&path, &spec, &prepared.cost.cost_model(), progress)?;
+    let start = prepared.base.carried_stock.as_ref().map(CarriedStock::decode).transpose().map_err(reread)?;
+    let model = prepared.cost.cost_model();
+    let (report, estimate, stack) = estimate_from(&path, &spec, start.as_ref(), &model, progress)?;
     let scene = costing_scene(&path, &spec, &report, &estimate.wear, &estimate.time, &estimate.cost);
-    Ok((CostingResult::new(prepared, &path, report, estimate)?, scene))
+    let kept = stack.keep(report.summary.rest_material.is_some());
+    Ok((CostingResult::new(prepared, &path, report, estimate)?, scene, kept))
 }
 
 /// The `costing` job kind.
@@ -234,7 +247,7 @@ impl JobKindSpec for Costing {
         prepared: CostingPrepared,
         progress: &dyn Progress,
     ) -> Result<Produced<CostingResult>, CoreError> {
-        let (result, scene) = run(request, prepared, progress)?;
-        Ok(Produced::drawn(result, scene))
+        let (result, scene, kept) = run(request, prepared, progress)?;
+        Ok(Produced::drawn(result, scene).keeping(kept))
     }
 }

@@ -53,6 +53,7 @@ struct Serialized {
     baseline: Option<String>,
     base: Option<String>,
     scene: Option<String>,
+    stock: Option<super::kept_stock::EncodedStock>,
 }
 
 /// Runs a claimed job under `control` and records its outcome; `Ok(false)` when the
@@ -89,11 +90,11 @@ pub async fn execute(
     };
     let worker_control = control.clone();
     let mut task = tokio::task::spawn_blocking(move || {
-        let kinds::JobOutput { result: value, program, baseline_program: baseline, base_program: base, scene } =
+        let kinds::JobOutput { result: value, program, baseline_program: baseline, base_program: base, scene, stock } =
             kinds::run(kind, &input, &prepared, worker_control.as_ref())?;
         let result = serde_json::to_string(&value).unwrap_or_default();
         let summary = super::model::headline(&value).to_string();
-        Ok::<_, CoreError>(Serialized { result, summary, program, baseline, base, scene })
+        Ok::<_, CoreError>(Serialized { result, summary, program, baseline, base, scene, stock })
     });
     let mut tick = tokio::time::interval(PROGRESS_FLUSH);
     let mut last = 0.0;
@@ -121,6 +122,7 @@ pub async fn execute(
                 ("baseline program", baseline.map_or(0, str::len)),
                 ("base program", base.map_or(0, str::len)),
                 ("scene", scene.map_or(0, str::len)),
+                ("kept stock", done.stock.as_ref().map_or(0, |s| s.body.len())),
             ];
             if let Some(problem) = oversized(&sizes) {
                 return store::fail(pool, lease, id, &problem).await;
@@ -129,7 +131,8 @@ pub async fn execute(
                 .into_iter()
                 .filter_map(|(part, text)| Some((part, text?)))
                 .collect();
-            let outcome = store::Outcome { result, summary: Some(summary), programs, scene };
+            let outcome =
+                store::Outcome { result, summary: Some(summary), programs, scene, stock: done.stock.as_ref() };
             match store::succeed(pool, lease, id, &outcome).await {
                 Ok(true) => Ok(true),
                 Ok(false) => {

@@ -174,6 +174,11 @@ fn papers_rule() -> Objective {
 
 /// Checks the values of the request that need no database.
 pub fn check_request(request: &FeedsRequest, v: &mut Validator) {
+    if request.stock.as_ref().is_some_and(|s| s.from_job.is_some()) {
+        let reason =
+            "a feeds job does not start from a kept stock: analyse or cost the program on it (analysis, costing)";
+        v.fail("stock.from_job", reason);
+    }
     for (field, value) in [
         ("target_force_n", request.target_force_n),
         ("min_feed_mm_min", request.min_feed_mm_min),

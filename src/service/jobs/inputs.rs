@@ -5,7 +5,9 @@
 use crate::core::analysis::StockRegion;
 use crate::core::geometry::{loops_from_dxf, pocket_from_loops, Loop, Pocket, Vertex};
 use crate::core::stock::Rect;
-use crate::service::error::{ApiError, FieldError};
+use crate::service::error::{ApiError, FieldError, Validator};
+use crate::service::jobs::kept_stock::{CarriedStock, FIELD};
+use crate::service::jobs::model::JobId;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -50,7 +52,8 @@ pub struct CircleInput {
 }
 
 /// The stock of the layer: a box, a pocket contour, or DXF text (exactly one), the
-/// layer's z range, and regions already open.
+/// layer's z range, and regions already open; or the stock a finished job left
+/// (`from_job`, alone).
 #[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct StockInput {
@@ -66,6 +69,42 @@ pub struct StockInput {
     pub z_bottom: Option<f64>,
     #[serde(default)]
     pub open: Vec<OpenRegionInput>,
+    /// A finished job (analysis or costing) whose simulated stock the layer starts
+    /// from, given alone: the layer, its z range, its grid and the material left in each
+    /// of its slices are that job's (the program's own z levels take, each, the material
+    /// the kept stock has anywhere over their z range; see the README, "Stock carried
+    /// between programs"). A planner's key may name only its own jobs.
+    pub from_job: Option<JobId>,
+}
+
+/// The fields a stock from a job (`from_job`) takes from that job, and may not be given.
+const TAKEN_FROM_THE_JOB: [&str; 6] = ["box", "contour", "dxf", "z_top", "z_bottom", "open"];
+
+impl StockInput {
+    /// The fields given besides `from_job` that it takes from its job.
+    fn given_with_from_job(&self) -> Vec<&'static str> {
+        if self.from_job.is_none() {
+            return vec![];
+        }
+        let given = [
+            self.stock_box.is_some(),
+            self.contour.is_some(),
+            self.dxf.is_some(),
+            self.z_top.is_some(),
+            self.z_bottom.is_some(),
+            !self.open.is_empty(),
+        ];
+        TAKEN_FROM_THE_JOB.iter().zip(given).filter(|(_, g)| *g).map(|(f, _)| *f).collect()
+    }
+}
+
+/// Checks, without the database, that a stock from a job gives nothing its job decides:
+/// each such field is refused, naming it (`stock.box`…).
+pub fn check_from_job(stock: &StockInput, v: &mut Validator) {
+    for field in stock.given_with_from_job() {
+        let reason = "not with from_job: a layer that starts from a job's stock takes its shape, z range and open regions from that job";
+        v.fail(format!("stock.{field}"), reason);
+    }
 }
 
 /// The core's view of the stock.
@@ -74,6 +113,8 @@ pub struct Stock {
     pub open: Vec<StockRegion>,
     pub z_top: f64,
     pub z_bottom: f64,
+    /// Starts from the stock a job left (then `regions` is its grid's extent).
+    pub carried: bool,
 }
 
 /// A loop of `[x, y]` or `[x, y, bulge]` vertices; errors name `field[i]`.
@@ -136,8 +177,17 @@ fn finite(field: &str, values: &[f64]) -> Result<(), ApiError> {
     }
 }
 
-/// Checks the stock and turns it into regions.
-pub fn read_stock(input: &StockInput) -> Result<Stock, ApiError> {
+/// Checks the stock and turns it into regions; a stock from a job (`from_job`) is the one
+/// its submission resolved (`carried`).
+pub fn read_stock(input: &StockInput, carried: Option<&CarriedStock>) -> Result<Stock, ApiError> {
+    if input.from_job.is_some() {
+        if let Some(field) = input.given_with_from_job().first() {
+            return Err(ApiError::field(format!("stock.{field}"), "not with from_job"));
+        }
+        let carried = carried.ok_or_else(|| ApiError::field(FIELD, "the job's stock is not known"))?;
+        let regions = vec![StockRegion::Rect(carried.rect())];
+        return Ok(Stock { regions, open: vec![], z_top: carried.z_top, z_bottom: carried.z_bottom, carried: true });
+    }
     let (regions, default_z) = match (&input.stock_box, &input.contour, &input.dxf) {
         (Some(b), None, None) => {
             finite("stock.box", &[b.x_min, b.y_min, b.z_min, b.x_max, b.y_max, b.z_max])?;
@@ -186,5 +236,5 @@ pub fn read_stock(input: &StockInput) -> Result<Stock, ApiError> {
             }
         })
         .collect::<Result<Vec<_>, _>>()?;
-    Ok(Stock { regions, open, z_top, z_bottom })
+    Ok(Stock { regions, open, z_top, z_bottom, carried: false })
 }

@@ -4,6 +4,7 @@
 //! [`JobKindSpec`] in its own file and is registered once, in [`super::kinds`].
 
 use super::model::JobKind;
+use crate::core::analysis::kept::KeptStock;
 use crate::core::drawing::scene::Scene;
 use crate::core::progress::Progress;
 use crate::core::CoreError;
@@ -33,17 +34,24 @@ pub struct Produced<R> {
     pub base_program: Option<String>,
     /// What can be drawn of the job.
     pub scene: Option<Scene>,
+    /// The stock its simulation left, kept for a job to start from (`stock.from_job`).
+    pub stock: Option<KeptStock>,
 }
 
 impl<R> Produced<R> {
     /// A result alone.
     pub fn result(result: R) -> Self {
-        Produced { result, program: None, baseline_program: None, base_program: None, scene: None }
+        Produced { result, program: None, baseline_program: None, base_program: None, scene: None, stock: None }
     }
 
     /// A result with its drawing.
     pub fn drawn(result: R, scene: Scene) -> Self {
         Produced { scene: Some(scene), ..Produced::result(result) }
+    }
+
+    /// The same, keeping the stock its simulation left.
+    pub fn keeping(self, stock: KeptStock) -> Self {
+        Produced { stock: Some(stock), ..self }
     }
 
     /// A result with its NC program and drawing.

@@ -33,6 +33,8 @@ pub struct JobOutput {
     pub base_program: Option<String>,
     /// The drawing scene as JSON.
     pub scene: Option<String>,
+    /// The stock the simulation left, encoded and compressed.
+    pub stock: Option<super::kept_stock::EncodedStock>,
 }
 
 /// A submission checked and resolved: what the store keeps for the worker.
@@ -233,13 +235,15 @@ fn run_kind<K: JobKindSpec>(input: &str, prepared: &str, progress: &dyn Progress
     let unreadable = |e: serde_json::Error| CoreError::invalid("prepared", format!("stored job input unreadable: {e}"));
     let request = serde_json::from_str(input).map_err(unreadable)?;
     let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
-    let Produced { result, program, baseline_program, base_program, scene } = K::run(request, prepared, progress)?;
+    let Produced { result, program, baseline_program, base_program, scene, stock } =
+        K::run(request, prepared, progress)?;
     let result = serde_json::to_value(result).map_err(unreadable)?;
     let scene = scene
         .map(|s| serde_json::to_string(&s))
         .transpose()
         .map_err(|e| CoreError::invalid("scene", format!("drawing scene unserialisable: {e}")))?;
-    Ok(JobOutput { result, program, baseline_program, base_program, scene })
+    let stock = stock.as_ref().map(super::kept_stock::encode);
+    Ok(JobOutput { result, program, baseline_program, base_program, scene, stock })
 }
 
 /// Runs a prepared job from its input as submitted and what it resolved to.

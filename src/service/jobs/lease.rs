@@ -150,6 +150,8 @@ pub struct Outcome<'a> {
     pub summary: Option<&'a str>,
     pub programs: Vec<(ProgramPart, &'a str)>,
     pub scene: Option<&'a str>,
+    /// The stock its simulation left, kept for a job to start from.
+    pub stock: Option<&'a super::kept_stock::EncodedStock>,
 }
 
 /// Marks a running job succeeded with its outcome, in one transaction, if `lease` still
@@ -196,6 +198,9 @@ pub async fn succeed(pool: &Pool, lease: &Lease, id: &str, outcome: &Outcome<'_>
         .bind(scene.as_bytes())
         .execute(&mut *tx)
         .await?;
+    }
+    if let Some(stock) = outcome.stock {
+        super::kept_stock::store(&mut tx, id, stock).await?;
     }
     tx.commit().await?;
     Ok(true)

@@ -13,6 +13,7 @@ pub mod feed_limits;
 pub mod feeds;
 pub mod feeds_result;
 pub mod inputs;
+pub mod kept_stock;
 pub mod kind;
 pub mod kinds;
 pub mod labels;

@@ -447,6 +447,7 @@ impl JobKindSpec for Plan {
             baseline_program: out.baseline_program,
             base_program: None,
             scene: Some(out.scene),
+            stock: None,
         })
     }
 }

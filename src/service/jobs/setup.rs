@@ -16,6 +16,7 @@ use crate::core::tool_life::ToolLifeModel;
 use crate::core::toolpath::Toolpath;
 use crate::service::error::{ApiError, Validator};
 use crate::service::jobs::inputs::{read_stock, Stock, StockInput};
+use crate::service::jobs::kept_stock::{CarriedStock, FIELD as STOCK_FROM_JOB};
 use crate::service::jobs::program_input::{read_program, ProgramContext, ProgramInput, ReadProgram};
 use crate::service::lookup;
 use crate::service::resources::force_models::ForceModelRecord;
@@ -141,6 +142,9 @@ pub struct PathSetup {
     /// kept: off).
     #[serde(default)]
     pub coolant: crate::core::coolant::Coolant,
+    /// The stock the job starts from, when it names one (`stock.from_job`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub carried_stock: Option<CarriedStock>,
 }
 
 impl PathSetup {
@@ -177,7 +181,7 @@ impl PathSetup {
         stock: &StockInput,
         sampling: &Sampling,
     ) -> Result<(Toolpath, AnalysisSpec), ApiError> {
-        let stock = read_stock(stock)?;
+        let stock = read_stock(stock, self.carried_stock.as_ref())?;
         let path = self.read_program(program, Some(stock.z_top))?.path;
         Ok((path, self.spec(stock, sampling)))
     }
@@ -220,9 +224,13 @@ pub fn read_inputs(
     stock: Option<&StockInput>,
     faults: &mut Validator,
 ) -> Result<PathInputs, ApiError> {
+    let carried = setup.and_then(|s| s.carried_stock.as_ref());
     let stock = match stock {
-        Some(stock) if !faults.refused("stock") => faults.take(read_stock(stock))?,
-        _ => None,
+        Some(_) if faults.refused("stock") => None,
+        // A stock from a job not resolved: its fault is said (or the tool's that kept it).
+        Some(stock) if stock.from_job.is_some() && (carried.is_none() || faults.refused(STOCK_FROM_JOB)) => None,
+        Some(stock) => faults.take(read_stock(stock, carried))?,
+        None => None,
     };
     let stock_top_mm = stock.as_ref().map(|s| s.z_top);
     let read = match (program, setup) {
@@ -345,6 +353,7 @@ pub async fn resolve(
         max_feed_mm_min: Some(machine.data.max_feed_mm_min),
         default_spindle_rpm,
         coolant: machine.data.coolant,
+        carried_stock: None,
     };
     Ok(Some(Resolved {
         prepared,

@@ -1,0 +1,54 @@
+//! What a simulation leaves in the layer: the remaining volume of its stock and, where the
+//! stock was a pocket's, the rest material inside the cavity per slice (issue 32 item 3),
+//! for the next program to remove.
+
+use super::stack::Stack;
+use serde::Serialize;
+
+/// The rest material of one slice.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, utoipa::ToSchema)]
+pub struct RestLevel {
+    pub z_top: f64,
+    pub z_bottom: f64,
+    /// Area of material left in the slice, mm².
+    pub area_mm2: f64,
+    /// A point of it, `[x, y]` mm: the centre of a cell as deep in the material as any
+    /// (null when none is left).
+    pub point: Option<[f64; 2]>,
+}
+
+/// The material left inside the cavity after the path.
+#[derive(Debug, Clone, PartialEq, Serialize, utoipa::ToSchema)]
+pub struct RestMaterial {
+    /// Volume left, mm³.
+    pub volume_mm3: f64,
+    /// Per slice, top first.
+    pub levels: Vec<RestLevel>,
+}
+
+impl RestMaterial {
+    /// The rest material of the slices of `stack`.
+    pub fn of(stack: &Stack) -> RestMaterial {
+        let levels: Vec<RestLevel> = stack
+            .slices()
+            .iter()
+            .enumerate()
+            .map(|(k, s)| {
+                let raster = stack.raster(k);
+                RestLevel {
+                    z_top: s.z_top,
+                    z_bottom: s.z_bottom,
+                    area_mm2: raster.material_area_mm2(),
+                    point: raster.deepest_material_point().map(|(x, y)| [x, y]),
+                }
+            })
+            .collect();
+        let volume_mm3 = levels.iter().map(|l| l.area_mm2 * (l.z_top - l.z_bottom)).sum();
+        RestMaterial { volume_mm3, levels }
+    }
+}
+
+/// The volume of material the slices of `stack` hold, mm³.
+pub fn remaining_volume_mm3(stack: &Stack) -> f64 {
+    stack.slices().iter().enumerate().map(|(k, s)| stack.raster(k).material_area_mm2() * (s.z_top - s.z_bottom)).sum()
+}

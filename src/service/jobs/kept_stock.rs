@@ -1,0 +1,253 @@
+//! The stock a finished job's simulation left, kept compressed in `job_stocks`
+//! (migration 0017), and read back for a job that starts from it
+//! (`"stock": {"from_job": "<id>"}`, issue 32 item 3).
+//!
+//! **Format 1** (the `format` column): a zlib stream of, little-endian: the grid's origin
+//! x and y and its cell (3 × f64, mm), its columns and rows (2 × u32), whether the stock
+//! was a pocket's (u8, 0 or 1), the number of slices and of rasters (2 × u32); then per
+//! slice, top first, its z_top and z_bottom (2 × f64, mm) and the index of its raster
+//! (u32); then each raster's cells, row by row from the bottom (columns × rows i8 each).
+//! Slices still alike at the end of the simulation share one raster, stored once. A
+//! stock of another format is refused (a 422 naming `stock.from_job`), never guessed at.
+
+use super::model::{JobId, JobStatus};
+use super::store;
+use crate::core::analysis::kept::{KeptSlice, KeptStock};
+use crate::core::analysis::MAX_RASTER_CELLS;
+use crate::core::stock::{Grid, Rect};
+use crate::service::error::ApiError;
+use crate::service::jobs::kind::Submission;
+use crate::service::store::Pool;
+use base64::Engine;
+use flate2::read::ZlibDecoder;
+use flate2::write::ZlibEncoder;
+use serde::{Deserialize, Serialize};
+use std::io::{Read, Write};
+
+/// The format this version writes and reads.
+pub const FORMAT: i64 = 1;
+/// Most slices a kept stock may have (far above what an analysis makes).
+const MAX_KEPT_SLICES: usize = 4096;
+/// The field the faults of a `from_job` name.
+pub const FIELD: &str = "stock.from_job";
+
+/// A kept stock, encoded and compressed: what is stored.
+pub struct EncodedStock {
+    pub format: i64,
+    /// Size before compression, bytes.
+    pub raw_bytes: usize,
+    pub body: Vec<u8>,
+}
+
+/// Encodes and compresses `kept` in [`FORMAT`].
+pub fn encode(kept: &KeptStock) -> EncodedStock {
+    let cells: usize = kept.rasters.iter().map(Vec::len).sum();
+    let mut raw = Vec::with_capacity(64 + 20 * kept.slices.len() + cells);
+    let g = kept.grid;
+    for v in [g.x0_mm, g.y0_mm, g.cell_mm] {
+        raw.extend_from_slice(&v.to_le_bytes());
+    }
+    for n in [g.nx, g.ny] {
+        raw.extend_from_slice(&(n as u32).to_le_bytes());
+    }
+    raw.push(u8::from(kept.cavity));
+    for n in [kept.slices.len(), kept.rasters.len()] {
+        raw.extend_from_slice(&(n as u32).to_le_bytes());
+    }
+    for s in &kept.slices {
+        raw.extend_from_slice(&s.z_top.to_le_bytes());
+        raw.extend_from_slice(&s.z_bottom.to_le_bytes());
+        raw.extend_from_slice(&(s.raster as u32).to_le_bytes());
+    }
+    for r in &kept.rasters {
+        raw.extend(r.iter().map(|&v| v as u8));
+    }
+    let mut z = ZlibEncoder::new(Vec::new(), flate2::Compression::default());
+    // Writing to a Vec cannot fail.
+    let body = z.write_all(&raw).and_then(|()| z.finish()).unwrap_or_default();
+    EncodedStock { format: FORMAT, raw_bytes: raw.len(), body }
+}
+
+/// Reads the fields of an encoded stock in order.
+struct Reader<'a>(&'a [u8]);
+
+impl Reader<'_> {
+    fn take<const N: usize>(&mut self) -> Result<[u8; N], String> {
+        let (head, rest) = self.0.split_first_chunk::<N>().ok_or("the stock ends early")?;
+        self.0 = rest;
+        Ok(*head)
+    }
+    fn f64(&mut self) -> Result<f64, String> {
+        self.take::<8>().map(f64::from_le_bytes)
+    }
+    fn u32(&mut self) -> Result<usize, String> {
+        self.take::<4>().map(|b| u32::from_le_bytes(b) as usize)
+    }
+}
+
+/// Decodes a stored stock of `format`; `Err` says why it cannot be read.
+pub fn decode(format: i64, body: &[u8]) -> Result<KeptStock, String> {
+    if format != FORMAT {
+        return Err(format!("it is stored in format {format}, and this version of dieplan reads format {FORMAT}"));
+    }
+    // Never more than the largest stock an analysis makes (and its slices' headers).
+    let limit = MAX_RASTER_CELLS as u64 + 64 + 20 * MAX_KEPT_SLICES as u64;
+    let mut raw = Vec::new();
+    ZlibDecoder::new(body).take(limit + 1).read_to_end(&mut raw).map_err(|e| format!("it is not readable: {e}"))?;
+    if raw.len() as u64 > limit {
+        return Err("it is larger than any stock a job keeps".to_string());
+    }
+    let mut r = Reader(&raw);
+    let (x0_mm, y0_mm, cell_mm) = (r.f64()?, r.f64()?, r.f64()?);
+    let (nx, ny) = (r.u32()?, r.u32()?);
+    let cavity = match r.take::<1>()? {
+        [0] => false,
+        [1] => true,
+        _ => return Err("its pocket flag is neither 0 nor 1".to_string()),
+    };
+    let (n_slices, n_rasters) = (r.u32()?, r.u32()?);
+    if n_slices > MAX_KEPT_SLICES || n_rasters > n_slices {
+        return Err(format!("{n_slices} slices and {n_rasters} rasters"));
+    }
+    let slices = (0..n_slices)
+        .map(|_| Ok(KeptSlice { z_top: r.f64()?, z_bottom: r.f64()?, raster: r.u32()? }))
+        .collect::<Result<Vec<_>, String>>()?;
+    let grid = Grid { x0_mm, y0_mm, cell_mm, nx, ny };
+    let cells = grid.cells();
+    if cells.checked_mul(n_rasters) != Some(r.0.len()) {
+        return Err(format!("its cells are not {n_rasters} rasters of {nx} × {ny}"));
+    }
+    let rasters = r.0.chunks_exact(cells.max(1)).map(|c| c.iter().map(|&v| v as i8).collect()).collect();
+    let kept = KeptStock { grid, slices, rasters, cavity };
+    kept.validate()?;
+    // Every raster must rebuild (finite grid, values within the clamp).
+    for cells in &kept.rasters {
+        crate::core::stock::Raster::from_cells(grid, cells.clone())?;
+    }
+    Ok(kept)
+}
+
+/// Stores the stock job `id` left (in a transaction of the caller's).
+pub async fn store(conn: &mut crate::service::store::Conn, id: &str, stock: &EncodedStock) -> Result<(), sqlx::Error> {
+    sqlx::query(
+        "INSERT INTO job_stocks (job_id, format, raw_bytes, body) VALUES ($1, $2, $3, $4)
+         ON CONFLICT (job_id) DO UPDATE SET format = excluded.format, raw_bytes = excluded.raw_bytes, body = excluded.body",
+    )
+    .bind(id)
+    .bind(stock.format)
+    .bind(i64::try_from(stock.raw_bytes).unwrap_or(i64::MAX))
+    .bind(&stock.body)
+    .execute(conn)
+    .await?;
+    Ok(())
+}
+
+/// The stock a job starts from, as its submission resolved it: the job it came from, the
+/// layer and grid it covers, and the stored stock (read again when the job runs, so the
+/// job does not depend on the other job being kept).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct CarriedStock {
+    pub from_job: String,
+    pub z_top: f64,
+    pub z_bottom: f64,
+    pub cell_mm: f64,
+    /// The grid's extent, mm.
+    pub bounds: [f64; 4],
+    pub format: i64,
+    /// The stored body, base64.
+    pub body: String,
+}
+
+impl CarriedStock {
+    /// The extent of the kept grid.
+    pub fn rect(&self) -> Rect {
+        let [x_min, y_min, x_max, y_max] = self.bounds;
+        Rect { x_min, y_min, x_max, y_max }
+    }
+
+    /// The kept stock, decoded.
+    pub fn decode(&self) -> Result<KeptStock, ApiError> {
+        let body = base64::engine::general_purpose::STANDARD
+            .decode(&self.body)
+            .map_err(|e| ApiError::field(FIELD, format!("the stock of job {} is unreadable: {e}", self.from_job)))?;
+        decode(self.format, &body)
+            .map_err(|e| ApiError::field(FIELD, format!("the stock of job {} cannot be used: {e}", self.from_job)))
+    }
+}
+
+/// The stock job `id` left, for a job of the caller's to start from; faults name
+/// `stock.from_job`: an unknown job (or another key's, to a planner), a job not succeeded,
+/// a job that kept no stock, a stock this version cannot read.
+pub async fn carried(submission: &Submission<'_>, id: &JobId) -> Result<CarriedStock, ApiError> {
+    let pool: &Pool = submission.pool;
+    let row = store::get_visible(pool, submission.caller, id).await.map_err(|e| match e {
+        ApiError::NotFound(_) => ApiError::field(FIELD, format!("no job with id {id}")),
+        other => other,
+    })?;
+    if row.status()? != JobStatus::Succeeded {
+        let reason = format!("job {id} is {}: a job's stock is kept when it has succeeded", row.status);
+        return Err(ApiError::field(FIELD, reason));
+    }
+    let stored: Option<(i64, Vec<u8>)> = sqlx::query_as("SELECT format, body FROM job_stocks WHERE job_id = $1")
+        .bind(id.as_str())
+        .fetch_optional(pool)
+        .await?;
+    let Some((format, body)) = stored else {
+        let reason = format!("job {id} ({}) kept no stock: analysis and costing jobs keep theirs", row.kind);
+        return Err(ApiError::field(FIELD, reason));
+    };
+    let from_job = id.to_string();
+    tokio::task::spawn_blocking(move || {
+        let kept = decode(format, &body)
+            .map_err(|e| ApiError::field(FIELD, format!("the stock of job {from_job} cannot be used: {e}")))?;
+        let g = kept.grid;
+        let bounds = [g.x0_mm, g.y0_mm, g.x0_mm + g.nx as f64 * g.cell_mm, g.y0_mm + g.ny as f64 * g.cell_mm];
+        Ok(CarriedStock {
+            from_job,
+            z_top: kept.z_top(),
+            z_bottom: kept.z_bottom(),
+            cell_mm: g.cell_mm,
+            bounds,
+            format,
+            body: base64::engine::general_purpose::STANDARD.encode(&body),
+        })
+    })
+    .await
+    .map_err(|e| ApiError::Internal(format!("a blocking task failed: {e}")))?
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn kept() -> KeptStock {
+        let grid = Grid { x0_mm: -1.0, y0_mm: 2.0, cell_mm: 0.5, nx: 40, ny: 30 };
+        let slice = |z_top: f64, z_bottom: f64, raster: usize| KeptSlice { z_top, z_bottom, raster };
+        let raster = |v: i8| (0..grid.cells()).map(|k| if k % 7 == 0 { v } else { -v }).collect();
+        KeptStock {
+            grid,
+            slices: vec![slice(0.0, -10.0, 0), slice(-10.0, -20.0, 1), slice(-20.0, -30.0, 1)],
+            rasters: vec![raster(126), raster(3)],
+            cavity: true,
+        }
+    }
+
+    #[test]
+    fn a_kept_stock_reads_back_as_it_was_and_shared_rasters_are_stored_once() {
+        let encoded = encode(&kept());
+        assert_eq!(encoded.raw_bytes, 24 + 8 + 1 + 8 + 3 * 20 + 2 * 40 * 30);
+        assert!(encoded.body.len() < encoded.raw_bytes / 4, "{} bytes compressed", encoded.body.len());
+        assert_eq!(decode(FORMAT, &encoded.body), Ok(kept()));
+    }
+
+    #[test]
+    fn a_stock_of_another_format_or_damaged_is_refused_saying_why() {
+        let encoded = encode(&kept());
+        assert!(decode(2, &encoded.body).unwrap_err().contains("format 2"));
+        assert!(decode(FORMAT, &encoded.body[..encoded.body.len() / 2]).is_err());
+        assert!(decode(FORMAT, b"not a stock").is_err());
+        let mut bad = kept();
+        bad.rasters[0][0] = i8::MIN;
+        assert!(decode(FORMAT, &encode(&bad).body).is_err());
+    }
+}
