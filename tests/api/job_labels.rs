@@ -1,7 +1,7 @@
 //! A job's name and tags (given on submit, returned, searched), and a program sent as a
 //! multipart file upload.
 
-use crate::common::{assert_problem, Answer, TestApp};
+use crate::common::{assert_problem, multipart, upload, Answer, TestApp};
 use reqwest::StatusCode;
 use serde_json::{json, Value};
 
@@ -26,37 +26,6 @@ fn fields(a: &Answer) -> Vec<String> {
 
 fn names(page: &Value) -> Vec<&str> {
     page["items"].as_array().unwrap().iter().filter_map(|j| j["name"].as_str()).collect()
-}
-
-/// A multipart body of `parts` (name, file name, bytes) with its content type.
-fn multipart(parts: &[(&str, Option<&str>, &[u8])]) -> (String, Vec<u8>) {
-    let boundary = "dieplan-test-boundary-7MA4YWxkTrZu0gW";
-    let mut body = Vec::new();
-    for (name, file, bytes) in parts {
-        body.extend_from_slice(format!("--{boundary}\r\n").as_bytes());
-        let file = file.map(|f| format!("; filename=\"{f}\"")).unwrap_or_default();
-        body.extend_from_slice(format!("Content-Disposition: form-data; name=\"{name}\"{file}\r\n\r\n").as_bytes());
-        body.extend_from_slice(bytes);
-        body.extend_from_slice(b"\r\n");
-    }
-    body.extend_from_slice(format!("--{boundary}--\r\n").as_bytes());
-    (format!("multipart/form-data; boundary={boundary}"), body)
-}
-
-async fn upload(app: &TestApp, path: &str, parts: &[(&str, Option<&str>, &[u8])]) -> Answer {
-    let (content_type, body) = multipart(parts);
-    let resp = app
-        .client
-        .post(app.url(path))
-        .header("content-type", content_type)
-        .header("prefer", "wait=10")
-        .body(body)
-        .send()
-        .await
-        .expect("request is answered");
-    let (status, headers) = (resp.status(), resp.headers().clone());
-    let text = resp.text().await.expect("body");
-    Answer { status, headers, body: serde_json::from_str(&text).unwrap_or(Value::Null), text }
 }
 
 /// POSTs `body` in chunks (`Transfer-Encoding: chunked`, no `Content-Length`, as a client

@@ -1,7 +1,7 @@
 //! `"stock": {"from_job": "<id>"}`: a job starts from the stock another job left (issue 32
 //! item 3): rough with one program, then analyse the next on what it left.
 
-use crate::common::{assert_problem, close, long_analysis, TestApp};
+use crate::common::{assert_problem, close, long_analysis, upload, TestApp};
 use serde_json::{json, Value};
 
 /// Passes of the 10 mm tool across the block along y = `y`, one at each of `levels`.
@@ -61,6 +61,29 @@ async fn an_intermediate_pass_analysed_on_what_the_roughing_left_cuts_only_the_w
     assert_eq!(done["result"]["summary"]["alpha_deg"], s["alpha_deg"]);
     let again = app.post_wait("/v1/analysis", intermediate(b.body["id"].as_str().unwrap())).await;
     assert!(close(&again.body["result"]["summary"]["removed_volume_mm3"], 0.0, 1.0), "{}", again.text);
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_program_uploaded_as_a_file_starts_from_the_kept_stock_its_request_part_names() {
+    let app = TestApp::start().await;
+    let id = rough(&app).await;
+    let mut request = intermediate(&id);
+    let program = request["program"]["gcode"].as_str().unwrap().to_string();
+    request.as_object_mut().unwrap().remove("program");
+    let request = request.to_string();
+    let parts = [("program", Some("wall.ngc"), program.as_bytes()), ("request", None, request.as_bytes())];
+    let a = upload(&app, "/v1/analysis", &parts).await;
+    assert_eq!((a.status.as_u16(), a.body["status"].as_str()), (201, Some("succeeded")), "{}", a.text);
+    assert_eq!(a.body["result"]["stock_from_job"], json!(id));
+    assert!(close(&a.body["result"]["summary"]["alpha_deg"]["max"], 36.87, 2.0), "{}", a.text);
+    // A request part naming no job, or a job that does not exist, is refused naming the field.
+    let unknown = json!({"tool_type": "square", "diameter_mm": 10,
+        "stock": {"from_job": "00000000-0000-4000-8000-000000000000"}})
+    .to_string();
+    let parts = [("program", Some("wall.ngc"), program.as_bytes()), ("request", None, unknown.as_bytes())];
+    let refused = upload(&app, "/v1/analysis", &parts).await;
+    assert_problem(&refused, 422, Some("stock.from_job"));
     app.stop().await;
 }
 
