@@ -217,3 +217,42 @@ fn loops_of_radius_engage_alike_as_arcs_and_as_chords(rho: f64) {
     assert!((a - b).abs() < TOLERANCE_DEG, "largest α {a:.2}° along arcs, {b:.2}° along chords");
     assert!(a > 30.0 && a < 170.0, "the loops cut, up to {a:.1}°");
 }
+
+#[test]
+fn a_pass_beside_a_ramp_engages_alike_however_the_ramp_is_split() {
+    // A ramp down the middle of a block, in one move or in seven, then a pass at half its
+    // depth alongside, through the wall the ramp left: the slice levels, and so the
+    // pass's engagement, do not depend on the split (issue 32: it gave 130.5° or 178.5°).
+    let block = Rect { x_min: 0.0, y_min: 0.0, x_max: 40.0, y_max: 30.0 };
+    let (from, to) = (P3::new(-8.0, 10.0, 0.0), P3::new(40.0, 10.0, -6.0));
+    let pass = feed(Motion::Linear, P3::new(-8.0, 16.0, -3.0), P3::new(48.0, 16.0, -3.0));
+    let run = |pieces: u32| {
+        let at = |i: u32| {
+            let t = f64::from(i) / f64::from(pieces);
+            P3::new(from.x + t * (to.x - from.x), from.y, from.z + t * (to.z - from.z))
+        };
+        let mut moves: Vec<Move> = (0..pieces).map(|i| feed(Motion::Linear, at(i), at(i + 1))).collect();
+        moves.push(feed(Motion::Rapid, to, P3::new(48.0, 16.0, 5.0)));
+        moves.push(feed(Motion::Rapid, P3::new(48.0, 16.0, 5.0), P3::new(-8.0, 16.0, 5.0)));
+        moves.push(feed(Motion::Linear, P3::new(-8.0, 16.0, 5.0), pass.start));
+        moves.push(pass);
+        let last = moves.len() - 1;
+        let p = path(moves);
+        let s = spec(vec![StockRegion::Rect(block)], vec![]);
+        assert_eq!(slices::slice_levels(&p, s.z_bottom, s.z_top), vec![0.0, -3.0, -6.0, -10.0]);
+        let mut alphas = Vec::new();
+        let a = analyze_with(&p, &s, &NoProgress, |r| {
+            if r.sample.move_index == last {
+                alphas.push(r.contact.alpha_rad.to_degrees());
+            }
+        })
+        .unwrap();
+        (alphas, a.summary.removed_volume_mm3)
+    };
+    let ((whole, whole_volume), (split, split_volume)) = (run(1), run(7));
+    assert_eq!(whole.len(), split.len());
+    let worst = whole.iter().zip(&split).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+    assert!(worst < TOLERANCE_DEG, "α differs by up to {worst}°");
+    assert!(whole.iter().any(|&a| a > 60.0), "the pass meets the ramp's wall");
+    assert!((whole_volume - split_volume).abs() < 1e-3 * whole_volume, "{whole_volume} against {split_volume} mm³");
+}
