@@ -22,7 +22,6 @@ pub mod sampling;
 pub mod scan_memory;
 pub mod slices;
 pub mod stack;
-pub mod z_course;
 
 use crate::core::error::require_positive;
 use crate::core::force_model::ForceModel;

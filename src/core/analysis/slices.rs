@@ -9,10 +9,9 @@
 //! the material of the slice below it. Above a slice with no material near the tool,
 //! none has any. Slices still alike share one stock (see [`super::stack`]).
 
-use super::z_course::{course_levels, cuts_flat};
 use crate::core::stock::{ArcRows, BlockRange, CapsuleRows, Raster};
 use crate::core::toolpath::move_length;
-use crate::core::toolpath::{Motion, Toolpath};
+use crate::core::toolpath::{Motion, Move, Plane, Toolpath};
 
 /// z levels closer than this are one level, mm.
 pub const MIN_SLICE_MM: f64 = 0.05;
@@ -114,33 +113,26 @@ impl SliceStock {
 
 /// The slice boundaries for `path` in a layer from `z_bottom` to `z_top`, top first.
 ///
-/// Candidates are the levels the path cuts flat at, each weighing the XY length cut flat
-/// there, and the levels where its non-flat courses start, end and turn in z (weighing
-/// nothing, see [`super::z_course`]): however the program's moves are split, the
-/// candidates and their weights are the same. Candidates closer than [`MIN_SLICE_MM`]
-/// are one level, at the heaviest of them (the highest on a tie), weighing all of them: a
-/// layer a program roughs at stays exact beside the end of a ramp just above it. Beyond
-/// [`MAX_SLICES`] slices, inner levels are merged away one by one, always the one whose
-/// neighbours are closest, taken first among the levels that are not layer levels (see
+/// Candidates are the z values of the feed moves' ends. Each weighs the XY length the
+/// path cuts flat at it. Candidates closer than [`MIN_SLICE_MM`] are one level, at the
+/// heaviest of them (the highest on a tie), weighing all of them: a layer a program
+/// roughs at stays exact beside the end of a ramp just above it. Beyond [`MAX_SLICES`]
+/// slices, inner levels are merged away one by one, always the one whose neighbours are
+/// closest, taken first among the levels that are not layer levels (see
 /// [`LAYER_LEVEL_SHARE`]). The top and the bottom are kept exact.
 pub fn slice_levels(path: &Toolpath, z_bottom: f64, z_top: f64) -> Vec<f64> {
     let feeds = || path.moves.iter().filter(|m| !matches!(m.motion, Motion::Rapid));
-    let flat = feeds().filter(|m| cuts_flat(m)).map(|m| (m.start.z, move_length(m)));
-    let mut candidates: Vec<(f64, f64)> = flat
-        .chain(course_levels(path).into_iter().map(|z| (z, 0.0)))
+    let mut candidates: Vec<(f64, f64)> = feeds()
+        .flat_map(|m| {
+            // A flat move's length counts once, at its level.
+            let flat_mm = if cuts_flat(m) { move_length(m) } else { 0.0 };
+            [(m.start.z, flat_mm), (m.end.z, 0.0)]
+        })
         .filter(|&(z, _)| z < z_top - MIN_SLICE_MM && z > z_bottom + MIN_SLICE_MM)
         .collect();
     candidates.sort_by(|a, b| b.0.total_cmp(&a.0));
-    // One candidate per z, its lengths summed.
-    candidates.dedup_by(|b, a| {
-        let same = a.0.to_bits() == b.0.to_bits();
-        if same {
-            a.1 += b.1;
-        }
-        same
-    });
-    // Candidates at one height are one, their lengths summed, at the z of the heaviest
-    // among them (a layer stays exact beside a ramp's end a rounding above it).
+    // Candidates at one height are one, their lengths summed, at the z of the longest
+    // flat move among them (a layer stays exact beside a ramp's end a rounding above it).
     let mut heights: Vec<(f64, f64, f64)> = Vec::with_capacity(candidates.len());
     for (z, flat_mm) in candidates {
         match heights.last_mut() {
@@ -182,12 +174,23 @@ pub fn slice_levels(path: &Toolpath, z_bottom: f64, z_top: f64) -> Vec<f64> {
     levels.into_iter().map(|(z, _, _)| z).collect()
 }
 
+/// `true` when the move cuts at one z level: a line or an arc in the XY plane whose ends
+/// lie at the same height.
+fn cuts_flat(m: &Move) -> bool {
+    let in_xy = match m.motion {
+        Motion::Linear => true,
+        Motion::Arc { plane, .. } => plane == Plane::Xy,
+        Motion::Rapid => false,
+    };
+    in_xy && (m.end.z - m.start.z).abs() <= Z_CONTACT_EPS_MM
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::core::nc::{parse_gcode, ParseOptions};
     use crate::core::stock::Rect;
-    use crate::core::toolpath::{Move, Units, P3};
+    use crate::core::toolpath::{Units, P3};
     use proptest::prelude::*;
 
     /// A feed move in a straight line from `start` to `end`, mm.
@@ -210,15 +213,12 @@ mod tests {
         program(z.iter().map(|&z| line(P3::new(0.0, 0.0, z), P3::new(1.0, 0.0, z))).collect())
     }
 
-    /// A surface pass from z = 0 down in a zigzag, `turns` moves of 0.5 mm in x, each
-    /// down 3·`step` or up `step` in turn: it turns at every multiple of `step`.
-    fn zigzag(turns: usize, step: f64) -> Vec<Move> {
-        let mut z = 0.0;
-        (0..turns)
+    /// A ramp down from z = 0 in steps of `step` mm, one 0.5 mm move per step, `steps` long.
+    fn ramp(steps: usize, step: f64) -> Vec<Move> {
+        (0..steps)
             .map(|i| {
-                let z0 = z;
-                z += if i % 2 == 0 { -3.0 * step } else { step };
-                line(P3::new(0.5 * i as f64, 0.0, z0), P3::new(0.5 * (i + 1) as f64, 0.0, z))
+                let (z0, z1) = (-step * i as f64, -step * (i + 1) as f64);
+                line(P3::new(0.5 * i as f64, 0.0, z0), P3::new(0.5 * (i + 1) as f64, 0.0, z1))
             })
             .collect()
     }
@@ -275,10 +275,9 @@ mod tests {
     }
 
     #[test]
-    fn beyond_the_slice_limit_the_levels_of_3d_passes_are_merged_before_layer_levels() {
-        // A surface pass turning at 200 levels 0.1 mm apart, and three layers roughed 50 mm
-        // each between them.
-        let mut moves = zigzag(200, 0.1);
+    fn beyond_the_slice_limit_ramp_levels_are_merged_before_layer_levels() {
+        // 200 ramp levels 0.1 mm apart, and three layers roughed 50 mm each between them.
+        let mut moves = ramp(200, 0.1);
         for z in [-5.03, -10.03, -15.07] {
             moves.push(line(P3::new(0.0, 0.0, z), P3::new(50.0, 0.0, z)));
         }
