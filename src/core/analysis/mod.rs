@@ -27,7 +27,7 @@ use crate::core::error::require_positive;
 use crate::core::force_model::ForceModel;
 use crate::core::progress::{Progress, Stage};
 use crate::core::stock::{Raster, Rect};
-use crate::core::tool::EndMill;
+use crate::core::tool::{EndMill, ToolType};
 use crate::core::toolpath::{Motion, Toolpath};
 use crate::core::CoreError;
 use engine::{simulate, Cutter};
@@ -322,11 +322,16 @@ fn assemble(
     let (outside_model, force_overload) = report.model_domain.clone().unzip();
     warnings.extend(outside_model.as_ref().and_then(OutsideModel::warning));
     warnings.extend(force_overload.as_ref().and_then(ForceOverload::warning));
-    if !spec.tool.tool_type.cuts_with_flank() {
-        warnings.push(
+    match spec.tool.tool_type {
+        ToolType::Ball => warnings.push(
             "ball end mill: the stock simulation treats the tool as a cylinder of its diameter (2.5-D side milling)"
                 .to_string(),
-        );
+        ),
+        ToolType::Radius if spec.tool.corner_radius_mm > 0.0 => warnings.push(format!(
+            "radius end mill: the stock simulation treats the tool as a cylinder of its diameter, without its {} mm corner radius",
+            spec.tool.corner_radius_mm
+        )),
+        _ => {}
     }
     if spec.default_spindle_rpm.is_none() {
         if let Some(m) = path.moves.iter().find(|m| !matches!(m.motion, Motion::Rapid) && m.spindle_rpm.is_none()) {
@@ -402,7 +407,7 @@ mod probe_tests;
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::core::tool::ToolType;
+    use crate::core::progress::NoProgress;
     use crate::core::toolpath::{Move, Units, P3};
     use std::sync::Mutex;
 
@@ -416,6 +421,24 @@ mod tests {
         }
         fn cancelled(&self) -> bool {
             false
+        }
+    }
+
+    /// `tool` in `block`, 5 mm deep, without a force model or a spindle speed.
+    fn block_spec(tool: EndMill, block: Rect) -> AnalysisSpec {
+        AnalysisSpec {
+            tool,
+            stock: vec![StockRegion::Rect(block)],
+            open: vec![],
+            z_top: 0.0,
+            z_bottom: -5.0,
+            force_model: None,
+            default_spindle_rpm: None,
+            rapid_mm_min: 20000.0,
+            sample_spacing_mm: None,
+            cell_mm: None,
+            alpha_limit_deg: DEFAULT_ALPHA_LIMIT_DEG,
+            series_points: 0,
         }
     }
 
@@ -435,20 +458,7 @@ mod tests {
             line: 1,
         };
         let path = Toolpath { moves: vec![line], events: vec![], source_units: Units::Mm, warnings: vec![] };
-        let spec = AnalysisSpec {
-            tool,
-            stock: vec![StockRegion::Rect(block)],
-            open: vec![],
-            z_top: 0.0,
-            z_bottom: -5.0,
-            force_model: None,
-            default_spindle_rpm: None,
-            rapid_mm_min: 20000.0,
-            sample_spacing_mm: None,
-            cell_mm: None,
-            alpha_limit_deg: DEFAULT_ALPHA_LIMIT_DEG,
-            series_points: 0,
-        };
+        let spec = block_spec(tool, block);
         let recorded = Recorded::default();
         analyze(&path, &spec, &recorded).expect("analyses");
         let reports = recorded.0.into_inner().expect("not poisoned");
@@ -456,5 +466,28 @@ mod tests {
         let while_painting = reports.iter().filter(|&&f| f < 0.99).count();
         assert!(while_painting > 1000, "{while_painting} reports while painting");
         assert!(reports.last().is_some_and(|&f| (f - 1.0).abs() < 1e-12));
+    }
+
+    #[test]
+    fn ball_and_radius_end_mills_are_told_that_their_profile_is_simulated_as_a_cylinder() {
+        let block = Rect { x_min: 0.0, y_min: 0.0, x_max: 30.0, y_max: 30.0 };
+        let line = Move {
+            motion: Motion::Linear,
+            start: P3::new(-10.0, 15.0, -1.0),
+            end: P3::new(40.0, 15.0, -1.0),
+            feed_mm_min: Some(1000.0),
+            spindle_rpm: Some(9600.0),
+            tool: None,
+            line: 1,
+        };
+        let path = Toolpath { moves: vec![line], events: vec![], source_units: Units::Mm, warnings: vec![] };
+        let warned = |tool_type: ToolType, corner_radius_mm: f64| {
+            let spec = block_spec(EndMill { tool_type, diameter_mm: 10.0, flutes: 2, corner_radius_mm }, block);
+            let a = analyze(&path, &spec, &NoProgress).expect("analyses");
+            a.summary.warnings.into_iter().find(|w| w.contains("as a cylinder"))
+        };
+        assert!(warned(ToolType::Square, 0.0).is_none());
+        assert!(warned(ToolType::Ball, 5.0).is_some_and(|w| w.starts_with("ball end mill")));
+        assert!(warned(ToolType::Radius, 1.0).is_some_and(|w| w.contains("without its 1 mm corner radius")));
     }
 }
