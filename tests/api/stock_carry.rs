@@ -312,3 +312,35 @@ async fn a_stock_kept_in_format_1_is_read_and_a_cut_below_it_is_refused_since_wh
     }
     app.stop().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_trochoids_job_keeps_the_stock_its_verified_program_leaves() {
+    let app = TestApp::start().await;
+    // The README's slot box: an 80 × 60 mm pocket with a 12 mm slot, 10 mm deep.
+    let box_with_slot =
+        json!({"outer": [[0, 0], [80, 0], [80, 24], [120, 24], [120, 36], [80, 36], [80, 60], [0, 60]]});
+    let t = app
+        .post_wait(
+            "/v1/trochoids",
+            json!({"contour": box_with_slot, "z_top": 0, "z_bottom": -10,
+            "tool_type": "square", "diameter_mm": 10}),
+        )
+        .await;
+    assert_eq!(t.body["status"].as_str(), Some("succeeded"), "{}", t.text);
+    let id = t.body["id"].as_str().unwrap();
+    // A pass through the middle of the cleared pocket meets no material.
+    let pass = "G21 G90 G17\nS9600 M3\nG0 X10 Y30 Z5\nG1 Z-10 F1000\nG1 X70 F2000\nG0 Z5\nM30\n";
+    let a = app
+        .post_wait(
+            "/v1/analysis",
+            json!({"program": {"gcode": pass}, "tool_type": "square", "diameter_mm": 10,
+            "stock": {"from_job": id}}),
+        )
+        .await;
+    assert_eq!(a.body["status"].as_str(), Some("succeeded"), "{}", a.text);
+    let s = &a.body["result"]["summary"];
+    assert_eq!(a.body["result"]["stock_from_job"], json!(id));
+    assert!(close(&s["removed_volume_mm3"], 0.0, 1.0), "{s}");
+    assert!(s["rest_material"].is_object(), "a pocket's stock is a cavity: {s}");
+    app.stop().await;
+}

@@ -70,7 +70,8 @@ pub struct StockInput {
     pub z_bottom: Option<f64>,
     #[serde(default)]
     pub open: Vec<OpenRegionInput>,
-    /// A finished job (analysis, costing, or feeds in side milling) whose simulated stock
+    /// A finished job (analysis, costing, feeds in side milling, or trochoids: the stock
+    /// its verified program leaves) whose simulated stock
     /// the layer starts from, given alone: the layer, its z range, its grid and the
     /// material left in each of its slices are that job's (the program's own z levels
     /// take, each, the material the kept stock has anywhere over their z range). Where the

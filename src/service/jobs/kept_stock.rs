@@ -275,8 +275,10 @@ pub async fn carried(submission: &Submission<'_>, id: &JobId) -> Result<CarriedS
         .fetch_optional(pool)
         .await?;
     let Some((format, body)) = stored else {
-        let reason =
-            format!("job {id} ({}) kept no stock: analysis, costing and side-milling feeds jobs keep theirs", row.kind);
+        let reason = format!(
+            "job {id} ({}) kept no stock: analysis, costing, side-milling feeds and trochoids jobs keep theirs",
+            row.kind
+        );
         return Err(ApiError::field(FIELD, reason));
     };
     let from_job = id.to_string();
