@@ -144,9 +144,9 @@ fn run(label: &str, gcode: &str, tool: &Tool, stock: Rect, z_bottom: f64, object
         cost: Some(CostModel { life, machine: MACHINE, rates }),
     };
     let start = Instant::now();
-    let (plan, costed) = optimize_costed(&path, &analysis, &spec, objective.clone(), &NoProgress).expect("optimises");
+    let optimised = optimize_costed(&path, &analysis, None, &spec, objective.clone(), &NoProgress).expect("optimises");
     let secs = start.elapsed().as_secs_f64();
-    let c = costed.expect("costed");
+    let (plan, c) = (optimised.plan, optimised.costed.expect("costed"));
     println!(
         "{label}, {:?}: cost {:.2} → {:.2} USD, tools {:.3} → {:.3}, kinematic time {:.2} → {:.2} min; {} moves kept{}; {:.1} s",
         objective.objective,

@@ -15,8 +15,41 @@
 //! levels are the same, the stock is the kept one cell for cell, and the next program is
 //! simulated exactly as if it had run on after the first on one stock. Where the first
 //! program never cut below the layer's top, every slice is the untouched stock, as it was.
+//!
+//! **Below the kept bottom.** The next program may cut deeper than the kept layer. What
+//! lies there is the stock as the first job was given it ([`Below`]): its footprint (the
+//! stock's regions less its open ones, as they were painted before any cut), solid down
+//! to the stock's own bottom ([`Floor::At`]: a box's `z_min`; nothing lies below it) or
+//! on down ([`Floor::Unbounded`]: a pocket's cavity runs on in its outline). The layer then
+//! reaches down to the program's deepest feed move ([`layer_bottom`]), never below the
+//! floor, and every new slice below the kept bottom, or across it, holds the footprint:
+//! the footprint holds all the material of the kept slices, so the rule above is kept. A
+//! stock kept before this was recorded (format 1) has no [`Below`]: a program cutting
+//! below it is refused, since what lies there is not known.
 
 use crate::core::stock::Grid;
+use serde::{Deserialize, Serialize};
+
+/// Grids whose origins differ by less than this share of a cell are one grid.
+const GRID_MATCH_CELLS: f64 = 1e-6;
+
+/// How deep the stock under a kept layer goes.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Floor {
+    /// Solid down to this z, mm (a box's bottom); nothing lies below it.
+    At(f64),
+    /// On down without end (a pocket's cavity, cut deeper in its outline).
+    Unbounded,
+}
+
+/// What lies under a kept layer.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Below {
+    /// The stock's cells before any cut (its regions less its open ones) on the kept grid.
+    pub footprint: Vec<i8>,
+    pub floor: Floor,
+}
 
 /// One slice of a kept stock: its z range, mm, and the raster it holds (an index into
 /// [`KeptStock::rasters`]).
@@ -39,6 +72,96 @@ pub struct KeptStock {
     /// The stock was a pocket's (a contour or a DXF): all its material lies inside the
     /// cavity to be cut, and what is left of it is rest material.
     pub cavity: bool,
+    /// What lies under the layer (`None`: not known, a stock kept in format 1).
+    pub below: Option<Below>,
+}
+
+/// Where a new slice's material comes from (see the module's doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Source {
+    /// A kept raster, by index.
+    Raster(usize),
+    /// The footprint under the kept layer.
+    Footprint,
+}
+
+/// The stock `stack` holds after simulating `spec`'s layer, kept with what lies under it:
+/// what lay under `start` when the simulation started from it, else the footprint of
+/// `spec`'s stock (painted again on the stack's grid, exactly as the simulation's stock
+/// was painted before any cut) down to `floor` (at the layer's bottom at the highest: the
+/// layer itself is solid footprint). `cavity` says the stock was a pocket's.
+pub fn keep(
+    stack: &super::Stack,
+    spec: &super::AnalysisSpec,
+    start: Option<&KeptStock>,
+    floor: Floor,
+    cavity: bool,
+) -> Result<KeptStock, crate::core::CoreError> {
+    let mut kept = stack.keep(cavity);
+    kept.below = match start {
+        Some(start) => start.below.clone(),
+        None => {
+            let bounds = super::region::union_bounds(&spec.stock);
+            let mut raster = crate::core::stock::Raster::new(bounds, kept.grid.cell_mm);
+            super::region::paint(&mut raster, &spec.stock, &spec.open, &crate::core::progress::NoProgress)?;
+            let floor = match floor {
+                Floor::At(z) => Floor::At(z.min(kept.z_bottom())),
+                Floor::Unbounded => Floor::Unbounded,
+            };
+            // The stack's grid is the painted stock's: any other is not this stock's.
+            let (g, k) = (raster.layout_grid(), kept.grid);
+            let same = g.nx == k.nx
+                && g.ny == k.ny
+                && (g.x0_mm - k.x0_mm).abs() < GRID_MATCH_CELLS * k.cell_mm
+                && (g.y0_mm - k.y0_mm).abs() < GRID_MATCH_CELLS * k.cell_mm;
+            same.then(|| Below { footprint: raster.cells().to_vec(), floor })
+        }
+    };
+    Ok(kept)
+}
+
+/// The slice levels `levels` (top first) of a layer that starts from a kept stock whose
+/// bottom is `kept_bottom_mm`, with the kept bottom among them where the layer reaches
+/// below it and no level lies within [`super::slices::MIN_SLICE_MM`] of it: the slices
+/// above it keep the kept material exactly, and the ones below hold the footprint.
+pub fn with_kept_bottom(mut levels: Vec<f64>, kept_bottom_mm: f64) -> Vec<f64> {
+    let min = super::slices::MIN_SLICE_MM;
+    let below = levels.last().is_some_and(|&z| z <= kept_bottom_mm - min);
+    if below && levels.iter().all(|&z| (z - kept_bottom_mm).abs() >= min) {
+        let at = levels.partition_point(|&z| z > kept_bottom_mm);
+        levels.insert(at, kept_bottom_mm);
+    }
+    levels
+}
+
+/// The lowest z a feed move of `path` reaches, mm (`None` without feed moves): the ends of
+/// the moves, as the slices' levels are chosen from them ([`super::slices::slice_levels`]).
+pub fn deepest_feed_mm(path: &crate::core::toolpath::Toolpath) -> Option<f64> {
+    use crate::core::toolpath::Motion;
+    path.moves
+        .iter()
+        .filter(|m| !matches!(m.motion, Motion::Rapid))
+        .flat_map(|m| [m.start.z, m.end.z])
+        .min_by(f64::total_cmp)
+}
+
+/// The bottom of a layer that starts from a kept stock whose bottom is `kept_bottom_mm`
+/// with `floor` under it (`None`: not known), for a program whose feed moves reach down to
+/// `deepest_mm`: the kept bottom, or deeper down to the program's deepest move but never
+/// below the floor. `Err` says why when the program cuts below the kept stock and what lies
+/// there is not known.
+pub fn layer_bottom(kept_bottom_mm: f64, floor: Option<Floor>, deepest_mm: Option<f64>) -> Result<f64, String> {
+    // Less than the smallest slice below the kept bottom is not a slice of its own.
+    let Some(deepest) = deepest_mm.filter(|&z| z <= kept_bottom_mm - super::slices::MIN_SLICE_MM) else {
+        return Ok(kept_bottom_mm);
+    };
+    match floor {
+        Some(Floor::Unbounded) => Ok(deepest),
+        Some(Floor::At(floor)) => Ok(deepest.max(floor).min(kept_bottom_mm)),
+        None => Err(format!(
+            "the program cuts down to z {deepest} and the kept stock ends at z {kept_bottom_mm}: what lies below it is not known (the stock was kept by an earlier version of dieplan); analyse the first program again to keep its stock anew"
+        )),
+    }
 }
 
 impl KeptStock {
@@ -50,6 +173,11 @@ impl KeptStock {
     /// The bottom of the layer, mm.
     pub fn z_bottom(&self) -> f64 {
         self.slices.last().map_or(0.0, |s| s.z_bottom)
+    }
+
+    /// How deep the stock under the layer goes (`None`: not known).
+    pub fn floor(&self) -> Option<Floor> {
+        self.below.as_ref().map(|b| b.floor)
     }
 
     /// Checks that the slices run top first without gaps, each with a raster of the
@@ -76,7 +204,39 @@ impl KeptStock {
         if self.rasters.iter().any(|r| r.len() != self.grid.cells()) {
             return Err(format!("every raster must have the grid's {} × {} cells", self.grid.nx, self.grid.ny));
         }
+        if let Some(below) = &self.below {
+            if below.footprint.len() != self.grid.cells() {
+                return Err("the footprint must have the grid's cells".to_string());
+            }
+            if let Floor::At(z) = below.floor {
+                if !(z.is_finite() && z <= self.z_bottom() + super::slices::Z_CONTACT_EPS_MM) {
+                    return Err("the floor must be finite and at or below the layer's bottom".to_string());
+                }
+            }
+        }
         Ok(())
+    }
+
+    /// Where a new slice from `z_top` down to `z_bottom` takes its material from: the
+    /// footprint when it reaches below the kept layer (`Err` when what lies there is not
+    /// known), else [`KeptStock::raster_for`].
+    pub fn source_for(&self, z_top: f64, z_bottom: f64) -> Result<Source, String> {
+        if z_bottom >= self.z_bottom() - super::slices::Z_CONTACT_EPS_MM {
+            return Ok(Source::Raster(self.raster_for(z_top, z_bottom)));
+        }
+        match &self.below {
+            Some(_) => Ok(Source::Footprint),
+            None => layer_bottom(self.z_bottom(), None, Some(z_bottom)).map(|_| Source::Footprint),
+        }
+    }
+
+    /// The cells of `source`.
+    pub fn cells(&self, source: Source) -> &[i8] {
+        match (source, &self.below) {
+            (Source::Raster(k), _) => &self.rasters[k],
+            (Source::Footprint, Some(below)) => &below.footprint,
+            (Source::Footprint, None) => &self.rasters[self.rasters.len() - 1],
+        }
     }
 
     /// The index of the kept raster a new slice from `z_top` down to `z_bottom` holds:
@@ -105,6 +265,7 @@ mod tests {
             slices: vec![slice(0.0, -10.0, 0), slice(-10.0, -20.0, 1), slice(-20.0, -30.0, 1)],
             rasters: vec![vec![0; 4], vec![1; 4]],
             cavity: false,
+            below: Some(Below { footprint: vec![2; 4], floor: Floor::At(-40.0) }),
         }
     }
 
@@ -136,5 +297,46 @@ mod tests {
         let mut upside_down = kept();
         upside_down.slices[0].raster = 1;
         assert!(upside_down.validate().is_err());
+        let mut floating = kept();
+        floating.below = Some(Below { footprint: vec![2; 4], floor: Floor::At(-20.0) });
+        assert!(floating.validate().is_err(), "a floor above the layer's bottom");
+        let mut torn = kept();
+        torn.below = Some(Below { footprint: vec![2; 3], floor: Floor::Unbounded });
+        assert!(torn.validate().is_err());
+    }
+
+    #[test]
+    fn a_new_slice_below_or_across_the_kept_bottom_holds_the_footprint_and_one_of_a_stock_that_never_knew_is_refused() {
+        let k = kept();
+        assert_eq!(k.source_for(-25.0, -30.0), Ok(Source::Raster(1)));
+        assert_eq!(k.source_for(-25.0, -32.0), Ok(Source::Footprint));
+        assert_eq!(k.source_for(-30.0, -35.0), Ok(Source::Footprint));
+        assert_eq!(k.cells(Source::Footprint), &[2; 4]);
+        let unknown = KeptStock { below: None, ..kept() };
+        assert!(unknown.source_for(-30.0, -35.0).unwrap_err().contains("not known"));
+    }
+
+    #[test]
+    fn the_kept_bottom_is_a_level_of_a_layer_reaching_below_it_unless_one_is_close() {
+        assert_eq!(with_kept_bottom(vec![0.0, -25.0, -35.0], -30.0), vec![0.0, -25.0, -30.0, -35.0]);
+        assert_eq!(with_kept_bottom(vec![0.0, -30.02, -35.0], -30.0), vec![0.0, -30.02, -35.0]);
+        assert_eq!(with_kept_bottom(vec![0.0, -30.0], -30.0), vec![0.0, -30.0]);
+    }
+
+    #[test]
+    fn the_layer_reaches_down_to_the_deepest_feed_move_but_never_below_the_floor() {
+        // Not below the kept bottom: the kept layer.
+        assert_eq!(layer_bottom(-30.0, None, Some(-30.0)), Ok(-30.0));
+        assert_eq!(layer_bottom(-30.0, None, None), Ok(-30.0));
+        // A box's bottom at −40: down to the move at −35, not to the move at −50.
+        assert_eq!(layer_bottom(-30.0, Some(Floor::At(-40.0)), Some(-35.0)), Ok(-35.0));
+        assert_eq!(layer_bottom(-30.0, Some(Floor::At(-40.0)), Some(-50.0)), Ok(-40.0));
+        // Less than the smallest slice below: the kept layer.
+        assert_eq!(layer_bottom(-30.0, Some(Floor::Unbounded), Some(-30.01)), Ok(-30.0));
+        // A box that ended at the kept bottom: nothing below it.
+        assert_eq!(layer_bottom(-30.0, Some(Floor::At(-30.0)), Some(-50.0)), Ok(-30.0));
+        // A pocket's cavity runs on down.
+        assert_eq!(layer_bottom(-30.0, Some(Floor::Unbounded), Some(-50.0)), Ok(-50.0));
+        assert!(layer_bottom(-30.0, None, Some(-31.0)).unwrap_err().contains("not known"));
     }
 }

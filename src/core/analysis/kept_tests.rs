@@ -26,6 +26,15 @@ fn spec(z_bottom: f64) -> AnalysisSpec {
     }
 }
 
+/// The block's outline as a pocket (a cavity), 10 mm deep.
+fn pocket_spec() -> AnalysisSpec {
+    use crate::core::geometry::{Loop, Pocket, Vertex};
+    let v = |x: f64, y: f64| Vertex { x, y, bulge: 0.0 };
+    let outer = Loop::new(vec![v(0.0, 0.0), v(100.0, 0.0), v(100.0, 40.0), v(0.0, 40.0)]);
+    let pocket = Pocket::new(outer, vec![]).expect("a pocket");
+    AnalysisSpec { stock: vec![StockRegion::Pocket(pocket)], ..spec(-10.0) }
+}
+
 fn feed(start: P3, end: P3) -> Move {
     Move { motion: Motion::Linear, start, end, feed_mm_min: Some(1000.0), spindle_rpm: None, tool: None, line: 1 }
 }
@@ -117,11 +126,7 @@ fn a_slice_spanning_a_kept_level_holds_the_material_of_the_kept_slice_below() {
 
 #[test]
 fn the_rest_material_of_a_pocket_is_what_the_path_left_in_it_with_a_point_of_it() {
-    use crate::core::geometry::{Loop, Pocket, Vertex};
-    let v = |x: f64, y: f64| Vertex { x, y, bulge: 0.0 };
-    let outer = Loop::new(vec![v(0.0, 0.0), v(100.0, 0.0), v(100.0, 40.0), v(0.0, 40.0)]);
-    let pocket = Pocket::new(outer, vec![]).expect("a pocket");
-    let spec = AnalysisSpec { stock: vec![StockRegion::Pocket(pocket)], ..spec(-10.0) };
+    let spec = pocket_spec();
     let (a, stack) = analyze_from(&passes(20.0, &[-10.0]), &spec, None, &NoProgress, |_| {}).expect("analyses");
     let rest = a.summary.rest_material.expect("a pocket has rest material");
     let left = 30.0 * 100.0 * 10.0;
@@ -130,4 +135,58 @@ fn the_rest_material_of_a_pocket_is_what_the_path_left_in_it_with_a_point_of_it(
     let [x, y] = rest.levels[0].point.expect("material is left");
     assert!(stack.raster(0).is_material(x, y) && !(15.0..=25.0).contains(&y));
     assert!(stack.keep(true).cavity);
+}
+
+#[test]
+fn below_the_kept_bottom_lies_the_stock_as_it_was_given_down_to_its_floor() {
+    use super::kept::{keep, Floor};
+    // The layer from 0 to −20 of a box whose bottom is at −30: a slot roughed at Ad 10.
+    let spec = spec(-20.0);
+    let (_, roughed) = analyze_from(&passes(20.0, &[-10.0, -20.0]), &spec, None, &NoProgress, |_| {}).expect("roughs");
+    let kept = keep(&roughed, &spec, None, Floor::At(-30.0), false).expect("keeps");
+    assert_eq!(kept.floor(), Some(Floor::At(-30.0)));
+    // On down the slot to −25: the layer reaches −25, the slot above is the kept one, and
+    // below −20 the tool slots through the box's footprint.
+    let (deeper, stack) =
+        analyze_from(&passes(20.0, &[-20.0, -25.0]), &spec, Some(&kept), &NoProgress, |_| {}).expect("analyses");
+    let bottoms: Vec<f64> = stack.slices().iter().map(|s| s.z_bottom).collect();
+    assert_eq!(bottoms, vec![-20.0, -25.0]);
+    assert!(deeper.summary.alpha_deg.max > 170.0, "{:?}", deeper.summary.alpha_deg);
+    let slot = 10.0 * 100.0 * 5.0;
+    assert!((deeper.summary.removed_volume_mm3 - slot).abs() / slot < 0.02, "{}", deeper.summary.removed_volume_mm3);
+    // A pass at −40 cuts down to the box's bottom and no further; only the slice below the
+    // kept bottom holds material, so the kept slot is not cut again.
+    let (deepest, stack) =
+        analyze_from(&passes(20.0, &[-40.0]), &spec, Some(&kept), &NoProgress, |_| {}).expect("analyses");
+    assert_eq!(stack.slices().last().map(|s| s.z_bottom), Some(-30.0));
+    let slot = 10.0 * 100.0 * 10.0;
+    assert!((deepest.summary.removed_volume_mm3 - slot).abs() / slot < 0.02, "{}", deepest.summary.removed_volume_mm3);
+    // Its own kept stock passes on what lies under it.
+    let again = keep(&stack, &spec, Some(&kept), Floor::Unbounded, false).expect("keeps");
+    assert_eq!((again.z_bottom(), again.floor()), (-30.0, Some(Floor::At(-30.0))));
+    // Under a stock kept without it, nothing is known: the deeper pass is refused.
+    let unknown = kept::KeptStock { below: None, ..kept };
+    let refused = analyze_from(&passes(20.0, &[-25.0]), &spec, Some(&unknown), &NoProgress, |_| {});
+    assert!(
+        matches!(refused, Err(CoreError::InvalidInput { ref field, .. }) if field == "stock.from_job"),
+        "{:?}",
+        refused.err()
+    );
+}
+
+#[test]
+fn under_a_pocket_its_cavity_runs_on_down_in_its_outline() {
+    use super::kept::{keep, Floor};
+    let spec = pocket_spec();
+    let (_, cut) = analyze_from(&passes(20.0, &[-10.0]), &spec, None, &NoProgress, |_| {}).expect("analyses");
+    let kept = keep(&cut, &spec, None, Floor::Unbounded, true).expect("keeps");
+    let (deeper, stack) =
+        analyze_from(&passes(20.0, &[-10.0, -50.0]), &spec, Some(&kept), &NoProgress, |_| {}).expect("analyses");
+    assert_eq!(stack.slices().last().map(|s| s.z_bottom), Some(-50.0));
+    // The slot on down from −10 to −50, and the cavity's rest beside it.
+    let slot = 10.0 * 100.0 * 40.0;
+    assert!((deeper.summary.removed_volume_mm3 - slot).abs() / slot < 0.02, "{}", deeper.summary.removed_volume_mm3);
+    let rest = deeper.summary.rest_material.expect("a cavity");
+    let left = 30.0 * 100.0 * 50.0;
+    assert!((rest.volume_mm3 - left).abs() / left < 0.01, "{}", rest.volume_mm3);
 }

@@ -240,7 +240,8 @@ pub fn analyze_with(
 
 /// Analyses `path` as [`analyze_with`] does, on the stock `start` when given (the stock
 /// another job left, see [`kept`]: its grid and slices replace the painting of
-/// `spec.stock`, which then only bounds the layer), and hands back the stock the
+/// `spec.stock`, which then only bounds the layer; the layer reaches below the kept one
+/// where the path cuts deeper, see [`kept::layer_bottom`]), and hands back the stock the
 /// simulation left.
 pub fn analyze_from(
     path: &Toolpath,
@@ -251,7 +252,18 @@ pub fn analyze_from(
 ) -> Result<(Analysis, Stack), CoreError> {
     check(path, spec)?;
     let bounds = region::union_bounds(&spec.stock);
-    let levels = slices::slice_levels(path, spec.z_bottom, spec.z_top);
+    // A kept stock's layer reaches down to the program's deepest feed move, within what
+    // lies under it (see [`kept`]).
+    let z_bottom = match start {
+        Some(kept) => kept::layer_bottom(kept.z_bottom(), kept.floor(), kept::deepest_feed_mm(path))
+            .map_err(|e| CoreError::invalid("stock.from_job", e))?,
+        None => spec.z_bottom,
+    };
+    let levels = slices::slice_levels(path, z_bottom.min(spec.z_bottom), spec.z_top);
+    let levels = match start {
+        Some(kept) => kept::with_kept_bottom(levels, kept.z_bottom()),
+        None => levels,
+    };
     let (spacing, painted_cell) = resolution(spec, bounds, levels.len() - 1);
     let total_samples: usize =
         path.moves.iter().map(|m| ((crate::core::toolpath::move_length(m) / spacing).ceil() as usize).max(1)).sum();

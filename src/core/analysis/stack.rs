@@ -11,7 +11,7 @@
 //! below; a copy behaves exactly as the stock it was taken from (same cells, same versions,
 //! same remembered capsule), so the simulation is the same as with a raster per slice.
 
-use super::kept::{KeptSlice, KeptStock};
+use super::kept::{KeptSlice, KeptStock, Source};
 use super::slices::{SliceStock, Z_CONTACT_EPS_MM};
 use crate::core::stock::{Raster, Rect};
 use crate::core::CoreError;
@@ -142,25 +142,27 @@ impl Stack {
                 rasters[s.raster] = self.raster(k).cells().to_vec();
             }
         }
-        KeptStock { grid: self.raster(self.len() - 1).layout_grid(), slices, rasters, cavity }
+        KeptStock { grid: self.raster(self.len() - 1).layout_grid(), slices, rasters, cavity, below: None }
     }
 
     /// The slices between `levels` (top first, at least two) holding the material of
-    /// `kept`, mapped onto them as [`super::kept`] says; slices that hold one kept raster
-    /// share it. `Err` when a kept raster does not fit its grid.
+    /// `kept`, mapped onto them as [`super::kept`] says (the footprint under it for slices
+    /// that reach below it); slices that hold one kept raster share it. `Err` when a kept
+    /// raster does not fit its grid, or a slice reaches below a stock that does not know
+    /// what lies there.
     pub fn carried(levels: &[f64], kept: &KeptStock) -> Result<Stack, String> {
         let n = levels.len().saturating_sub(1).max(1);
-        let held: Vec<usize> = (0..n)
+        let held: Vec<Source> = (0..n)
             .map(|k| {
                 let top = levels.get(k).copied().unwrap_or(0.0);
-                kept.raster_for(top, levels.get(k + 1).copied().unwrap_or(top))
+                kept.source_for(top, levels.get(k + 1).copied().unwrap_or(top))
             })
-            .collect();
+            .collect::<Result<_, _>>()?;
         let mut slices = Vec::with_capacity(n);
-        for (k, &raster) in held.iter().enumerate() {
-            let owner = held.get(k + 1) != Some(&raster);
+        for (k, &source) in held.iter().enumerate() {
+            let owner = held.get(k + 1) != Some(&source);
             let own = match owner {
-                true => Some(SliceStock::new(Raster::from_cells(kept.grid, kept.rasters[raster].clone())?)),
+                true => Some(SliceStock::new(Raster::from_cells(kept.grid, kept.cells(source).to_vec())?)),
                 false => None,
             };
             let z_top = levels.get(k).copied().unwrap_or(0.0);

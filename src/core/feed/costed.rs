@@ -5,9 +5,10 @@
 
 use super::objective::{Objective, ObjectiveSpec};
 use super::plan::{figures, optimize_side_milling_with, written, BlockFeed, FeedPlan, FeedSpec};
-use crate::core::analysis::{Analysis, AnalysisSpec};
+use crate::core::analysis::kept::KeptStock;
+use crate::core::analysis::{Analysis, AnalysisSpec, Stack};
 use crate::core::costing::cost::Rates;
-use crate::core::costing::estimate::{estimate, estimate_with_wear, Estimate};
+use crate::core::costing::estimate::{estimate_from, estimate_with_wear, Estimate};
 use crate::core::costing::wear::WearCounter;
 use crate::core::feed::blocks::Piece;
 use crate::core::progress::{Progress, Stage};
@@ -37,29 +38,45 @@ pub struct Costed {
     pub kept_input: bool,
 }
 
+/// A feed optimisation with its costs, and the stock the path leaves.
+pub struct Optimised {
+    pub plan: FeedPlan,
+    /// Null when the objective carries no costing model.
+    pub costed: Option<Costed>,
+    /// The stock the path leaves (the optimised program cuts the same path).
+    pub stock: Stack,
+}
+
 /// Optimises the feeds of a side-milling path for `objective`, and costs the input and
-/// the result when the objective carries the costing's model.
+/// the result when the objective carries the costing's model. Every simulation starts
+/// from the stock `start` another simulation left when given (see
+/// [`crate::core::analysis::analyze_from`]).
 pub fn optimize_costed(
     path: &Toolpath,
     analysis: &AnalysisSpec,
+    start: Option<&KeptStock>,
     spec: &FeedSpec,
     objective: ObjectiveSpec,
     progress: &dyn Progress,
-) -> Result<(FeedPlan, Option<Costed>), CoreError> {
+) -> Result<Optimised, CoreError> {
     let model = objective.cost.clone();
     let min_cost = objective.objective == Objective::MinCost;
     let first = Stage { inner: progress, from: 0.0, span: OPTIMISATION_SHARE };
     let Some(model) = model else {
-        let plan = optimize_side_milling_with(path, analysis, spec, Some(objective), &first, |_| {})?;
+        let (plan, stock) = optimize_side_milling_with(path, analysis, start, spec, Some(objective), &first, |_| {})?;
         progress.report(1.0);
-        return Ok((plan, None));
+        return Ok(Optimised { plan, costed: None, stock });
     };
     model.life.validate()?;
     let mut counter = WearCounter::new(&model.life, analysis.tool.flutes, analysis.default_spindle_rpm);
-    let mut plan = optimize_side_milling_with(path, analysis, spec, Some(objective), &first, |r| counter.add(r))?;
+    let (mut plan, stock) =
+        optimize_side_milling_with(path, analysis, start, spec, Some(objective), &first, |r| counter.add(r))?;
     let before = estimate_with_wear(path, counter.finish(), &model)?;
     let second = Stage { inner: progress, from: OPTIMISATION_SHARE, span: COSTING_SHARE };
-    let (mut after_analysis, mut after) = estimate(&plan.path, analysis, &model, &second)?;
+    let estimate = |path: &Toolpath, stage: &dyn Progress| {
+        estimate_from(path, analysis, start, &model, stage).map(|(analysis, estimate, _)| (analysis, estimate))
+    };
+    let (mut after_analysis, mut after) = estimate(&plan.path, &second)?;
     if min_cost && after.cost.total > before.cost.total {
         // The costing simulates the new program afresh (its pieces add z levels and
         // samples): put back the moves it finds dearer than before, and cost once more.
@@ -67,7 +84,7 @@ pub fn optimize_costed(
         if dearer.iter().any(|&d| d) {
             plan.keep_moves(path, &dearer);
             let third = Stage { inner: progress, from: OPTIMISATION_SHARE + COSTING_SHARE, span: COSTING_SHARE };
-            (after_analysis, after) = estimate(&plan.path, analysis, &model, &third)?;
+            (after_analysis, after) = estimate(&plan.path, &third)?;
         }
     }
     progress.report(1.0);
@@ -78,9 +95,11 @@ pub fn optimize_costed(
             after.cost.total, after.cost.currency, before.cost.total
         ));
         let analysis = plan.analysis.clone();
-        return Ok((plan, Some(Costed { after: before.clone(), before, after_analysis: analysis, kept_input: true })));
+        let costed = Costed { after: before.clone(), before, after_analysis: analysis, kept_input: true };
+        return Ok(Optimised { plan, costed: Some(costed), stock });
     }
-    Ok((plan, Some(Costed { before, after, after_analysis: Some(after_analysis), kept_input: false })))
+    let costed = Costed { before, after, after_analysis: Some(after_analysis), kept_input: false };
+    Ok(Optimised { plan, costed: Some(costed), stock })
 }
 
 /// Per move of the input: `true` where the costing finds its pieces in the new program

@@ -96,9 +96,59 @@ proptest! {
         feed in 300.0f64..12_000.0,
         turn in 0.3f64..20.0,
     ) {
-        let (_, costed) = optimize_costed(&program(rd, ad, feed, turn), &analysis(), &spec(), min_cost(), &NoProgress)
-            .expect("optimises");
-        let c = costed.expect("costed");
+        let optimised =
+            optimize_costed(&program(rd, ad, feed, turn), &analysis(), None, &spec(), min_cost(), &NoProgress)
+                .expect("optimises");
+        let c = optimised.costed.expect("costed");
         prop_assert!(c.after.cost.total <= c.before.cost.total, "{} → {}", c.before.cost.total, c.after.cost.total);
     }
+}
+
+/// Passes across a 100 × 40 block 20 mm deep along y = `y`, one at each of `levels`, at
+/// the standard feed (5760 mm/min).
+fn passes(y: f64, levels: &[f64]) -> Toolpath {
+    let feed = |start, end, line| Move {
+        motion: Motion::Linear,
+        start,
+        end,
+        feed_mm_min: Some(5760.0),
+        spindle_rpm: Some(9600.0),
+        tool: None,
+        line,
+    };
+    let mut moves = Vec::new();
+    for (k, &z) in levels.iter().enumerate() {
+        let line = 3 * k as u32 + 1;
+        moves.push(feed(P3::new(-10.0, y, 5.0), P3::new(-10.0, y, z), line));
+        moves.push(feed(P3::new(-10.0, y, z), P3::new(110.0, y, z), line + 1));
+        moves.push(Move { motion: Motion::Rapid, ..feed(P3::new(110.0, y, z), P3::new(-10.0, y, 5.0), line + 2) });
+    }
+    Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] }
+}
+
+#[test]
+fn an_intermediate_pass_optimised_on_what_the_roughing_left_engages_less_and_runs_faster_than_on_the_block() {
+    let block = Rect { x_min: 0.0, y_min: 0.0, x_max: 100.0, y_max: 40.0 };
+    let layer = AnalysisSpec { stock: vec![StockRegion::Rect(block)], z_bottom: -20.0, ..analysis() };
+    let constant_force = ObjectiveSpec { objective: Objective::ConstantForce, ..min_cost() };
+    // Roughing at Ad 10: a slot from y = 15 to 25, then 1 mm into its wall at Ad 2.5.
+    let roughing = passes(20.0, &[-10.0, -20.0]);
+    let (_, roughed) =
+        crate::core::analysis::analyze_from(&roughing, &layer, None, &NoProgress, |_| {}).expect("roughs");
+    let kept = roughed.keep(false);
+    let levels: Vec<f64> = (1..=8).map(|i| -2.5 * f64::from(i)).collect();
+    let pass = passes(21.0, &levels);
+    let optimise = |start| optimize_costed(&pass, &layer, start, &spec(), constant_force.clone(), &NoProgress);
+    let carried = optimise(Some(&kept)).expect("optimises on the kept stock");
+    let fresh = optimise(None).expect("optimises on the block");
+    let alpha = |o: &super::costed::Optimised| o.plan.analysis.as_ref().expect("side milling").summary.alpha_deg.max;
+    // 1 mm of a 10 mm tool: acos(0.8) = 36.87°; on the block, a full slot.
+    assert!((alpha(&carried) - 36.87).abs() < 2.0 && alpha(&fresh) > 170.0, "{} {}", alpha(&carried), alpha(&fresh));
+    let feed = |o: &super::costed::Optimised| o.plan.after.feed_mm_min.mean;
+    assert!(feed(&carried) > 1.5 * feed(&fresh), "{} against {}", feed(&carried), feed(&fresh));
+    let time = |o: &super::costed::Optimised| o.costed.as_ref().expect("costed").after.time.kinematic_min;
+    assert!(time(&carried) < time(&fresh), "{} against {}", time(&carried), time(&fresh));
+    // The stock it hands back is the one the pass leaves: 40 × 100 × 20 less 11 × 100 × 20.
+    let left = crate::core::analysis::rest::remaining_volume_mm3(&carried.stock);
+    assert!((left - 58_000.0).abs() < 300.0, "{left}");
 }

@@ -10,9 +10,10 @@ use super::rate_limit::limit_feed_change;
 use super::rule::{FeedReason, FeedRule, SampleCut};
 use super::split::sub_move;
 use crate::core::analysis::engine::SampleResult;
+use crate::core::analysis::kept::KeptStock;
 use crate::core::analysis::report::{Accumulator, PathPoint, Stats};
 use crate::core::analysis::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE_BINS};
-use crate::core::analysis::{analyze_with, Analysis, AnalysisSpec};
+use crate::core::analysis::{analyze_from, Analysis, AnalysisSpec, Stack};
 use crate::core::progress::Progress;
 use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Event, Motion, Move, Toolpath};
@@ -162,20 +163,23 @@ pub fn optimize_side_milling(
     spec: &FeedSpec,
     progress: &dyn Progress,
 ) -> Result<FeedPlan, CoreError> {
-    optimize_side_milling_with(path, analysis, spec, None, progress, |_| {})
+    optimize_side_milling_with(path, analysis, None, spec, None, progress, |_| {}).map(|(plan, _)| plan)
 }
 
 /// Optimises the feeds of a 2.5-D side-milling path for `objective` (`None`: the papers'
-/// rule of the strategy), simulating the stock of `analysis` and handing every sample of
-/// that simulation to `sink` too.
+/// rule of the strategy), simulating the stock of `analysis` (or the stock `start` another
+/// simulation left, see [`analyze_from`]) and handing every sample of that simulation to
+/// `sink` too. Also hands back the stock the path leaves: the optimised program cuts the
+/// same path, so it leaves the same stock.
 pub fn optimize_side_milling_with(
     path: &Toolpath,
     analysis: &AnalysisSpec,
+    start: Option<&KeptStock>,
     spec: &FeedSpec,
     objective: Option<ObjectiveSpec>,
     progress: &dyn Progress,
     mut sink: impl FnMut(&SampleResult),
-) -> Result<FeedPlan, CoreError> {
+) -> Result<(FeedPlan, Stack), CoreError> {
     check_spec(spec)?;
     check_sample_count(crate::core::analysis::sample_count(path, analysis))?;
     let tool_radius_mm = analysis.tool.radius_mm();
@@ -183,7 +187,7 @@ pub fn optimize_side_milling_with(
     let total_length_mm: f64 = path.moves.iter().map(move_length).sum();
     let mut drawing = SampleCollector::new(total_length_mm, DRAWING_SAMPLE_BINS);
     let default_rpm = analysis.default_spindle_rpm;
-    let report = analyze_with(path, analysis, progress, |r| {
+    let (report, stack) = analyze_from(path, analysis, start, progress, |r| {
         sink(r);
         drawing.add(r);
         let s = &r.sample;
@@ -218,7 +222,7 @@ pub fn optimize_side_milling_with(
                 .to_string(),
         );
     }
-    Ok(assemble(path, collector, spec, Some((report, drawing.finish())), warnings))
+    Ok((assemble(path, collector, spec, Some((report, drawing.finish())), warnings), stack))
 }
 
 /// Puts the optimised program together from the collected samples.

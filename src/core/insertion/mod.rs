@@ -34,7 +34,7 @@ pub use spec::{
 pub use verify::{EngagementCheck, Overload, Spot, Verification, MAX_LISTED_OVERLOADS};
 
 use crate::core::analysis::geometry::{PathGeometry, SampleGeometry};
-use crate::core::analysis::{AnalysisSpec, StockRegion};
+use crate::core::analysis::{AnalysisSpec, Stack, StockRegion};
 use crate::core::conditions::feed_mm_min;
 use crate::core::cycles::setup::DEFAULT_PLUNGE_FEED_RATIO;
 use crate::core::cycles::z_levels;
@@ -223,7 +223,22 @@ pub fn plan_insertion(
     existing: Option<&Toolpath>,
     progress: &dyn Progress,
 ) -> Result<InsertionPlan, CoreError> {
-    plan_rounds(pocket, spec, existing, None, None, progress).map(|(plan, _)| plan)
+    plan_rounds(pocket, spec, existing, None, None, progress).map(|(plan, _, _)| plan)
+}
+
+/// [`plan_insertion`], handing the samples of the base path's check and of the
+/// verifications to `observer` when given, and handing back the stock the finished path's
+/// verification left.
+pub fn plan_insertion_kept(
+    pocket: &Pocket,
+    spec: &InsertionSpec,
+    existing: Option<&Toolpath>,
+    observer: Option<&mut dyn SampleObserver>,
+    progress: &dyn Progress,
+) -> Result<(InsertionPlan, Stack), CoreError> {
+    let (plan, _, stack) = plan_rounds(pocket, spec, existing, None, observer, progress)?;
+    let stack = stack.ok_or_else(|| CoreError::unsolvable("stock", "the verification kept no stock"))?;
+    Ok((plan, stack))
 }
 
 /// [`plan_insertion`], handing the samples of the base path's check and of the
@@ -235,7 +250,7 @@ pub fn plan_insertion_observed(
     observer: &mut dyn SampleObserver,
     progress: &dyn Progress,
 ) -> Result<InsertionPlan, CoreError> {
-    plan_rounds(pocket, spec, existing, None, Some(observer), progress).map(|(plan, _)| plan)
+    plan_rounds(pocket, spec, existing, None, Some(observer), progress).map(|(plan, _, _)| plan)
 }
 
 /// [`plan_insertion`], keeping the geometry of every sample of the finished program as its
@@ -248,13 +263,13 @@ pub fn plan_insertion_sampled(
     force_model: ForceModel,
     progress: &dyn Progress,
 ) -> Result<(InsertionPlan, PathGeometry), CoreError> {
-    let (plan, geometry) = plan_rounds(pocket, spec, existing, Some(force_model), None, progress)?;
+    let (plan, geometry, _) = plan_rounds(pocket, spec, existing, Some(force_model), None, progress)?;
     Ok((plan, geometry.unwrap_or_else(|| PathGeometry::new(spec.r_mm()))))
 }
 
 /// The rounds of treatment; with `sampled`, each round's verification keeps its samples'
 /// geometry (the last round's is returned); `observer` sees the samples of the base check
-/// and of the verifications.
+/// and of the verifications. The stock the last verification left is returned too.
 fn plan_rounds(
     pocket: &Pocket,
     spec: &InsertionSpec,
@@ -262,7 +277,7 @@ fn plan_rounds(
     sampled: Option<ForceModel>,
     mut observer: Option<&mut dyn SampleObserver>,
     progress: &dyn Progress,
-) -> Result<(InsertionPlan, Option<PathGeometry>), CoreError> {
+) -> Result<(InsertionPlan, Option<PathGeometry>, Option<Stack>), CoreError> {
     spec.validate()?;
     let axis = medial_axis(pocket, &MedialOptions::default())?;
     let classes = classify(&axis, spec.r_mm(), spec.class_a_ratio)?;
@@ -275,11 +290,13 @@ fn plan_rounds(
     let r = spec.r_mm();
     let empty = Zone::new(r);
     let base_roles = verify::MoveRoles { entry: &[], zcut: &[], zcut_zone: &empty };
-    let before = verify::check_engagement(&base, &analysis, &base_roles, progress, |s| {
+    let mut before = verify::check_engagement(&base, &analysis, &base_roles, progress, |s| {
         if let Some(o) = observer.as_deref_mut() {
             o.base(s);
         }
     })?;
+    // The base path's stock is not kept: let it go now, as its simulation always did.
+    before.stack = None;
     // The verification of the rounds with the force model, when the samples are kept: it
     // changes no engagement, only adds the forces.
     let verifying = AnalysisSpec { force_model: sampled.or(analysis.force_model), ..analysis.clone() };
@@ -354,7 +371,7 @@ fn plan_rounds(
             });
             (after, checks.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
         });
-        let after = after?;
+        let mut after = after?;
         if let Some(g) = geometry.as_mut() {
             g.removed_volume_mm3 = after.removed_volume_mm3;
         }
@@ -371,6 +388,7 @@ fn plan_rounds(
             Vec::new()
         };
         if after.outside.overloaded == 0 || rounds >= MAX_ROUNDS || (!grows && widen.is_empty()) {
+            let stack = after.stack.take();
             let plan = report::assemble(report::Parts {
                 spec,
                 axis,
@@ -390,7 +408,7 @@ fn plan_rounds(
                 existing: existing.is_some(),
                 base_path: base.clone(),
             });
-            return Ok((plan, geometry));
+            return Ok((plan, geometry, stack));
         }
         for m in widen {
             if let Some(c) = intervals

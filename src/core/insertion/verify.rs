@@ -6,7 +6,7 @@ use super::cleared::ClearedZone;
 use crate::core::analysis::engine::SampleResult;
 use crate::core::analysis::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE_BINS};
 use crate::core::analysis::sampling::point_on;
-use crate::core::analysis::{analyze_with, AnalysisSpec};
+use crate::core::analysis::{analyze_from, AnalysisSpec, Stack};
 use crate::core::geometry::{Pocket, Point};
 use crate::core::medial::Boundary;
 use crate::core::progress::Progress;
@@ -148,6 +148,8 @@ pub struct EngagementOutcome {
     pub samples: PathSamples,
     /// Material the path removed, mm³.
     pub removed_volume_mm3: f64,
+    /// The stock the simulation left (kept by a trochoids job for another to start from).
+    pub stack: Option<Stack>,
     /// Feed length that cut nothing (the analysis's air cut), mm.
     pub air_cut_length_mm: f64,
 }
@@ -186,13 +188,14 @@ pub fn check_engagement(
         samples: PathSamples::default(),
         removed_volume_mm3: 0.0,
         air_cut_length_mm: 0.0,
+        stack: None,
     };
     let flag = |roles: &[bool], m: usize| roles.get(m).copied().unwrap_or(false);
     // The stretch of overloaded samples being followed, if the last sample was one.
     let mut open: Option<Overload> = None;
     let total_length_mm: f64 = path.moves.iter().map(move_length).sum();
     let mut collector = SampleCollector::new(total_length_mm, DRAWING_SAMPLE_BINS);
-    let simulated = analyze_with(path, analysis, progress, |r| {
+    let (simulated, stack) = analyze_from(path, analysis, None, progress, |r| {
         sink(r);
         if r.sample.rapid {
             collector.add(r);
@@ -249,6 +252,7 @@ pub fn check_engagement(
     out.samples = collector.finish();
     out.removed_volume_mm3 = simulated.summary.removed_volume_mm3;
     out.air_cut_length_mm = simulated.summary.air_cut_length_mm;
+    out.stack = Some(stack);
     Ok(out)
 }
 

@@ -7,7 +7,7 @@ use super::kept_stock::{self, CarriedStock};
 use super::kind::off_runtime_with;
 use super::program_input::ProgramInput;
 use super::setup::{path_job_refs, read_inputs, resolve, PathJobRefs, PathSetup, Sampling};
-use crate::core::analysis::kept::KeptStock;
+use crate::core::analysis::kept::{keep, KeptStock};
 use crate::core::analysis::samples::{SampleCollector, DRAWING_SAMPLE_BINS};
 use crate::core::analysis::{analyze_from, check, AnalysisSpec, MAX_ALPHA_LIMIT_DEG, MAX_SERIES_POINTS};
 use crate::core::drawing::analysis_scene::analysis_scene;
@@ -142,7 +142,8 @@ pub fn run(
     let start = prepared.carried_stock.as_ref().map(CarriedStock::decode).transpose().map_err(reread)?;
     let (analysis, stack) = analyze_from(&path, &spec, start.as_ref(), progress, |r| collector.add(r))?;
     let scene = analysis_scene(&path, &spec, &analysis, &collector.finish());
-    let kept = stack.keep(analysis.summary.rest_material.is_some());
+    let cavity = analysis.summary.rest_material.is_some();
+    let kept = keep(&stack, &spec, start.as_ref(), request.stock.floor(), cavity)?;
     Ok((AnalysisResult::new(prepared, path.moves.len(), analysis), scene, kept))
 }
 

@@ -9,7 +9,7 @@ use super::model::{JobId, ProgramPart};
 use super::program_input::ProgramInput;
 use super::setup::{path_job_refs, read_inputs, resolve, resolve_cost, CostSetup, PathSetup, Sampling};
 use super::store;
-use crate::core::analysis::kept::KeptStock;
+use crate::core::analysis::kept::{keep, KeptStock};
 use crate::core::analysis::{check, AnalysisSpec};
 use crate::core::costing::estimate::estimate_from;
 use crate::core::drawing::costing_scene::costing_scene;
@@ -211,7 +211,8 @@ pub fn run(
     let model = prepared.cost.cost_model();
     let (report, estimate, stack) = estimate_from(&path, &spec, start.as_ref(), &model, progress)?;
     let scene = costing_scene(&path, &spec, &report, &estimate.wear, &estimate.time, &estimate.cost);
-    let kept = stack.keep(report.summary.rest_material.is_some());
+    let cavity = report.summary.rest_material.is_some();
+    let kept = keep(&stack, &spec, start.as_ref(), request.stock.floor(), cavity)?;
     Ok((CostingResult::new(prepared, &path, report, estimate)?, scene, kept))
 }
 

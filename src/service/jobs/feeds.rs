@@ -4,17 +4,19 @@
 
 use super::feed_limits;
 use super::feeds_result::FeedsResult;
-use super::inputs::{Stock, StockInput};
+use super::inputs::{check_from_job, Stock, StockInput};
+use super::kept_stock::{self, CarriedStock};
 use super::kind::off_runtime_with;
 use super::output::OutputOptions;
 use super::program_input::{ProgramInput, ReadProgram};
 use super::setup::{path_job_refs, read_inputs, reread_inputs, resolve, CostSetup, PathSetup};
+use crate::core::analysis::kept::{keep, Floor, KeptStock};
 use crate::core::analysis::{check, sample_count, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_ALPHA_LIMIT_DEG};
 use crate::core::drawing::feeds_scene::feeds_scene;
 use crate::core::drawing::paths::edited_move_lines;
 use crate::core::drawing::scene::Scene;
 use crate::core::feed::blocks::{BlockOptions, DEFAULT_FEED_STEP_MM_MIN, DEFAULT_FEED_TOLERANCE, DEFAULT_MIN_BLOCK_MM};
-use crate::core::feed::costed::{optimize_costed, Costed};
+use crate::core::feed::costed::{optimize_costed, Costed, Optimised};
 use crate::core::feed::edit::edit_feeds;
 use crate::core::feed::objective::{Objective, ObjectiveSpec};
 use crate::core::feed::plan::{check_sample_count, check_spec, FeedPlan, FeedSpec};
@@ -31,7 +33,6 @@ use crate::core::CoreError;
 use crate::service::error::{ApiError, Validator};
 use crate::service::jobs::kind::{JobKindSpec, Produced, Submission};
 use crate::service::jobs::model::JobKind;
-use crate::service::store::Pool;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -78,7 +79,9 @@ pub struct FeedsRequest {
     pub material_id: Option<i64>,
     /// Material name (default SKD61).
     pub material: Option<String>,
-    /// The stock of the layer (required for side milling).
+    /// The stock of the layer (required for side milling); `from_job` optimises the path
+    /// on the stock a finished job left (see the README, "Stock carried between
+    /// programs"), and the job keeps the stock the path leaves in turn.
     pub stock: Option<StockInput>,
     /// `side_milling` (default) or `surface_finishing` (a ball end mill only).
     #[serde(default)]
@@ -174,10 +177,14 @@ fn papers_rule() -> Objective {
 
 /// Checks the values of the request that need no database.
 pub fn check_request(request: &FeedsRequest, v: &mut Validator) {
-    if request.stock.as_ref().is_some_and(|s| s.from_job.is_some()) {
-        let reason =
-            "a feeds job does not start from a kept stock: analyse or cost the program on it (analysis, costing)";
-        v.fail("stock.from_job", reason);
+    if let Some(stock) = &request.stock {
+        check_from_job(stock, v);
+        if stock.from_job.is_some() && request.cell_mm.is_some() {
+            v.fail("cell_mm", "not with stock.from_job: the stock keeps the cell of the job that left it");
+        }
+        if stock.from_job.is_some() && request.mode == CutMode::SurfaceFinishing {
+            v.fail(kept_stock::FIELD, "surface finishing simulates no stock: only side milling starts from a kept one");
+        }
     }
     for (field, value) in [
         ("target_force_n", request.target_force_n),
@@ -244,12 +251,20 @@ pub fn check_request(request: &FeedsRequest, v: &mut Validator) {
 /// Resolves the request and reads its program and stock, adding every fault to `faults`;
 /// then, when it has none, checks the optimisation as the core will run it.
 pub async fn prepare(
-    pool: &Pool,
+    submission: &Submission<'_>,
     request: FeedsRequest,
     faults: &mut Validator,
 ) -> Result<Option<FeedsPrepared>, ApiError> {
+    let pool = submission.pool;
+    let carried = match request.stock.as_ref().and_then(|s| s.from_job.as_ref()) {
+        Some(id) if !faults.refused(kept_stock::FIELD) => faults.take(kept_stock::carried(submission, id).await)?,
+        _ => None,
+    };
     let refs = path_job_refs!(request, request.machine_id, request.spindle_rpm);
-    let resolved = resolve(pool, &refs, faults).await?;
+    let resolved = resolve(pool, &refs, faults).await?.map(|mut r| {
+        r.prepared.carried_stock = carried;
+        r
+    });
     let base = resolved.as_ref().map(|r| r.prepared.clone());
     let prepared = match resolved {
         Some(resolved) => feed_limits::resolve(pool, &request, resolved, faults).await?,
@@ -364,19 +379,27 @@ fn build(
     Ok(Built { path, map, spec, objective, analysis, surface })
 }
 
-/// Runs the optimisation and writes the program.
+/// Runs the optimisation and writes the program; side milling also hands back the stock
+/// the path leaves.
 pub fn run(
     request: FeedsRequest,
     prepared: FeedsPrepared,
     progress: &dyn Progress,
-) -> Result<(FeedsResult, String, Scene), CoreError> {
+) -> Result<(FeedsResult, String, Scene, Option<KeptStock>), CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
     let stock = request.stock.as_ref().filter(|_| request.mode == CutMode::SideMilling);
     let (stock, read) = reread_inputs(&prepared.base, &request.program, stock).map_err(reread)?;
     let job = build(&request, &prepared, stock, read).map_err(reread)?;
-    let (plan, costed): (FeedPlan, Option<Costed>) = match (&job.analysis, &job.surface) {
-        (Some(analysis), _) => optimize_costed(&job.path, analysis, &job.spec, job.objective.clone(), progress)?,
-        (None, Some(surface)) => (optimize_surface_finishing(&job.path, surface, &job.spec, progress)?, None),
+    let start = prepared.base.carried_stock.as_ref().map(CarriedStock::decode).transpose().map_err(reread)?;
+    let (plan, costed, kept): (FeedPlan, Option<Costed>, Option<KeptStock>) = match (&job.analysis, &job.surface) {
+        (Some(analysis), _) => {
+            let Optimised { plan, costed, stock } =
+                optimize_costed(&job.path, analysis, start.as_ref(), &job.spec, job.objective.clone(), progress)?;
+            let cavity = plan.analysis.as_ref().is_some_and(|a| a.summary.rest_material.is_some());
+            let floor = request.stock.as_ref().map_or(Floor::Unbounded, StockInput::floor);
+            (plan, costed, Some(keep(&stock, analysis, start.as_ref(), floor, cavity)?))
+        }
+        (None, Some(surface)) => (optimize_surface_finishing(&job.path, surface, &job.spec, progress)?, None, None),
         (None, None) => return Err(CoreError::invalid("mode", "nothing to optimise")),
     };
     // G-code is edited (only its F words change); JSON moves are written anew. Either way
@@ -413,7 +436,7 @@ pub fn run(
         result.warnings.extend(edited.warnings.iter().cloned());
         result.edit = Some(edited);
     }
-    Ok((result, program, scene))
+    Ok((result, program, scene, kept))
 }
 
 /// The `feeds` job kind.
@@ -440,7 +463,7 @@ impl JobKindSpec for Feeds {
         request: FeedsRequest,
         faults: &mut Validator,
     ) -> Result<Option<FeedsPrepared>, ApiError> {
-        prepare(submission.pool, request, faults).await
+        prepare(submission, request, faults).await
     }
 
     fn run(
@@ -448,7 +471,11 @@ impl JobKindSpec for Feeds {
         prepared: FeedsPrepared,
         progress: &dyn Progress,
     ) -> Result<Produced<FeedsResult>, CoreError> {
-        let (result, program, scene) = run(request, prepared, progress)?;
-        Ok(Produced::programmed(result, program, scene))
+        let (result, program, scene, kept) = run(request, prepared, progress)?;
+        let produced = Produced::programmed(result, program, scene);
+        Ok(match kept {
+            Some(kept) => produced.keeping(kept),
+            None => produced,
+        })
     }
 }

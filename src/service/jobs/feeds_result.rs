@@ -167,6 +167,8 @@ pub struct FeedsResult {
     pub edit: Option<Edited>,
     pub blocks: Blocks,
     pub warnings: Vec<String>,
+    /// The job whose stock the layer started from (`stock.from_job`), if any.
+    pub stock_from_job: Option<String>,
 }
 
 impl FeedsResult {
@@ -214,6 +216,7 @@ impl FeedsResult {
             None => (None, vec![]),
         };
         let base = prepared.base;
+        let stock_from_job = base.carried_stock.as_ref().map(|c| c.from_job.clone());
         Ok(FeedsResult {
             material: base.material,
             tool: base.tool,
@@ -244,6 +247,7 @@ impl FeedsResult {
             edit: None,
             blocks,
             warnings,
+            stock_from_job,
         })
     }
 }

@@ -2,6 +2,7 @@
 //! turned into the core's stock regions with field-named errors (the NC program is in
 //! `program_input.rs`).
 
+use crate::core::analysis::kept::Floor;
 use crate::core::analysis::StockRegion;
 use crate::core::geometry::{loops_from_dxf, pocket_from_loops, Loop, Pocket, Vertex};
 use crate::core::stock::Rect;
@@ -69,11 +70,15 @@ pub struct StockInput {
     pub z_bottom: Option<f64>,
     #[serde(default)]
     pub open: Vec<OpenRegionInput>,
-    /// A finished job (analysis or costing) whose simulated stock the layer starts
-    /// from, given alone: the layer, its z range, its grid and the material left in each
-    /// of its slices are that job's (the program's own z levels take, each, the material
-    /// the kept stock has anywhere over their z range; see the README, "Stock carried
-    /// between programs"). A planner's key may name only its own jobs.
+    /// A finished job (analysis, costing, feeds in side milling, or trochoids: the stock
+    /// its verified program leaves) whose simulated stock
+    /// the layer starts from, given alone: the layer, its z range, its grid and the
+    /// material left in each of its slices are that job's (the program's own z levels
+    /// take, each, the material the kept stock has anywhere over their z range). Where the
+    /// program cuts deeper, the layer reaches down to its deepest feed move into the
+    /// stock as that job was given it: a box down to its `z_min`, a pocket's cavity on
+    /// down in its outline (see the README, "Stock carried between programs"). A
+    /// planner's key may name only its own jobs.
     pub from_job: Option<JobId>,
 }
 
@@ -95,6 +100,18 @@ impl StockInput {
             !self.open.is_empty(),
         ];
         TAKEN_FROM_THE_JOB.iter().zip(given).filter(|(_, g)| *g).map(|(f, _)| *f).collect()
+    }
+}
+
+impl StockInput {
+    /// How deep the stock goes under the layer, for a job that starts from the stock this
+    /// one leaves: a box is solid down to its `z_min`; a pocket's cavity (a contour or a
+    /// DXF) runs on down in its outline. (A stock from a job passes on what lay under it.)
+    pub fn floor(&self) -> Floor {
+        match &self.stock_box {
+            Some(b) => Floor::At(b.z_min),
+            None => Floor::Unbounded,
+        }
     }
 }
 

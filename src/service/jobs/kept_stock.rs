@@ -2,17 +2,24 @@
 //! (migration 0017), and read back for a job that starts from it
 //! (`"stock": {"from_job": "<id>"}`, issue 32 item 3).
 //!
-//! **Format 1** (the `format` column): a zlib stream of, little-endian: the grid's origin
-//! x and y and its cell (3 × f64, mm), its columns and rows (2 × u32), whether the stock
-//! was a pocket's (u8, 0 or 1), the number of slices and of rasters (2 × u32); then per
-//! slice, top first, its z_top and z_bottom (2 × f64, mm) and the index of its raster
-//! (u32); then each raster's cells, row by row from the bottom (columns × rows i8 each).
-//! Slices still alike at the end of the simulation share one raster, stored once. A
-//! stock of another format is refused (a 422 naming `stock.from_job`), never guessed at.
+//! **Format 2** (the `format` column), written by this version: a zlib stream of,
+//! little-endian: the grid's origin x and y and its cell (3 × f64, mm), its columns and
+//! rows (2 × u32), whether the stock was a pocket's (u8, 0 or 1), the number of slices and
+//! of rasters (2 × u32); then per slice, top first, its z_top and z_bottom (2 × f64, mm)
+//! and the index of its raster (u32); then each raster's cells, row by row from the bottom
+//! (columns × rows i8 each); then what lies under the layer (see
+//! [`crate::core::analysis::kept`]): a u8, 0 when it is not known, else 1 for a floor at a
+//! z or 2 for one without end, the floor's z (f64, mm; 0 without end) and the footprint's
+//! cells (columns × rows i8). Slices still alike at the end of the simulation share one
+//! raster, stored once.
+//!
+//! **Format 1**, written before, is format 2 without what lies under the layer: it is
+//! still read, as a stock under which nothing is known. A stock of another format is
+//! refused (a 422 naming `stock.from_job`), never guessed at.
 
 use super::model::{JobId, JobStatus};
 use super::store;
-use crate::core::analysis::kept::{KeptSlice, KeptStock};
+use crate::core::analysis::kept::{deepest_feed_mm, layer_bottom, Below, Floor, KeptSlice, KeptStock};
 use crate::core::analysis::MAX_RASTER_CELLS;
 use crate::core::stock::{Grid, Rect};
 use crate::service::error::ApiError;
@@ -30,8 +37,14 @@ use flate2::write::ZlibEncoder;
 use serde::{Deserialize, Serialize};
 use std::io::{Read, Write};
 
-/// The format this version writes and reads.
-pub const FORMAT: i64 = 1;
+/// The format this version writes (it reads [`FORMAT_1`] too).
+pub const FORMAT: i64 = 2;
+/// The format of stocks kept before what lies under the layer was: read still.
+pub const FORMAT_1: i64 = 1;
+/// What lies under the layer, in format 2: not known, a floor at a z, or one without end.
+const BELOW_UNKNOWN: u8 = 0;
+const BELOW_AT: u8 = 1;
+const BELOW_UNBOUNDED: u8 = 2;
 /// Most slices a kept stock may have (far above what an analysis makes).
 const MAX_KEPT_SLICES: usize = 4096;
 /// The field the faults of a `from_job` name.
@@ -47,7 +60,8 @@ pub struct EncodedStock {
 
 /// Encodes and compresses `kept` in [`FORMAT`].
 pub fn encode(kept: &KeptStock) -> EncodedStock {
-    let cells: usize = kept.rasters.iter().map(Vec::len).sum();
+    let below = kept.below.as_ref().map_or(0, |b| b.footprint.len());
+    let cells: usize = kept.rasters.iter().map(Vec::len).sum::<usize>() + below;
     let mut raw = Vec::with_capacity(64 + 20 * kept.slices.len() + cells);
     let g = kept.grid;
     for v in [g.x0_mm, g.y0_mm, g.cell_mm] {
@@ -67,6 +81,18 @@ pub fn encode(kept: &KeptStock) -> EncodedStock {
     }
     for r in &kept.rasters {
         raw.extend(r.iter().map(|&v| v as u8));
+    }
+    match &kept.below {
+        None => raw.push(BELOW_UNKNOWN),
+        Some(below) => {
+            let (tag, z) = match below.floor {
+                Floor::At(z) => (BELOW_AT, z),
+                Floor::Unbounded => (BELOW_UNBOUNDED, 0.0),
+            };
+            raw.push(tag);
+            raw.extend_from_slice(&z.to_le_bytes());
+            raw.extend(below.footprint.iter().map(|&v| v as u8));
+        }
     }
     let mut z = ZlibEncoder::new(Vec::new(), KEPT_STOCK_COMPRESSION);
     // Writing to a Vec cannot fail.
@@ -91,13 +117,17 @@ impl Reader<'_> {
     }
 }
 
-/// Decodes a stored stock of `format`; `Err` says why it cannot be read.
+/// Decodes a stored stock of `format` (2, or 1: nothing known under the layer); `Err`
+/// says why it cannot be read.
 pub fn decode(format: i64, body: &[u8]) -> Result<KeptStock, String> {
-    if format != FORMAT {
-        return Err(format!("it is stored in format {format}, and this version of dieplan reads format {FORMAT}"));
+    if format != FORMAT && format != FORMAT_1 {
+        return Err(format!(
+            "it is stored in format {format}, and this version of dieplan reads formats {FORMAT_1} and {FORMAT}"
+        ));
     }
-    // Never more than the largest stock an analysis makes (and its slices' headers).
-    let limit = MAX_RASTER_CELLS as u64 + 64 + 20 * MAX_KEPT_SLICES as u64;
+    // Never more than the largest stock an analysis makes (its slices' headers, and a
+    // footprint as large as its rasters).
+    let limit = 2 * MAX_RASTER_CELLS as u64 + 64 + 20 * MAX_KEPT_SLICES as u64;
     let mut raw = Vec::new();
     ZlibDecoder::new(body).take(limit + 1).read_to_end(&mut raw).map_err(|e| format!("it is not readable: {e}"))?;
     if raw.len() as u64 > limit {
@@ -120,17 +150,52 @@ pub fn decode(format: i64, body: &[u8]) -> Result<KeptStock, String> {
         .collect::<Result<Vec<_>, String>>()?;
     let grid = Grid { x0_mm, y0_mm, cell_mm, nx, ny };
     let cells = grid.cells();
-    if cells.checked_mul(n_rasters) != Some(r.0.len()) {
+    let raster_bytes = cells.checked_mul(n_rasters).filter(|&n| n <= r.0.len());
+    let Some(raster_bytes) = raster_bytes else {
         return Err(format!("its cells are not {n_rasters} rasters of {nx} × {ny}"));
+    };
+    let (raster_cells, rest) = r.0.split_at(raster_bytes);
+    let rasters = raster_cells.chunks_exact(cells.max(1)).map(signed).collect();
+    let mut r = Reader(rest);
+    let below = match format {
+        FORMAT_1 => None,
+        _ => read_below(&mut r, cells)?,
+    };
+    if !r.0.is_empty() {
+        return Err(format!("{} bytes follow its cells", r.0.len()));
     }
-    let rasters = r.0.chunks_exact(cells.max(1)).map(|c| c.iter().map(|&v| v as i8).collect()).collect();
-    let kept = KeptStock { grid, slices, rasters, cavity };
+    let kept = KeptStock { grid, slices, rasters, cavity, below };
     kept.validate()?;
     // Every raster must rebuild (finite grid, values within the clamp).
-    for cells in &kept.rasters {
+    for cells in kept.rasters.iter().chain(kept.below.as_ref().map(|b| &b.footprint)) {
         crate::core::stock::Raster::from_cells(grid, cells.clone())?;
     }
     Ok(kept)
+}
+
+/// Cells as stored, back to their signed values.
+fn signed(cells: &[u8]) -> Vec<i8> {
+    cells.iter().map(|&v| v as i8).collect()
+}
+
+/// What lies under the layer, in format 2 (see the module's doc).
+fn read_below(r: &mut Reader<'_>, cells: usize) -> Result<Option<Below>, String> {
+    let [tag] = r.take::<1>()?;
+    let floor = match tag {
+        BELOW_UNKNOWN => return Ok(None),
+        BELOW_AT => Floor::At(r.f64()?),
+        BELOW_UNBOUNDED => {
+            r.f64()?;
+            Floor::Unbounded
+        }
+        _ => return Err(format!("what lies under it is marked {tag}, neither 0, 1 nor 2")),
+    };
+    if r.0.len() < cells {
+        return Err("its footprint ends early".to_string());
+    }
+    let (footprint, rest) = r.0.split_at(cells);
+    r.0 = rest;
+    Ok(Some(Below { footprint: signed(footprint), floor }))
 }
 
 /// Stores the stock job `id` left (in a transaction of the caller's).
@@ -162,6 +227,9 @@ pub struct CarriedStock {
     pub format: i64,
     /// The stored body, base64.
     pub body: String,
+    /// How deep the stock under the kept layer goes (null: not known; format 1).
+    #[serde(default)]
+    pub floor: Option<Floor>,
 }
 
 impl CarriedStock {
@@ -169,6 +237,14 @@ impl CarriedStock {
     pub fn rect(&self) -> Rect {
         let [x_min, y_min, x_max, y_max] = self.bounds;
         Rect { x_min, y_min, x_max, y_max }
+    }
+
+    /// Checks that what `path` cuts below the kept layer is known (see
+    /// [`crate::core::analysis::kept::layer_bottom`]); the fault names `stock.from_job`.
+    pub fn check_reach(&self, path: &crate::core::toolpath::Toolpath) -> Result<(), ApiError> {
+        layer_bottom(self.z_bottom, self.floor, deepest_feed_mm(path))
+            .map(|_| ())
+            .map_err(|e| ApiError::field(FIELD, format!("the stock of job {}: {e}", self.from_job)))
     }
 
     /// The kept stock, decoded.
@@ -199,7 +275,10 @@ pub async fn carried(submission: &Submission<'_>, id: &JobId) -> Result<CarriedS
         .fetch_optional(pool)
         .await?;
     let Some((format, body)) = stored else {
-        let reason = format!("job {id} ({}) kept no stock: analysis and costing jobs keep theirs", row.kind);
+        let reason = format!(
+            "job {id} ({}) kept no stock: analysis, costing, side-milling feeds and trochoids jobs keep theirs",
+            row.kind
+        );
         return Err(ApiError::field(FIELD, reason));
     };
     let from_job = id.to_string();
@@ -216,6 +295,7 @@ pub async fn carried(submission: &Submission<'_>, id: &JobId) -> Result<CarriedS
             bounds,
             format,
             body: base64::engine::general_purpose::STANDARD.encode(&body),
+            floor: kept.floor(),
         })
     })
     .await
@@ -235,25 +315,58 @@ mod tests {
             slices: vec![slice(0.0, -10.0, 0), slice(-10.0, -20.0, 1), slice(-20.0, -30.0, 1)],
             rasters: vec![raster(126), raster(3)],
             cavity: true,
+            below: Some(Below { footprint: raster(5), floor: Floor::At(-35.0) }),
         }
+    }
+
+    /// `kept` as format 1 stored it: format 2 without what lies under the layer.
+    fn format_1(kept: &KeptStock) -> Vec<u8> {
+        let unknown = KeptStock { below: None, ..kept.clone() };
+        let mut raw = Vec::new();
+        ZlibDecoder::new(encode(&unknown).body.as_slice()).read_to_end(&mut raw).expect("inflates");
+        assert_eq!(raw.pop(), Some(BELOW_UNKNOWN));
+        let mut z = ZlibEncoder::new(Vec::new(), KEPT_STOCK_COMPRESSION);
+        z.write_all(&raw).expect("deflates");
+        z.finish().expect("deflates")
     }
 
     #[test]
     fn a_kept_stock_reads_back_as_it_was_and_shared_rasters_are_stored_once() {
         let encoded = encode(&kept());
-        assert_eq!(encoded.raw_bytes, 24 + 8 + 1 + 8 + 3 * 20 + 2 * 40 * 30);
+        assert_eq!(encoded.format, 2);
+        assert_eq!(encoded.raw_bytes, 24 + 8 + 1 + 8 + 3 * 20 + 2 * 40 * 30 + 1 + 8 + 40 * 30);
         assert!(encoded.body.len() < encoded.raw_bytes / 4, "{} bytes compressed", encoded.body.len());
         assert_eq!(decode(FORMAT, &encoded.body), Ok(kept()));
+        let unbounded = KeptStock { below: kept().below.map(|b| Below { floor: Floor::Unbounded, ..b }), ..kept() };
+        assert_eq!(decode(FORMAT, &encode(&unbounded).body), Ok(unbounded));
+        let unknown = KeptStock { below: None, ..kept() };
+        assert_eq!(decode(FORMAT, &encode(&unknown).body), Ok(unknown));
+    }
+
+    #[test]
+    fn a_stock_kept_in_format_1_reads_as_one_under_which_nothing_is_known() {
+        let read = decode(FORMAT_1, &format_1(&kept())).expect("format 1 is read");
+        assert_eq!(read, KeptStock { below: None, ..kept() });
+        // Format 1 read as format 2 lacks what lies under the layer.
+        assert!(decode(FORMAT, &format_1(&kept())).is_err());
     }
 
     #[test]
     fn a_stock_of_another_format_or_damaged_is_refused_saying_why() {
         let encoded = encode(&kept());
-        assert!(decode(2, &encoded.body).unwrap_err().contains("format 2"));
+        assert!(decode(3, &encoded.body).unwrap_err().contains("format 3"));
         assert!(decode(FORMAT, &encoded.body[..encoded.body.len() / 2]).is_err());
         assert!(decode(FORMAT, b"not a stock").is_err());
         let mut bad = kept();
         bad.rasters[0][0] = i8::MIN;
         assert!(decode(FORMAT, &encode(&bad).body).is_err());
+        let mut bad_footprint = kept();
+        if let Some(b) = &mut bad_footprint.below {
+            b.footprint[3] = i8::MIN;
+        }
+        assert!(decode(FORMAT, &encode(&bad_footprint).body).is_err());
+        let mut floating = kept();
+        floating.below = Some(Below { footprint: vec![0; 1200], floor: Floor::At(-10.0) });
+        assert!(decode(FORMAT, &encode(&floating).body).unwrap_err().contains("floor"));
     }
 }

@@ -245,6 +245,9 @@ pub fn read_inputs(
         Some(read) => faults.take(read)?,
         None => None,
     };
+    if let (Some(carried), Some(_), Some(read)) = (carried, &stock, &program) {
+        faults.take(carried.check_reach(&read.path))?;
+    }
     Ok(PathInputs { stock, program })
 }
 

@@ -9,6 +9,7 @@ use super::output::{OutputOptions, DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM};
 use super::program_input::{read_program, ProgramContext, ProgramInput};
 use super::setup::{machine_limits, path_job_refs, resolve, resolve_cost, CostSetup, PathSetup, Resolved};
 use super::trochoids_result::{ChangeFigures, TrochoidsResult, WearObserver};
+use crate::core::analysis::kept::{keep, Floor, KeptStock};
 use crate::core::conditions::{feed_mm_min, CuttingConditions};
 use crate::core::cycles::trochoid::default_loop_radius_mm;
 use crate::core::cycles::CutDirection;
@@ -16,9 +17,7 @@ use crate::core::drawing::insertion_scene::insertion_scene;
 use crate::core::drawing::paths::with_lines;
 use crate::core::drawing::scene::Scene;
 use crate::core::geometry::Pocket;
-use crate::core::insertion::{
-    analysis_spec, check_plan, plan_insertion, plan_insertion_observed, InsertionPlan, InsertionSpec, LoopSize,
-};
+use crate::core::insertion::{analysis_spec, check_plan, plan_insertion_kept, InsertionPlan, InsertionSpec, LoopSize};
 use crate::core::kinematics::MachineLimits;
 use crate::core::medial::{CLASS_A_RATIO_MAX, CLASS_A_RATIO_MIN};
 use crate::core::nc::{write_program_mapped, WriterOptions};
@@ -389,8 +388,9 @@ fn base_program(request: &TrochoidsRequest, plan: &mut InsertionPlan, options: &
     written.text
 }
 
-/// What a run makes: the result, the program, the base program and the drawing.
-pub type Run = (TrochoidsResult, String, String, Scene);
+/// What a run makes: the result, the program, the base program, the drawing and the stock
+/// the finished program leaves.
+pub type Run = (TrochoidsResult, String, String, Scene, KeptStock);
 
 /// Plans the insertion and writes the program (and the base program).
 pub fn run(request: TrochoidsRequest, prepared: TrochoidsPrepared, progress: &dyn Progress) -> Result<Run, CoreError> {
@@ -401,16 +401,22 @@ pub fn run(request: TrochoidsRequest, prepared: TrochoidsPrepared, progress: &dy
     // With costs, the wear of the paths before and after is counted on the insertion's own
     // simulations of them.
     let simulation = analysis_spec(&pocket, &spec);
-    let (mut plan, counted) = match prepared.cost.as_ref() {
+    let (mut plan, counted, stack) = match prepared.cost.as_ref() {
         Some(setup) => {
             setup.life.validate()?;
             let mut observer = WearObserver::new(&setup.life, simulation.tool.flutes, simulation.default_spindle_rpm);
-            let plan = plan_insertion_observed(&pocket, &spec, path.as_ref(), &mut observer, progress)?;
+            let (plan, stack) = plan_insertion_kept(&pocket, &spec, path.as_ref(), Some(&mut observer), progress)?;
             let counted = observer.finish(&plan);
-            (plan, Some((setup, counted)))
+            (plan, Some((setup, counted)), stack)
         }
-        None => (plan_insertion(&pocket, &spec, path.as_ref(), progress)?, None),
+        None => {
+            let (plan, stack) = plan_insertion_kept(&pocket, &spec, path.as_ref(), None, progress)?;
+            (plan, None, stack)
+        }
     };
+    // The stock the finished program leaves, as its verification simulated it: a pocket's
+    // cavity, which runs on down in its outline.
+    let kept = keep(&stack, &simulation, None, Floor::Unbounded, true)?;
     let options = request.output.to_writer(&prepared.base);
     let written = write_program_mapped(&plan.toolpath, &options);
     let base = base_program(&request, &mut plan, &options);
@@ -427,7 +433,7 @@ pub fn run(request: TrochoidsRequest, prepared: TrochoidsPrepared, progress: &dy
         Some(limits) => Some(ChangeFigures::of(&plan, limits, counted)?),
         None => None,
     };
-    Ok((TrochoidsResult::new(prepared, path.is_some(), &written, plan, figures), written.text, base, scene))
+    Ok((TrochoidsResult::new(prepared, path.is_some(), &written, plan, figures), written.text, base, scene, kept))
 }
 
 /// The `trochoids` job kind.
@@ -463,7 +469,7 @@ impl JobKindSpec for Trochoids {
         prepared: TrochoidsPrepared,
         progress: &dyn Progress,
     ) -> Result<Produced<TrochoidsResult>, CoreError> {
-        let (result, program, base, scene) = run(request, prepared, progress)?;
-        Ok(Produced { base_program: Some(base), ..Produced::programmed(result, program, scene) })
+        let (result, program, base, scene, kept) = run(request, prepared, progress)?;
+        Ok(Produced { base_program: Some(base), ..Produced::programmed(result, program, scene).keeping(kept) })
     }
 }
