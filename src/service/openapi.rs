@@ -30,6 +30,7 @@ pub fn api_router() -> OpenApiRouter<AppState> {
         .merge(crate::service::jobs::routes::router())
         .merge(crate::service::jobs::drawings::router())
         .merge(crate::service::jobs::path_trace::router())
+        .merge(crate::service::jobs::stock_view::router())
         .merge(crate::service::examples::router())
         .merge(materials::api::router())
         .merge(tools::api::router())

@@ -18,6 +18,7 @@ struct Asset {
 }
 
 const JS: &str = "text/javascript; charset=utf-8";
+const TEXT: &str = "text/plain; charset=utf-8";
 
 static ASSETS: &[Asset] = &[
     Asset { path: "/", content_type: "text/html; charset=utf-8", body: include_str!("web/index.html") },
@@ -36,7 +37,30 @@ static ASSETS: &[Asset] = &[
     Asset { path: "/program-view.js", content_type: JS, body: include_str!("web/program-view.js") },
     Asset { path: "/zoom.js", content_type: JS, body: include_str!("web/zoom.js") },
     Asset { path: "/trace.js", content_type: JS, body: include_str!("web/trace.js") },
+    Asset { path: "/view3d-panel.js", content_type: JS, body: include_str!("web/view3d-panel.js") },
+    Asset { path: "/view3d.js", content_type: JS, body: include_str!("web/view3d.js") },
+    Asset { path: "/scene3d.js", content_type: JS, body: include_str!("web/scene3d.js") },
+    // three.js, vendored unchanged (see web/vendor/three/README.md for the version).
+    Asset {
+        path: "/vendor/three/three.module.js",
+        content_type: JS,
+        body: include_str!("web/vendor/three/three.module.js"),
+    },
+    Asset {
+        path: "/vendor/three/three.core.js",
+        content_type: JS,
+        body: include_str!("web/vendor/three/three.core.js"),
+    },
+    Asset {
+        path: "/vendor/three/OrbitControls.js",
+        content_type: JS,
+        body: include_str!("web/vendor/three/OrbitControls.js"),
+    },
+    Asset { path: "/vendor/three/LICENSE", content_type: TEXT, body: include_str!("web/vendor/three/LICENSE") },
 ];
+
+/// The version of three.js the page's 3-D view is vendored with.
+pub const THREE_JS_VERSION: &str = "0.187.0";
 
 fn etag(body: &str) -> String {
     let mut hasher = std::collections::hash_map::DefaultHasher::new();
@@ -87,6 +111,16 @@ mod tests {
         paths.dedup();
         assert_eq!(paths.len(), ASSETS.len());
         assert!(ASSETS.iter().all(|a| !a.body.trim().is_empty()));
+    }
+
+    #[test]
+    fn three_js_is_served_with_its_licence_at_the_version_its_note_names() {
+        let three = ASSETS.iter().find(|a| a.path == "/vendor/three/three.core.js").expect("three.js");
+        assert!(three.body.contains(&format!("REVISION = '{}'", THREE_JS_VERSION.split('.').nth(1).unwrap())));
+        let note = include_str!("web/vendor/three/README.md");
+        assert!(note.contains(&format!("three@{THREE_JS_VERSION}")));
+        let licence = ASSETS.iter().find(|a| a.path == "/vendor/three/LICENSE").expect("the licence");
+        assert!(licence.body.contains("MIT License") && licence.body.contains("three.js authors"));
     }
 
     #[test]

@@ -34,6 +34,7 @@ mod restarts;
 mod retention;
 mod schemathesis;
 mod stock_carry;
+mod stock_view;
 mod tool_defaults;
 mod trace_lines;
 mod trochoids;

@@ -13,6 +13,11 @@ async fn the_page_and_its_assets_are_served_with_their_types_and_revalidated_by_
         ("/new-job.js", "text/javascript"),
         ("/app.css", "text/css"),
         ("/favicon.svg", "image/svg+xml"),
+        // three.js for the 3-D view, and its licence.
+        ("/vendor/three/three.module.js", "text/javascript"),
+        ("/vendor/three/three.core.js", "text/javascript"),
+        ("/vendor/three/OrbitControls.js", "text/javascript"),
+        ("/vendor/three/LICENSE", "text/plain"),
     ] {
         let a = app.get(path).await;
         assert_eq!(a.status, 200, "{path}");
@@ -25,12 +30,15 @@ async fn the_page_and_its_assets_are_served_with_their_types_and_revalidated_by_
     // Every module the page imports is served.
     let html = app.get("/").await.text;
     assert!(html.contains("src=\"/app.js\"") && html.contains("href=\"/app.css\""));
-    for js in ["/app.js", "/ui.js", "/new-job.js", "/job-view.js", "/drawing.js", "/jobs.js", "/database.js"] {
+    let pages = ["/app.js", "/ui.js", "/new-job.js", "/job-view.js", "/drawing.js", "/jobs.js", "/database.js"];
+    for js in pages.into_iter().chain(["/view3d-panel.js", "/view3d.js", "/scene3d.js"]) {
         for import in app.get(js).await.text.lines().filter_map(|l| l.split("from './").nth(1)) {
             let module = format!("/{}", import.split('\'').next().unwrap_or_default());
             assert_eq!(app.get(&module).await.status, 200, "{js} imports {module}");
         }
     }
+    // The import map names three.js for the 3-D view's modules.
+    assert!(html.contains(r#""three": "/vendor/three/three.module.js""#), "no import map for three.js");
     // The API docs and unknown routes are unchanged.
     assert_eq!(app.get("/openapi.json").await.status, 200);
     assert_eq!(app.get("/docs/").await.status, 200);

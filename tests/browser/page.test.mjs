@@ -12,11 +12,14 @@ import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { labelSteps, linkSteps } from './workbench.steps.mjs';
 import { drawingSteps, uploadSteps } from './workbench3.steps.mjs';
+import { view3dSteps } from './view3d.steps.mjs';
 
 const BASE = (process.argv[2] || process.env.DIEPLAN || 'http://127.0.0.1:8080').replace(/\/$/, '');
 const SHOTS = resolve(process.env.SCREENSHOT_DIR || 'target/browser-screenshots');
 const JOB_TIMEOUT_MS = 120_000;
-const ARGS = ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
+// WebGL without a GPU for the 3-D view: ANGLE on SwiftShader, Chromium's CPU renderer,
+// asked for by name (Chromium 148 still falls back to it, but is deprecating the fallback).
+const ARGS = ['--no-sandbox', '--disable-gpu', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--disable-quic', '--no-first-run', '--disable-background-networking',
   '--disable-component-update', '--disable-sync', '--disable-dev-shm-usage'];
 
 const consoleErrors = [];
@@ -343,6 +346,8 @@ try {
   await drawingSteps({ page, step, check, shot, BASE, jobId });
   await labelSteps({ page, step, check, shot, BASE, consoleErrors });
   await uploadSteps({ page, step, check, shot, BASE, consoleErrors });
+
+  await view3dSteps({ page, step, check, shot, BASE });
 
   await step('once the service has keys, the page asks for one and keeps it', async () => {
     const made = await page.evaluate(async () => {

@@ -9,7 +9,7 @@ use crate::core::toolpath::{Move, Units, P3};
 
 const BLOCK: Rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 100.0, y_max: 40.0 };
 
-fn spec(z_bottom: f64) -> AnalysisSpec {
+pub(super) fn spec(z_bottom: f64) -> AnalysisSpec {
     AnalysisSpec {
         tool: EndMill { tool_type: ToolType::Square, diameter_mm: 10.0, flutes: 6, corner_radius_mm: 0.0 },
         stock: vec![StockRegion::Rect(BLOCK)],
@@ -40,7 +40,7 @@ fn feed(start: P3, end: P3) -> Move {
 }
 
 /// Passes across the block along y = `y`, one at each of `levels`, from outside it.
-fn passes(y: f64, levels: &[f64]) -> Toolpath {
+pub(super) fn passes(y: f64, levels: &[f64]) -> Toolpath {
     let mut moves = Vec::new();
     for &z in levels {
         moves.push(feed(P3::new(-10.0, y, 5.0), P3::new(-10.0, y, z)));

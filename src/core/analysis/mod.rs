@@ -8,6 +8,7 @@ pub mod engages;
 pub mod engine;
 pub mod feed_cap;
 pub mod geometry;
+pub mod height_map;
 pub mod kept;
 pub mod lines;
 pub mod outside;

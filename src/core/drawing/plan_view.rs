@@ -244,7 +244,7 @@ pub const SCALE_TOP_SHARE: f64 = 0.99;
 /// the path before and after), with the α limit when colouring by α. α's scale runs to
 /// its largest value; the others to the value below which [`SCALE_TOP_SHARE`] of the
 /// length lies.
-fn value_scale(scene: &Scene, q: Quantity) -> ValueScale {
+pub fn value_scale(scene: &Scene, q: Quantity) -> ValueScale {
     let mut weighted: Vec<(f64, f64)> = Vec::new();
     for run in scene.paths.iter().flat_map(|p| p.runs.iter()).filter(|r| !r.rapid) {
         let Some(values) = run.values.get(&q) else { continue };

@@ -213,6 +213,11 @@ pub async fn store(conn: &mut crate::service::store::Conn, id: &str, stock: &Enc
     Ok(())
 }
 
+/// The stock job `id` keeps as stored (its format and compressed body), if it keeps one.
+pub async fn stored(pool: &Pool, id: &str) -> Result<Option<(i64, Vec<u8>)>, sqlx::Error> {
+    sqlx::query_as("SELECT format, body FROM job_stocks WHERE job_id = $1").bind(id).fetch_optional(pool).await
+}
+
 /// The stock a job starts from, as its submission resolved it: the job it came from, the
 /// layer and grid it covers, and the stored stock (read again when the job runs, so the
 /// job does not depend on the other job being kept).
@@ -270,11 +275,7 @@ pub async fn carried(submission: &Submission<'_>, id: &JobId) -> Result<CarriedS
         let reason = format!("job {id} is {}: a job's stock is kept when it has succeeded", row.status);
         return Err(ApiError::field(FIELD, reason));
     }
-    let stored: Option<(i64, Vec<u8>)> = sqlx::query_as("SELECT format, body FROM job_stocks WHERE job_id = $1")
-        .bind(id.as_str())
-        .fetch_optional(pool)
-        .await?;
-    let Some((format, body)) = stored else {
+    let Some((format, body)) = stored(pool, id.as_str()).await? else {
         let reason = format!(
             "job {id} ({}) kept no stock: analysis, costing, side-milling feeds and trochoids jobs keep theirs",
             row.kind

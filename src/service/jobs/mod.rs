@@ -32,6 +32,7 @@ pub mod queue;
 pub mod relabel;
 pub mod routes;
 pub mod setup;
+pub mod stock_view;
 pub mod store;
 pub mod summaries;
 pub mod trochoids;

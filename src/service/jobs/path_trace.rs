@@ -5,7 +5,9 @@
 
 use super::drawings::scene_of;
 use super::model::JobId;
-use crate::core::drawing::scene::Run;
+use crate::core::drawing::palette::{self, quantity_bin_color, BINS, COOL_BINS};
+use crate::core::drawing::plan_view::value_scale;
+use crate::core::drawing::scene::{Quantity, Run, Scene};
 use crate::service::auth::Caller;
 use crate::service::error::{excerpt, ApiError, Problem};
 use crate::service::extract::{ApiPath, ApiQuery};
@@ -62,11 +64,54 @@ impl From<Run> for TraceRun {
     }
 }
 
+/// How the plan view colours a quantity, for a client that draws the path itself (the
+/// page's 3-D view): the same range and colours. A value's bin: without a limit,
+/// `floor(32·(v − min)/(max − min))`; with one (α), values up to the limit fall in the
+/// first `cool_bins` bins over `min..limit` and values above it in the rest over
+/// `limit..max`; each clamped to its bins (an empty range: its first bin).
+#[derive(Debug, Serialize, ToSchema)]
+pub struct ColorScale {
+    pub min: f64,
+    pub max: f64,
+    /// Values above it are hot (α's limit, deg); null for the other quantities.
+    pub limit: Option<f64>,
+    /// A few values lie above `max` (outliers left out of the range): they take the top colour.
+    pub top_clipped: bool,
+    /// Bins over `min..=limit` when there is a limit.
+    pub cool_bins: usize,
+    /// The colour of each bin, `#rrggbb`, lowest first.
+    pub colors: Vec<String>,
+    /// The legend's caption, with the unit.
+    pub caption: String,
+}
+
+impl ColorScale {
+    fn of(scene: &Scene, q: Quantity) -> ColorScale {
+        let scale = value_scale(scene, q);
+        ColorScale {
+            min: scale.min,
+            max: scale.max,
+            limit: scale.limit,
+            top_clipped: scale.top_clipped,
+            cool_bins: COOL_BINS,
+            colors: (0..BINS).map(|b| quantity_bin_color(q, b).to_string()).collect(),
+            caption: q.caption().to_string(),
+        }
+    }
+}
+
 /// A drawn path of a job, vertex by vertex.
 #[derive(Debug, Serialize, ToSchema)]
 pub struct PathTrace {
     pub path: String,
     pub runs: Vec<TraceRun>,
+    /// Per quantity the path can be coloured by, the plan view's colour scale (the same
+    /// over every path of the job).
+    pub scales: BTreeMap<String, ColorScale>,
+    /// The plan view's colour of rapids (drawn dashed), `#rrggbb`.
+    pub rapid_color: String,
+    /// Its colour of a vertex without a value (air), `#rrggbb`.
+    pub no_value_color: String,
 }
 
 /// The vertices of one drawn path of a finished job, with their height, NC line, path
@@ -85,16 +130,28 @@ pub async fn get_trace(
     ApiPath(id): ApiPath<JobId>,
     ApiQuery(query): ApiQuery<TraceQuery>,
 ) -> Result<Response, ApiError> {
-    let scene = scene_of(&state, &caller, &id).await?;
+    let mut scene = scene_of(&state, &caller, &id).await?;
     let found = match query.path.as_deref() {
-        Some(name) => scene.paths.into_iter().find(|p| p.name == name),
-        None => scene.paths.into_iter().last(),
+        Some(name) => scene.paths.iter().position(|p| p.name == name),
+        None => scene.paths.len().checked_sub(1),
     };
-    let Some(path) = found else {
+    let Some(index) = found else {
         let name = query.path.as_deref().map(excerpt).unwrap_or_default();
         return Err(ApiError::not_found(format!("job {id} has no path {name:?} to trace")));
     };
-    let trace = PathTrace { path: path.name, runs: path.runs.into_iter().map(TraceRun::from).collect() };
+    let scales = scene
+        .quantities(&scene.paths[index].name)
+        .into_iter()
+        .map(|q| (q.as_str().to_string(), ColorScale::of(&scene, q)))
+        .collect();
+    let path = scene.paths.swap_remove(index);
+    let trace = PathTrace {
+        path: path.name,
+        runs: path.runs.into_iter().map(TraceRun::from).collect(),
+        scales,
+        rapid_color: palette::RAPID.to_string(),
+        no_value_color: palette::NO_VALUE.to_string(),
+    };
     let body = tokio::task::spawn_blocking(move || serde_json::to_vec(&trace))
         .await
         .map_err(|e| ApiError::Internal(format!("trace: {e}")))?

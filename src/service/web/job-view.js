@@ -4,6 +4,7 @@ import { h, api, problemBox, pretty, num, minutes, when, duration, figures, tabl
 import { drawingPanel } from './drawing.js';
 import { savingsPanel, remaining } from './savings.js';
 import { programPanel } from './program-view.js';
+import { view3dPanel } from './view3d-panel.js';
 import { length, area, feed, coordinate, lengthUnit } from './units.js';
 
 const POLL_MS = 1000;
@@ -238,6 +239,7 @@ export async function jobView(id) {
     parts.push(h('section', { class: 'card' }, h('h2', {}, 'Result'), ...(SUMMARIES[job.kind]?.(r) || [h('p', { class: 'muted' }, 'See the raw result below.')]), warnings(r.warnings)));
     parts.push(savingsPanel(job.kind, r));
     parts.push(drawingPanel(job, program));
+    parts.push(view3dPanel(job));
     parts.push(program?.node);
     parts.push(h('details', { class: 'card raw' }, h('summary', {}, 'Raw result (JSON)'), h('pre', { class: 'code' }, pretty(job.result))));
     parts.push(inputPanel(job));

@@ -13,15 +13,18 @@ const SVG_NS = 'http://www.w3.org/2000/svg';
 export async function loadTrace(drawingHref, path) {
   const href = `${drawingHref.replace(/drawing\.svg$/, 'trace')}${path ? `?path=${encodeURIComponent(path)}` : ''}`;
   const trace = await api('GET', href);
-  const v = { x: [], y: [], z: [], line: [], s: [], alpha: [], feed: [], force: [], run: [] };
+  const v = { x: [], y: [], z: [], line: [], s: [], alpha: [], feed: [], force: [], wear: [], run: [], layer: [] };
   trace.runs.forEach((run, r) => {
     run.points.forEach(([x, y], i) => {
       v.x.push(x); v.y.push(y); v.z.push(run.z[i] ?? null); v.line.push(run.lines[i] ?? null); v.s.push(run.s_mm[i] ?? null);
-      for (const q of ['alpha', 'feed', 'force']) v[q].push(run.values[q]?.[i] ?? null);
+      for (const q of ['alpha', 'feed', 'force', 'wear']) v[q].push(run.values[q]?.[i] ?? null);
       v.run.push(run.rapid ? -1 - r : r);
+      v.layer.push(run.layer ?? null);
     });
   });
-  return { path: trace.path, v, count: v.x.length };
+  // The drawing's colour scales and its colours of rapids and of vertices without a value.
+  const colors = { rapid: trace.rapid_color, no_value: trace.no_value_color };
+  return { path: trace.path, v, count: v.x.length, scales: trace.scales || {}, colors };
 }
 
 /** The vertex nearest (x, y) mm within `radius` mm, or -1. */
