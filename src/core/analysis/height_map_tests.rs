@@ -78,7 +78,7 @@ fn any_kept() -> impl Strategy<Value = KeptStock> {
             let slices = (0..rasters.len())
                 .map(|k| KeptSlice { z_top: -2.0 * k as f64, z_bottom: -2.0 * (k + 1) as f64, raster: k })
                 .collect();
-            KeptStock { grid, slices, rasters, cavity: false }
+            KeptStock { grid, slices, rasters, cavity: false, below: None }
         })
     })
 }
