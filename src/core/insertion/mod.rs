@@ -223,7 +223,7 @@ pub fn plan_insertion(
     existing: Option<&Toolpath>,
     progress: &dyn Progress,
 ) -> Result<InsertionPlan, CoreError> {
-    plan_rounds(pocket, spec, existing, None, None, progress).map(|(plan, _, _)| plan)
+    plan_rounds(pocket, spec, existing, None, None, false, progress).map(|(plan, _, _)| plan)
 }
 
 /// [`plan_insertion`], handing the samples of the base path's check and of the
@@ -236,7 +236,7 @@ pub fn plan_insertion_kept(
     observer: Option<&mut dyn SampleObserver>,
     progress: &dyn Progress,
 ) -> Result<(InsertionPlan, Stack), CoreError> {
-    let (plan, _, stack) = plan_rounds(pocket, spec, existing, None, observer, progress)?;
+    let (plan, _, stack) = plan_rounds(pocket, spec, existing, None, observer, true, progress)?;
     let stack = stack.ok_or_else(|| CoreError::unsolvable("stock", "the verification kept no stock"))?;
     Ok((plan, stack))
 }
@@ -250,7 +250,7 @@ pub fn plan_insertion_observed(
     observer: &mut dyn SampleObserver,
     progress: &dyn Progress,
 ) -> Result<InsertionPlan, CoreError> {
-    plan_rounds(pocket, spec, existing, None, Some(observer), progress).map(|(plan, _, _)| plan)
+    plan_rounds(pocket, spec, existing, None, Some(observer), false, progress).map(|(plan, _, _)| plan)
 }
 
 /// [`plan_insertion`], keeping the geometry of every sample of the finished program as its
@@ -263,19 +263,21 @@ pub fn plan_insertion_sampled(
     force_model: ForceModel,
     progress: &dyn Progress,
 ) -> Result<(InsertionPlan, PathGeometry), CoreError> {
-    let (plan, geometry, _) = plan_rounds(pocket, spec, existing, Some(force_model), None, progress)?;
+    let (plan, geometry, _) = plan_rounds(pocket, spec, existing, Some(force_model), None, false, progress)?;
     Ok((plan, geometry.unwrap_or_else(|| PathGeometry::new(spec.r_mm()))))
 }
 
 /// The rounds of treatment; with `sampled`, each round's verification keeps its samples'
 /// geometry (the last round's is returned); `observer` sees the samples of the base check
-/// and of the verifications. The stock the last verification left is returned too.
+/// and of the verifications. With `keep_stock`, the stock the last verification left is
+/// returned too; without, each verification's stock goes as soon as it is checked.
 fn plan_rounds(
     pocket: &Pocket,
     spec: &InsertionSpec,
     existing: Option<&Toolpath>,
     sampled: Option<ForceModel>,
     mut observer: Option<&mut dyn SampleObserver>,
+    keep_stock: bool,
     progress: &dyn Progress,
 ) -> Result<(InsertionPlan, Option<PathGeometry>, Option<Stack>), CoreError> {
     spec.validate()?;
@@ -372,6 +374,9 @@ fn plan_rounds(
             (after, checks.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
         });
         let mut after = after?;
+        if !keep_stock {
+            after.stack = None;
+        }
         if let Some(g) = geometry.as_mut() {
             g.removed_volume_mm3 = after.removed_volume_mm3;
         }
