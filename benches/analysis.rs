@@ -10,10 +10,8 @@ use dieplan::core::tool::{EndMill, ToolType};
 use dieplan::core::toolpath::{Motion, Move, Toolpath, Units, P3};
 use std::time::Instant;
 
-fn data(name: &str) -> String {
-    let path = format!("{}/../shared/data/{name}", env!("CARGO_MANIFEST_DIR"));
-    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
-}
+mod fixtures;
+use fixtures::{data, wanted};
 
 fn parse_throughput(name: &str) -> Toolpath {
     let text = data(name);
@@ -118,11 +116,6 @@ fn synthetic_pocket(w: f64, h: f64, r: f64, step: f64, z: f64) -> Toolpath {
 
 /// `cargo bench --bench analysis -- NAME…` runs only the cases whose label contains
 /// one of the names.
-fn wanted(label: &str) -> bool {
-    let filters: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with("--")).collect();
-    filters.is_empty() || filters.iter().any(|f| label.contains(f.as_str()))
-}
-
 fn main() {
     let tiger = parse_throughput("tiger.nc");
     let trochoidal = parse_throughput("trochoidal.ngc");

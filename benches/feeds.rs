@@ -13,10 +13,8 @@ use dieplan::core::stock::Rect;
 use dieplan::core::tool::{EndMill, ToolType};
 use std::time::Instant;
 
-fn data(name: &str) -> String {
-    let path = format!("{}/../shared/data/{name}", env!("CARGO_MANIFEST_DIR"));
-    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
-}
+mod fixtures;
+use fixtures::data;
 
 fn analysis_spec(tool: EndMill, stock: Rect, z_bottom: f64, model: Option<ForceModel>) -> AnalysisSpec {
     AnalysisSpec {

@@ -29,6 +29,9 @@ use dieplan::core::tool_life::ToolLifeModel;
 use dieplan::core::toolpath::Toolpath;
 use std::time::Instant;
 
+mod fixtures;
+use fixtures::data;
+
 /// Two helical entries of the 10 mm tool (a 14 mm hole, 10 turns down 10 mm: a full slot
 /// all round), each followed by a full slot: tests/api/feeds.rs's program.
 const HELICAL_ENTRIES: &str = "G21 G90 G17\nS9600 M3\nG0 X17 Y20 Z2\nG1 Z0 F1000\nG2 X17 Y20 Z-10 I-2 J0 P10 F1500\nG1 X45 F2000\nG0 Z2\nG0 X17 Y60\nG1 Z0 F1000\nG2 X17 Y60 Z-10 I-2 J0 P10 F1500\nG1 X45 F2000\nG0 Z5\nM30\n";
@@ -83,11 +86,6 @@ const MACHINE: MachineLimits = MachineLimits {
     jerk_mm_s3: [50000.0, 50000.0, 40000.0],
     tool_change_s: 8.0,
 };
-
-fn data(name: &str) -> String {
-    let path = format!("{}/../shared/data/{name}", env!("CARGO_MANIFEST_DIR"));
-    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
-}
 
 fn run(label: &str, gcode: &str, tool: &Tool, stock: Rect, z_bottom: f64, objective: Objective) {
     let path: Toolpath = parse_gcode(gcode, &ParseOptions::default()).expect("parses");

@@ -31,16 +31,8 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-fn data(name: &str) -> String {
-    let path = format!("{}/../shared/data/{name}", env!("CARGO_MANIFEST_DIR"));
-    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
-}
-
-/// The case-study cavity's contour (README, "Process planning").
-fn cavity_contour() -> Value {
-    json!({"outer": [[8, 0], [82, 0, 0.414214], [90, 8], [90, 29], [114, 29, 1], [114, 41], [90, 41],
-                     [90, 62, 0.414214], [82, 70], [8, 70, 0.414214], [0, 62], [0, 8, 0.414214]]})
-}
+mod fixtures;
+use fixtures::{cavity_contour, data};
 
 /// One job to time.
 struct Case {

@@ -26,6 +26,9 @@ use dieplan::core::tool::{EndMill, ToolType};
 use dieplan::core::toolpath::{Motion, Move, Toolpath, Units, P3};
 use std::time::Instant;
 
+mod fixtures;
+use fixtures::wanted;
+
 /// The block the passes cross: 50 mm long in x, 40 mm wide in y, 10 mm deep.
 const BLOCK: Rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 50.0, y_max: 40.0 };
 const BLOCK_DEPTH_MM: f64 = 10.0;
@@ -33,11 +36,6 @@ const BLOCK_DEPTH_MM: f64 = 10.0;
 const INTEGRATION_STEPS: usize = 400_000;
 const D_MM: f64 = 10.0;
 const CORNER_MM: f64 = 1.0;
-
-fn wanted(label: &str) -> bool {
-    let words: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
-    words.is_empty() || words.iter().any(|w| label.contains(w.as_str()))
-}
 
 fn tool(tool_type: ToolType) -> EndMill {
     let corner_radius_mm = match tool_type {
