@@ -22,6 +22,7 @@ use super::store;
 use crate::core::analysis::kept::{deepest_feed_mm, layer_bottom, Below, Floor, KeptSlice, KeptStock};
 use crate::core::analysis::MAX_RASTER_CELLS;
 use crate::core::stock::{Grid, Rect};
+use crate::service::auth::Caller;
 use crate::service::error::ApiError;
 use crate::service::jobs::kind::Submission;
 use crate::service::store::Pool;
@@ -262,26 +263,30 @@ impl CarriedStock {
     }
 }
 
+/// What a job the caller may see kept: its stored stock (format and body), or why it has
+/// none. An unknown job (or another key's, to a planner) is [`ApiError::NotFound`].
+pub async fn find(pool: &Pool, caller: &Caller, id: &JobId) -> Result<Result<(i64, Vec<u8>), String>, ApiError> {
+    let row = store::get_visible(pool, caller, id).await?;
+    if row.status()? != JobStatus::Succeeded {
+        return Ok(Err(format!("job {id} is {}: a job's stock is kept when it has succeeded", row.status)));
+    }
+    Ok(stored(pool, id.as_str()).await?.ok_or_else(|| {
+        format!(
+            "job {id} ({}) kept no stock: analysis, costing, side-milling feeds and trochoids jobs keep theirs",
+            row.kind
+        )
+    }))
+}
+
 /// The stock job `id` left, for a job of the caller's to start from; faults name
 /// `stock.from_job`: an unknown job (or another key's, to a planner), a job not succeeded,
 /// a job that kept no stock, a stock this version cannot read.
 pub async fn carried(submission: &Submission<'_>, id: &JobId) -> Result<CarriedStock, ApiError> {
-    let pool: &Pool = submission.pool;
-    let row = store::get_visible(pool, submission.caller, id).await.map_err(|e| match e {
+    let found = find(submission.pool, submission.caller, id).await.map_err(|e| match e {
         ApiError::NotFound(_) => ApiError::field(FIELD, format!("no job with id {id}")),
         other => other,
     })?;
-    if row.status()? != JobStatus::Succeeded {
-        let reason = format!("job {id} is {}: a job's stock is kept when it has succeeded", row.status);
-        return Err(ApiError::field(FIELD, reason));
-    }
-    let Some((format, body)) = stored(pool, id.as_str()).await? else {
-        let reason = format!(
-            "job {id} ({}) kept no stock: analysis, costing, side-milling feeds and trochoids jobs keep theirs",
-            row.kind
-        );
-        return Err(ApiError::field(FIELD, reason));
-    };
+    let (format, body) = found.map_err(|reason| ApiError::field(FIELD, reason))?;
     let from_job = id.to_string();
     tokio::task::spawn_blocking(move || {
         let kept = decode(format, &body)

@@ -11,8 +11,7 @@
 //! c.charCodeAt(0)).buffer)`.
 
 use super::kept_stock;
-use super::model::{JobId, JobStatus};
-use super::store;
+use super::model::JobId;
 use crate::core::analysis::height_map::{
     height_map, HeightMap, DEFAULT_HEIGHT_MAP_CELLS, MAX_HEIGHT_MAP_CELLS, MIN_HEIGHT_MAP_CELLS,
 };
@@ -126,19 +125,7 @@ pub async fn get_stock(
         format!("must be from {MIN_HEIGHT_MAP_CELLS} to {MAX_HEIGHT_MAP_CELLS}, got {max_cells}"),
     );
     v.finish()?;
-    let row = store::get_visible(&state.pool, &caller, &id).await?;
-    if row.status()? != JobStatus::Succeeded {
-        return Err(ApiError::not_found(format!(
-            "job {id} is {} and has kept no stock: a job's stock is kept when it has succeeded",
-            row.status
-        )));
-    }
-    let Some((format, body)) = kept_stock::stored(&state.pool, &id).await? else {
-        return Err(ApiError::not_found(format!(
-            "job {id} ({}) kept no stock: analysis, costing, side-milling feeds and trochoids jobs keep theirs",
-            row.kind
-        )));
-    };
+    let (format, body) = kept_stock::find(&state.pool, &caller, &id).await?.map_err(ApiError::not_found)?;
     let job_id = id.to_string();
     let map = tokio::task::spawn_blocking(move || {
         let kept = kept_stock::decode(format, &body)
