@@ -14,6 +14,7 @@ pub mod objective;
 pub mod plan;
 pub mod rate_limit;
 pub mod rule;
+pub mod settle;
 pub mod split;
 pub mod surface;
 
@@ -23,3 +24,5 @@ mod costed_tests;
 mod objective_tests;
 #[cfg(test)]
 mod plan_tests;
+#[cfg(test)]
+mod settle_tests;

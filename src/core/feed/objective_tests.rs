@@ -11,7 +11,7 @@ use proptest::prelude::*;
 
 const F_STAR: f64 = 269.1;
 
-fn rule() -> FeedRule {
+pub(super) fn rule() -> FeedRule {
     FeedRule {
         strategy: FeedStrategy::ConstantForce,
         force_model: Some(seed_001_ten_mm()),
@@ -23,7 +23,7 @@ fn rule() -> FeedRule {
     }
 }
 
-fn model() -> CostModel {
+pub(super) fn model() -> CostModel {
     CostModel {
         life: ten_mm_life(),
         machine: MachineLimits {

@@ -2,12 +2,12 @@
 //! the feed every sample needs, the change-rate limit, one feed per NC block, and the
 //! figures before and after.
 
-use super::blocks::{split_feeds, BlockOptions, Piece};
+use super::blocks::{BlockOptions, Piece};
 use super::collect::{Collector, Kept, ReasonLengths, Shortfall};
 use super::guarantee::pieces_pay;
 use super::objective::{ForceCurve, ObjectiveSpec};
-use super::rate_limit::limit_feed_change;
 use super::rule::{FeedReason, FeedRule, SampleCut};
+use super::settle::{self, move_ranges, settle, Settled};
 use super::split::sub_move;
 use crate::core::analysis::engine::SampleResult;
 use crate::core::analysis::kept::KeptStock;
@@ -19,6 +19,7 @@ use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Event, Motion, Move, Toolpath};
 use crate::core::CoreError;
 use serde::Serialize;
+use std::ops::Range;
 
 /// Default limit on the change of feed along the path, mm/min per mm (assumed: a
 /// corner feed of 500 mm/min is reached from 5760 in about 5 mm).
@@ -29,8 +30,6 @@ pub const MAX_FEED_SAMPLES: f64 = 10_000_000.0;
 /// The slowest feed a written program may carry, mm/min (`F1`): feed limits below it are
 /// refused (a feed rounded to `F0` would not be a feed).
 pub const MIN_FEED_MM_MIN: f64 = 1.0;
-/// A limited feed this far below the required one counts as lowered by the rate limit.
-const RATE_LIMITED_SLACK_MM_MIN: f64 = 1e-6;
 
 /// How to optimise.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -237,7 +236,9 @@ pub fn assemble(
     let drawn: Vec<usize> = before.as_ref().map(|b| b.index.clone()).unwrap_or_default();
     let mut after_values: Vec<(Option<f64>, Option<f64>)> = Vec::with_capacity(drawn.len());
     let Collector { kept, lengths, shortfalls, objective, tool_radius_mm, .. } = collector;
-    let (limited, rate_limited_mm) = rate_limited(&kept, spec.max_change_per_mm);
+    let ranges = move_ranges(&path.moves, &kept);
+    let Settled { limited, rate_limited_mm, keeps_programmed } =
+        settle(&path.moves, &kept, &ranges, spec, objective.as_ref(), tool_radius_mm);
     let model = spec.rule.force_model;
     let (mut force_before, mut force_after) = (Accumulator::default(), Accumulator::default());
     let mut moves: Vec<Move> = Vec::with_capacity(path.moves.len());
@@ -245,13 +246,9 @@ pub fn assemble(
     let mut move_pieces: Vec<Vec<Piece>> = Vec::with_capacity(path.moves.len());
     let mut kept_moves = 0;
     let mut first_piece = Vec::with_capacity(path.moves.len() + 1);
-    let mut i = 0;
     for (index, m) in path.moves.iter().enumerate() {
         first_piece.push(moves.len());
-        let start = i;
-        while i < kept.len() && kept[i].move_index as usize == index {
-            i += 1;
-        }
+        let Range { start, end: i } = ranges[index].clone();
         let samples = &kept[start..i];
         let mut drawn_here = drawn.partition_point(|&d| d < start)..drawn.partition_point(|&d| d < i);
         if matches!(m.motion, Motion::Rapid) || samples.is_empty() {
@@ -272,17 +269,10 @@ pub fn assemble(
             moves.push(*m);
             continue;
         }
-        // The feed at the move's start is the previous sample's, when that one cut too.
-        let before_start = if start > 0 && is_limited(&kept[start - 1]) { limited[start - 1] } else { limited[start] };
-        let mut feeds = Vec::with_capacity(samples.len() + 1);
-        feeds.push(before_start);
-        feeds.extend_from_slice(&limited[start..i]);
-        let lowest = feeds.iter().copied().fold(f64::INFINITY, f64::min);
-        let length = move_length(m);
-        let mut pieces = split_feeds(length, &feeds, spec.rule.min_feed_mm_min.min(lowest), &spec.blocks);
+        let mut pieces = settle::move_pieces(m, &kept, &limited, start..i, spec);
         // min_cost keeps the programmed feed where the new ones would not pay.
         if let (Some(objective), Some(programmed)) = (&objective, m.feed_mm_min) {
-            if !pieces_pay(samples, &pieces, &spec.rule, objective, tool_radius_mm) {
+            if keeps_programmed[index] || !pieces_pay(samples, &pieces, &spec.rule, objective, tool_radius_mm) {
                 pieces = vec![Piece { t0: 0.0, t1: 1.0, feed_mm_min: programmed }];
                 kept_moves += 1;
             }
@@ -354,43 +344,6 @@ pub fn assemble(
 
 fn finite(v: f32) -> Option<f64> {
     v.is_finite().then_some(f64::from(v))
-}
-
-/// Samples whose feed takes part in the change-rate limit: feed moves whose feed the
-/// optimiser sets (a kept plunge feed neither drags its neighbours down nor is raised).
-fn is_limited(k: &Kept) -> bool {
-    k.reason.is_some_and(|r| r != FeedReason::Kept)
-}
-
-/// The required feeds after the change-rate limit, over each run of feed samples, and
-/// the length the limit lowered.
-fn rate_limited(kept: &[Kept], max_change_per_mm: Option<f64>) -> (Vec<f64>, f64) {
-    let required: Vec<f64> = kept.iter().map(|k| f64::from(k.feed_mm_min)).collect();
-    let Some(rate) = max_change_per_mm else {
-        return (required, 0.0);
-    };
-    let mut out = required.clone();
-    let mut i = 0;
-    while i < kept.len() {
-        if !is_limited(&kept[i]) {
-            i += 1;
-            continue;
-        }
-        let start = i;
-        while i < kept.len() && is_limited(&kept[i]) {
-            i += 1;
-        }
-        let steps: Vec<f64> = kept[start..i].iter().map(|k| f64::from(k.step_mm)).collect();
-        let limited = limit_feed_change(&required[start..i], &steps, rate);
-        out[start..i].copy_from_slice(&limited);
-    }
-    let lowered = kept
-        .iter()
-        .zip(required.iter().zip(&out))
-        .filter(|(_, (r, o))| **o < **r - RATE_LIMITED_SLACK_MM_MIN)
-        .map(|(k, _)| f64::from(k.step_mm))
-        .sum();
-    (out, lowered)
 }
 
 /// The force at a sample when run at `feed` instead of the programmed feed: the force
