@@ -237,7 +237,7 @@ pub fn assemble(
     let mut after_values: Vec<(Option<f64>, Option<f64>)> = Vec::with_capacity(drawn.len());
     let Collector { kept, lengths, shortfalls, objective, tool_radius_mm, .. } = collector;
     let ranges = move_ranges(&path.moves, &kept);
-    let Settled { limited, rate_limited_mm, keeps_programmed } =
+    let Settled { limited, rate_limited_mm, keeps_programmed, all_checked } =
         settle(&path.moves, &kept, &ranges, spec, objective.as_ref(), tool_radius_mm);
     let model = spec.rule.force_model;
     let (mut force_before, mut force_after) = (Accumulator::default(), Accumulator::default());
@@ -272,7 +272,8 @@ pub fn assemble(
         let mut pieces = settle::move_pieces(m, &kept, &limited, start..i, spec);
         // min_cost keeps the programmed feed where the new ones would not pay.
         if let (Some(objective), Some(programmed)) = (&objective, m.feed_mm_min) {
-            if keeps_programmed[index] || !pieces_pay(samples, &pieces, &spec.rule, objective, tool_radius_mm) {
+            let pays = || all_checked || pieces_pay(samples, &pieces, &spec.rule, objective, tool_radius_mm);
+            if keeps_programmed[index] || !pays() {
                 pieces = vec![Piece { t0: 0.0, t1: 1.0, feed_mm_min: programmed }];
                 kept_moves += 1;
             }

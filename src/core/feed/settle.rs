@@ -29,6 +29,9 @@ pub struct Settled {
     pub rate_limited_mm: f64,
     /// Per move: it keeps its programmed feed (its new feeds would cost more, min_cost).
     pub keeps_programmed: Vec<bool>,
+    /// Every other move was found to pay at the `limited` feeds (min_cost), so its pieces
+    /// need no second look; `false` when the runs ran out first, or with no objective.
+    pub all_checked: bool,
 }
 
 /// Per move of `moves`, the range of `kept` samples that lie on it (samples are in path
@@ -80,6 +83,7 @@ pub fn settle(
     let mut required = needed.clone();
     let mut keeps_programmed = vec![false; moves.len()];
     let mut limited = rate_limited(kept, &required, spec.max_change_per_mm);
+    let mut all_checked = false;
     for _ in 0..MAX_SETTLE_RUNS {
         let Some(objective) = objective else { break };
         let mut newly_kept = false;
@@ -97,6 +101,7 @@ pub fn settle(
             }
         }
         if !newly_kept {
+            all_checked = true;
             break;
         }
         limited = rate_limited(kept, &required, spec.max_change_per_mm);
@@ -106,7 +111,7 @@ pub fn settle(
         .filter(|&s| !in_kept_move(s) && limited[s] < needed[s] - RATE_LIMITED_SLACK_MM_MIN)
         .map(|s| f64::from(kept[s].step_mm))
         .sum();
-    Settled { limited, rate_limited_mm, keeps_programmed }
+    Settled { limited, rate_limited_mm, keeps_programmed, all_checked }
 }
 
 /// The `required` feeds after the change-rate limit, over each run of samples that take

@@ -69,6 +69,7 @@ fn a_move_kept_at_its_programmed_feed_is_ramped_to_at_that_feed_not_at_the_new_o
     let ranges = move_ranges(&moves, &kept);
     let settled = settle(&moves, &kept, &ranges, &spec, Some(&objective), 5.0);
     assert_eq!(settled.keeps_programmed, [false, true, false]);
+    assert!(settled.all_checked, "the second run keeps no other move");
     let end_of_first = settled.limited[ranges[0].end - 1];
     assert!((end_of_first - 2000.0 - RATE * STEP_MM).abs() < 1e-6, "F{end_of_first}");
     let start_of_last = settled.limited[ranges[2].start];
@@ -79,5 +80,6 @@ fn a_move_kept_at_its_programmed_feed_is_ramped_to_at_that_feed_not_at_the_new_o
     // Without an objective that keeps moves, the neighbours ramp to the new feed.
     let plain = settle(&moves, &kept, &ranges, &spec, None, 5.0);
     assert_eq!(plain.keeps_programmed, [false, false, false]);
+    assert!(!plain.all_checked);
     assert!((plain.limited[ranges[0].end - 1] - 1000.0 - RATE * STEP_MM).abs() < 1e-6);
 }
