@@ -40,6 +40,8 @@ static ASSETS: &[Asset] = &[
     Asset { path: "/view3d-panel.js", content_type: JS, body: include_str!("web/view3d-panel.js") },
     Asset { path: "/view3d.js", content_type: JS, body: include_str!("web/view3d.js") },
     Asset { path: "/scene3d.js", content_type: JS, body: include_str!("web/scene3d.js") },
+    Asset { path: "/levels3d.js", content_type: JS, body: include_str!("web/levels3d.js") },
+    Asset { path: "/tool3d.js", content_type: JS, body: include_str!("web/tool3d.js") },
     // three.js, vendored unchanged (see web/vendor/three/README.md for the version).
     Asset {
         path: "/vendor/three/three.module.js",

@@ -3,12 +3,10 @@
 // Coordinates are the job's, in mm, z up.
 import * as THREE from 'three';
 import { OrbitControls } from '/vendor/three/OrbitControls.js';
+import { toolMesh, radiusAt } from './tool3d.js';
 
 /** The stock's colour: steel. */
 const STEEL = 0xaab4be;
-/** Tool's colour and its length in diameters. */
-const TOOL_COLOR = 0xd4a017;
-const TOOL_LENGTH_DIAMETERS = 3;
 /** The dashes of rapids, as a fraction of the scene's size. */
 const DASH_FRACTION = 0.01;
 /** Opacity of rapids, so that they read as thinner than the cut. */
@@ -68,42 +66,45 @@ function layerOutline(stock) {
   return helper;
 }
 
-/** A cylinder of the tool's diameter standing on its tip at the origin. */
-function toolMesh(diameter) {
-  const geometry = new THREE.CylinderGeometry(diameter / 2, diameter / 2, diameter * TOOL_LENGTH_DIAMETERS, 32);
-  geometry.rotateX(Math.PI / 2);
-  geometry.translate(0, 0, (diameter * TOOL_LENGTH_DIAMETERS) / 2);
-  const mesh = new THREE.Mesh(geometry, new THREE.MeshStandardMaterial({ color: TOOL_COLOR, metalness: 0.6, roughness: 0.35, transparent: true, opacity: 0.85 }));
-  mesh.name = 'tool';
-  return mesh;
-}
-
 /**
  * Segments of the path between vertices `order` (indices into the trace's vertices, in
- * path order) that continue one run: per segment its end vertex. Feed and rapid apart.
+ * path order) that join neighbours of one run: per segment the position in `order` of its
+ * end vertex (its start is the trace's vertex before it). Feed and rapid apart. Vertices
+ * left out between two break the path there (no chord across a gap).
  */
 function segments(trace, order) {
-  const { v } = trace;
-  const feed = []; const rapid = [];
+  const { run } = trace.v;
+  const feed = new Uint32Array(order.length); const rapid = new Uint32Array(order.length);
+  let feeds = 0; let rapids = 0;
   for (let n = 1; n < order.length; n++) {
-    const a = order[n - 1]; const b = order[n];
-    if (v.run[a] !== v.run[b]) continue;
-    (v.run[b] < 0 ? rapid : feed).push([a, b, n]);
+    const b = order[n];
+    if (order[n - 1] !== b - 1 || run[b - 1] !== run[b]) continue;
+    if (run[b] < 0) rapid[rapids++] = n;
+    else feed[feeds++] = n;
   }
-  return { feed, rapid };
+  return { feed: feed.subarray(0, feeds), rapid: rapid.subarray(0, rapids) };
 }
 
-function lineGeometry(trace, list) {
-  const { v } = trace;
+/** The line segments `list` (see `segments`) of the path through `order`, as a geometry. */
+function lineGeometry(trace, order, list) {
+  const { x, y, z } = trace.v;
   const positions = new Float32Array(list.length * 6);
-  list.forEach(([a, b], s) => positions.set([v.x[a], v.y[a], v.z[a] ?? 0, v.x[b], v.y[b], v.z[b] ?? 0], 6 * s));
+  for (let s = 0; s < list.length; s++) {
+    const b = order[list[s]];
+    const at = 6 * s;
+    positions[at] = x[b - 1]; positions[at + 1] = y[b - 1]; positions[at + 2] = z[b - 1] ?? 0;
+    positions[at + 3] = x[b]; positions[at + 4] = y[b]; positions[at + 5] = z[b] ?? 0;
+  }
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
   return geometry;
 }
 
-/** The scene of a job in `container`; `stock` may be null (the path alone). */
-export function createScene(container, { stock, toolDiameter }) {
+/**
+ * The scene of a job in `container`; `stock` may be null (the path alone); `tool` the end
+ * mill drawn (see tool3d.js).
+ */
+export function createScene(container, { stock, tool: toolSpec }) {
   const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
   renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
   container.append(renderer.domElement);
@@ -122,7 +123,7 @@ export function createScene(container, { stock, toolDiameter }) {
     scene.add(stockMesh(stock));
     scene.add(layerOutline(stock));
   }
-  const tool = toolMesh(toolDiameter);
+  let tool = toolMesh(toolSpec);
   tool.visible = false;
   scene.add(tool);
   const path = new THREE.Group();
@@ -151,20 +152,25 @@ export function createScene(container, { stock, toolDiameter }) {
     setPath(trace, order, colorOf, rapidColor) {
       for (const child of [...path.children]) { child.geometry.dispose(); child.material.dispose(); path.remove(child); }
       const { feed, rapid } = segments(trace, order);
-      const feedGeometry = lineGeometry(trace, feed);
+      const feedGeometry = lineGeometry(trace, order, feed);
       const colors = new Float32Array(feed.length * 6);
-      const c = new THREE.Color();
-      feed.forEach(([, b], s) => { c.set(colorOf(b)); colors.set([c.r, c.g, c.b, c.r, c.g, c.b], 6 * s); });
+      // Colours come from a few bins: each parsed once.
+      const parsed = new Map();
+      const rgb = (css) => {
+        if (!parsed.has(css)) { const c = new THREE.Color(css); parsed.set(css, [c.r, c.g, c.b, c.r, c.g, c.b]); }
+        return parsed.get(css);
+      };
+      for (let s = 0; s < feed.length; s++) colors.set(rgb(colorOf(order[feed[s]])), 6 * s);
       feedGeometry.setAttribute('color', new THREE.BufferAttribute(colors, 3));
       path.add(new THREE.LineSegments(feedGeometry, new THREE.LineBasicMaterial({ vertexColors: true })));
-      const rapidLines = new THREE.LineSegments(lineGeometry(trace, rapid), new THREE.LineDashedMaterial({
+      const rapidLines = new THREE.LineSegments(lineGeometry(trace, order, rapid), new THREE.LineDashedMaterial({
         color: rapidColor, transparent: true, opacity: RAPID_OPACITY, dashSize: 1, gapSize: 1 }));
       rapidLines.computeLineDistances();
       const extent = new THREE.Box3().setFromObject(path).getSize(new THREE.Vector3()).length();
       rapidLines.material.dashSize = rapidLines.material.gapSize = Math.max(extent, 1) * DASH_FRACTION;
       path.add(rapidLines);
       // How many segments of each kind end at or before the n-th vertex of `order`.
-      const upTo = (list) => { const counts = new Uint32Array(order.length); let k = 0; for (let n = 0; n < order.length; n++) { while (k < list.length && list[k][2] <= n) k++; counts[n] = k; } return counts; };
+      const upTo = (list) => { const counts = new Uint32Array(order.length); let k = 0; for (let n = 0; n < order.length; n++) { while (k < list.length && list[k] <= n) k++; counts[n] = k; } return counts; };
       pathParts = { feed: path.children[0], rapid: rapidLines, feedUpTo: upTo(feed), rapidUpTo: upTo(rapid) };
       if (!framed) this.fit();
       framed = true;
@@ -197,6 +203,20 @@ export function createScene(container, { stock, toolDiameter }) {
     },
     /** The tool's position, mm, or null when it is not shown. */
     toolPosition: () => (tool.visible ? [tool.position.x, tool.position.y, tool.position.z] : null),
+    /** Draws the end mill `spec` (see tool3d.js) where the tool stands. */
+    setTool(spec) {
+      const next = toolMesh(spec);
+      next.position.copy(tool.position);
+      next.visible = tool.visible;
+      scene.remove(tool);
+      tool.geometry.dispose();
+      tool.material.dispose();
+      tool = next;
+      scene.add(tool);
+      render();
+    },
+    /** The largest radius of the tool's mesh up to `height` mm above its tip, mm. */
+    toolRadiusAt: (height) => radiusAt(tool, height),
     dispose() {
       controls.dispose();
       scene.traverse((o) => { o.geometry?.dispose(); o.material?.dispose(); });

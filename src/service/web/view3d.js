@@ -1,22 +1,23 @@
 // The 3-D view of a finished job: the stock it left (GET /v1/jobs/{id}/stock) as a
 // shaded mesh and its path (the trace) in 3-D, coloured by the drawing's quantities and
-// colour scales, with orbit, pan and zoom, a layer slider and a time slider that plays
-// the path with the tool where it is.
+// colour scales, with orbit, pan and zoom, a layer slider (or, for a path of many cutting
+// levels, a depth slider) and a time slider that plays the path with the tool, drawn in its
+// shape, where it is.
 import { h, api, num, problemBox } from './ui.js';
 import { loadTrace, describe } from './trace.js';
 import { createScene, hasWebGL } from './scene3d.js';
+import { cuttingLevels, atLevel, downTo, depthControl, MAX_LEVELS } from './levels3d.js';
+import { toolOf } from './tool3d.js';
 import { units, MM_PER_INCH, coordinate, length, lengthUnit } from './units.js';
 
 /** The whole path plays in this many seconds. */
 const PLAY_SECONDS = 20;
-/** More distinct cutting levels than this are not offered one by one. */
-const MAX_LEVELS = 400;
-/** Levels closer than this are one, mm. */
-const LEVEL_EPS_MM = 1e-3;
 /** Values within this of the α limit count as at it (as the drawing's). */
 const LIMIT_TOLERANCE = 1e-6;
 /** The tool's diameter when the result names none, as a share of the scene's size. */
 const TOOL_SHARE = 0.02;
+/** Heights above the tool's tip, as shares of its diameter, at which its radius is told to tests. */
+const PROFILE_HEIGHTS = [0, 0.05, 0.25, 0.5];
 const NAMES = { alpha: 'Engagement angle α', force: 'Cutting force', feed: 'Feed', wear: 'Tool wear' };
 
 /** The bin of `value` on `scale` (the drawing's rule, see the trace's `scales`). */
@@ -59,24 +60,6 @@ function legend(q, scale, colors) {
       h('span', {}, h('i', { class: 'key-dash', style: `border-color:${colors.rapid}` }), ' rapid')));
 }
 
-/** The distinct cutting levels of the path (z of its feed vertices), top first; [] when too many. */
-function cuttingLevels(trace) {
-  const { v } = trace;
-  const levels = [];
-  for (let i = 0; i < trace.count; i++) {
-    if (v.run[i] < 0 || v.z[i] == null || v.alpha[i] == null) continue;
-    if (!levels.some((z) => Math.abs(z - v.z[i]) < LEVEL_EPS_MM)) levels.push(v.z[i]);
-    if (levels.length > MAX_LEVELS) return [];
-  }
-  return levels.sort((a, b) => b - a);
-}
-
-function toolDiameter(job) {
-  const r = job.result || {};
-  const chosen = (r.candidates || []).find((c) => c.tool_id === r.chosen_tool_id);
-  return r.tool?.diameter_mm ?? chosen?.diameter_mm ?? null;
-}
-
 export function view3d(job, views) {
   const node = h('div', { class: 'view3d' });
   if (!hasWebGL()) {
@@ -84,12 +67,16 @@ export function view3d(job, views) {
     return node;
   }
   const paths = views.paths || [];
-  const state = { path: paths.at(-1)?.name, color: null, layer: 0, n: 0, playing: false };
+  const state = { path: paths.at(-1)?.name, color: null, layer: 0, depth: 0, n: 0, playing: false };
   const controls = h('div', { class: 'drawing-controls view3d-controls' });
   const canvas = h('div', { class: 'view3d-canvas', id: 'view3d' });
   const status = h('p', { class: 'hint', 'aria-live': 'polite' });
   const readout = h('div', { class: 'readout', id: 'view3d-readout' });
-  const sliders = h('div', { class: 'view3d-sliders' });
+  // The layer (or depth) slider, drawn once per path, and the time slider, drawn again with
+  // each path drawn: a drag on the first goes on while the path is drawn again.
+  const levelSlot = h('div', { class: 'view3d-slot' });
+  const timeSlot = h('div', { class: 'view3d-slot' });
+  const sliders = h('div', { class: 'view3d-sliders' }, levelSlot, timeSlot);
   let legendSlot = h('div');
   node.append(controls, canvas, legendSlot, sliders, readout, status,
     h('p', { class: 'hint' }, 'Drag to orbit, right-drag or shift-drag to pan, scroll or pinch to zoom. Rapids are dashed.'));
@@ -98,6 +85,8 @@ export function view3d(job, views) {
   let order = [];
   let levels = [];
   let timer = 0;
+  let pending = 0;
+  let stock = null;
 
   const stockPromise = api('GET', `/v1/jobs/${encodeURIComponent(job.id)}/stock`).catch((err) => {
     if (err.status === 404) return null;
@@ -110,14 +99,17 @@ export function view3d(job, views) {
     return scale && value != null ? scale.colors[binOf(scale, value)] : trace.colors.no_value;
   }
 
-  /** The vertices drawn: the layer's (or cutting level's) chosen, all when none is. */
+  /** Whether the path is shown down to a depth: it has too many cutting levels to show one by one. */
+  const byDepth = () => levels.length > MAX_LEVELS;
+
+  /** The vertices drawn: down to the depth chosen, or the layer's (or cutting level's) chosen; all when none is. */
   function filter() {
     const { v } = trace;
-    const all = [...Array(trace.count).keys()];
-    if (!state.layer) return all;
-    if ((views.layers || []).length > 1) return all.filter((i) => v.layer[i] === state.layer - 1);
-    const z = levels[state.layer - 1];
-    return all.filter((i) => v.z[i] != null && Math.abs(v.z[i] - z) < LEVEL_EPS_MM);
+    const all = () => [...Array(trace.count).keys()];
+    if (byDepth()) return state.depth < levels.length - 1 ? downTo(trace, levels[state.depth]) : all();
+    if (!state.layer) return all();
+    if ((views.layers || []).length > 1) return all().filter((i) => v.layer[i] === state.layer - 1);
+    return atLevel(trace, levels[state.layer - 1]);
   }
 
   function layerLabel() {
@@ -142,31 +134,48 @@ export function view3d(job, views) {
     if (label) label.textContent = v.s[i] != null ? `${length(v.s[i], 1)} along the path` : `vertex ${state.n + 1} of ${order.length}`;
   }
 
-  function renderSliders() {
-    const layerCount = (views.layers || []).length > 1 ? views.layers.length : levels.length > 1 ? levels.length : 0;
-    const play = h('button', { type: 'button', id: 'play3d', 'aria-pressed': String(state.playing), onclick: () => (state.playing ? stop() : start()) }, state.playing ? 'Pause' : 'Play');
-    sliders.replaceChildren(...[
-      layerCount ? h('div', { class: 'field' }, h('label', { for: 'layer3d' }, 'Layer: ', h('span', { id: 'layer3d-label' }, layerLabel())),
-        h('input', { type: 'range', id: 'layer3d', min: 0, max: layerCount, step: 1, value: state.layer, oninput: (e) => {
-          state.layer = Number(e.target.value);
-          sliders.querySelector('#layer3d-label').textContent = layerLabel();
-          drawPath();
-        } })) : null,
-      h('div', { class: 'field time3d' }, h('label', { for: 'time3d' }, 'Time: ', h('span', { id: 'time3d-label' })),
-        h('div', { class: 'time3d-row' }, play,
-          h('input', { type: 'range', id: 'time3d', min: 0, max: Math.max(0, order.length - 1), step: 1, value: state.n, oninput: (e) => {
-            stop();
-            state.n = Number(e.target.value);
-            showTime();
-          } }))),
-    ].filter(Boolean));
+  /** Draws the path again at the next frame: a dragged slider draws once a frame, at its last value. */
+  function drawSoon() {
+    cancelAnimationFrame(pending);
+    pending = requestAnimationFrame(drawPath);
   }
 
+  /** The layer slider (one layer or cutting level at a time), the depth slider for many levels, or none. */
+  function renderLevels() {
+    if (byDepth()) {
+      levelSlot.replaceChildren(depthControl(levels, state.depth, (k) => { state.depth = k; drawSoon(); }));
+      return;
+    }
+    const layerCount = (views.layers || []).length > 1 ? views.layers.length : levels.length > 1 ? levels.length : 0;
+    levelSlot.replaceChildren(...(layerCount ? [h('div', { class: 'field' }, h('label', { for: 'layer3d' }, 'Layer: ', h('span', { id: 'layer3d-label' }, layerLabel())),
+      h('input', { type: 'range', id: 'layer3d', min: 0, max: layerCount, step: 1, value: state.layer, oninput: (e) => {
+        state.layer = Number(e.target.value);
+        levelSlot.querySelector('#layer3d-label').textContent = layerLabel();
+        drawSoon();
+      } }))] : []));
+  }
+
+  /** The time slider and Play, over the vertices drawn. */
+  function renderSliders() {
+    const play = h('button', { type: 'button', id: 'play3d', 'aria-pressed': String(state.playing), onclick: () => (state.playing ? stop() : start()) }, state.playing ? 'Pause' : 'Play');
+    timeSlot.replaceChildren(h('div', { class: 'field time3d' }, h('label', { for: 'time3d' }, 'Time: ', h('span', { id: 'time3d-label' })),
+      h('div', { class: 'time3d-row' }, play,
+        h('input', { type: 'range', id: 'time3d', min: 0, max: Math.max(0, order.length - 1), step: 1, value: state.n, oninput: (e) => {
+          stop();
+          state.n = Number(e.target.value);
+          showTime();
+        } }))));
+  }
+
+  /** Draws the vertices the layer or depth chosen shows, with their legend and the time slider over them. */
   function drawPath() {
+    cancelAnimationFrame(pending);
     stop();
     order = filter();
     state.n = Math.max(0, order.length - 1);
     view.setPath(trace, order, colorOf, trace.colors.rapid);
+    canvas.dataset.drawn = String(order.length);
+    canvas.dataset.depth = byDepth() ? levels[state.depth].toFixed(3) : '';
     const scale = trace.scales?.[state.color];
     const next = legend(state.color, scale, trace.colors);
     legendSlot.replaceWith(next);
@@ -225,7 +234,11 @@ export function view3d(job, views) {
     try {
       trace = await loadTrace(views.drawing, state.path);
       levels = (views.layers || []).length > 1 ? [] : cuttingLevels(trace);
+      canvas.dataset.levels = String(levels.length);
       state.layer = 0;
+      state.depth = Math.max(0, levels.length - 1);
+      showTool();
+      renderLevels();
       drawPath();
       status.textContent = '';
     } catch (err) {
@@ -233,9 +246,26 @@ export function view3d(job, views) {
     }
   }
 
-  stockPromise.then((stock) => {
-    const diameter = toolDiameter(job) ?? (stock ? stock.grid.cell_mm * stock.grid.columns * TOOL_SHARE : 1);
-    view = createScene(canvas, { stock, toolDiameter: diameter });
+  /** The end mill of the path shown, as the result names it; else a cylinder sized to the stock. */
+  function toolSpec() {
+    const diameter = stock ? stock.grid.cell_mm * stock.grid.columns * TOOL_SHARE : 1;
+    return toolOf(job, state.path) ?? { shape: null, diameter_mm: diameter, corner_radius_mm: 0 };
+  }
+
+  /** Draws the path's end mill and tells tests its shape and its radius near its tip (`[height, radius]`, mm). */
+  function showTool() {
+    const tool = toolSpec();
+    view.setTool(tool);
+    canvas.dataset.toolShape = tool.shape ?? 'unnamed';
+    canvas.dataset.toolProfile = JSON.stringify(PROFILE_HEIGHTS.map((share) => {
+      const height = share * tool.diameter_mm;
+      return [height, Number(view.toolRadiusAt(height).toFixed(3))];
+    }));
+  }
+
+  stockPromise.then((kept) => {
+    stock = kept;
+    view = createScene(canvas, { stock, tool: toolSpec() });
     view.resize();
     canvas.dataset.stock = stock ? `${stock.grid.columns}x${stock.grid.rows}` : 'none';
     if (!stock) status.textContent = 'This job kept no stock (analysis, costing, side-milling feeds and trochoids jobs keep theirs): the path alone.';
