@@ -22,6 +22,7 @@ mod jobs;
 mod keys;
 mod nc_programs;
 mod openapi;
+mod plan_stock;
 mod plans;
 mod postgres;
 mod postgres_backend;

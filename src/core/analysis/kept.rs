@@ -109,15 +109,17 @@ pub fn keep(
                 Floor::Unbounded => Floor::Unbounded,
             };
             // The stack's grid is the painted stock's: any other is not this stock's.
-            let (g, k) = (raster.layout_grid(), kept.grid);
-            let same = g.nx == k.nx
-                && g.ny == k.ny
-                && (g.x0_mm - k.x0_mm).abs() < GRID_MATCH_CELLS * k.cell_mm
-                && (g.y0_mm - k.y0_mm).abs() < GRID_MATCH_CELLS * k.cell_mm;
-            same.then(|| Below { footprint: raster.cells().to_vec(), floor })
+            same_grid(&raster.layout_grid(), &kept.grid).then(|| Below { footprint: raster.cells().to_vec(), floor })
         }
     };
     Ok(kept)
+}
+
+/// `true` when `a` and `b` are one grid: as many cells, origins and cells within
+/// [`GRID_MATCH_CELLS`] of a cell.
+pub fn same_grid(a: &Grid, b: &Grid) -> bool {
+    let close = |x: f64, y: f64| (x - y).abs() < GRID_MATCH_CELLS * b.cell_mm;
+    a.nx == b.nx && a.ny == b.ny && close(a.x0_mm, b.x0_mm) && close(a.y0_mm, b.y0_mm) && close(a.cell_mm, b.cell_mm)
 }
 
 /// The slice levels `levels` (top first) of a layer that starts from a kept stock whose

@@ -29,6 +29,14 @@ pub struct Stack {
     slices: Vec<Slice>,
 }
 
+impl std::fmt::Debug for Stack {
+    /// The slices' z ranges and the memory they take (not their cells).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let ranges: Vec<(f64, f64)> = self.slices.iter().map(|s| (s.z_top, s.z_bottom)).collect();
+        f.debug_struct("Stack").field("slices", &ranges).field("memory_bytes", &self.memory_bytes()).finish()
+    }
+}
+
 impl Stack {
     /// The slices between consecutive `levels` (top first, at least two), all holding the
     /// material of `raster`.

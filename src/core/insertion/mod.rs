@@ -255,16 +255,18 @@ pub fn plan_insertion_observed(
 
 /// [`plan_insertion`], keeping the geometry of every sample of the finished program as its
 /// verification simulated it, with `force_model` for the forces at the programmed feeds (so
-/// that feeds, wear and time need no other simulation).
+/// that feeds, wear and time need no other simulation); with `keep_stock`, the stock that
+/// verification left too.
 pub fn plan_insertion_sampled(
     pocket: &Pocket,
     spec: &InsertionSpec,
     existing: Option<&Toolpath>,
     force_model: ForceModel,
+    keep_stock: bool,
     progress: &dyn Progress,
-) -> Result<(InsertionPlan, PathGeometry), CoreError> {
-    let (plan, geometry, _) = plan_rounds(pocket, spec, existing, Some(force_model), None, false, progress)?;
-    Ok((plan, geometry.unwrap_or_else(|| PathGeometry::new(spec.r_mm()))))
+) -> Result<(InsertionPlan, PathGeometry, Option<Stack>), CoreError> {
+    let (plan, geometry, stack) = plan_rounds(pocket, spec, existing, Some(force_model), None, keep_stock, progress)?;
+    Ok((plan, geometry.unwrap_or_else(|| PathGeometry::new(spec.r_mm())), stack))
 }
 
 /// The rounds of treatment; with `sampled`, each round's verification keeps its samples'

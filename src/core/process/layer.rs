@@ -8,7 +8,7 @@ use super::cavity::{Cavity, LayerRole};
 use super::parallel::{self, Shares};
 use super::spec::{ProcessOptions, ToolCandidate};
 use crate::core::analysis::geometry::{PathGeometry, SampleGeometry};
-use crate::core::analysis::{analyze_with, AnalysisSpec};
+use crate::core::analysis::{analyze_with, AnalysisSpec, Stack};
 use crate::core::insertion::{analysis_spec, plan_insertion_sampled, InsertionPlan, InsertionSpec};
 use crate::core::progress::Progress;
 pub use crate::core::toolpath::Step;
@@ -43,6 +43,10 @@ pub struct LayerPlan {
     /// The geometry of every sample of the program, as its verification simulated it (the
     /// original layers only; `None` once let go).
     pub geometry: Option<Arc<PathGeometry>>,
+    /// The stock the program leaves in the layer, as its verification simulated it (the
+    /// original layers of a full plan only; `None` once let go). A copy leaves its
+    /// original's, moved down.
+    pub stock: Option<Arc<Stack>>,
 }
 
 /// The insertion spec of layer `index` for `candidate`, simulated on cells of `cell_mm`
@@ -83,7 +87,8 @@ pub fn plan_layers(
 }
 
 /// [`plan_layers`] with the simulations' raster cell `cell_mm` (`None`: the analysis's
-/// default), for the screening's coarse plans.
+/// default, and each original layer keeps the stock its program leaves), for the
+/// screening's coarse plans.
 pub fn plan_layers_on_cells(
     cavity: &Cavity,
     candidate: &ToolCandidate,
@@ -91,6 +96,7 @@ pub fn plan_layers_on_cells(
     cell_mm: Option<f64>,
     progress: &dyn Progress,
 ) -> Result<Vec<LayerPlan>, CoreError> {
+    let keep_stock = cell_mm.is_none();
     let n = cavity.layers.len();
     let alike = |a: usize, b: usize| {
         let (la, lb) = (&cavity.layers[a], &cavity.layers[b]);
@@ -109,7 +115,7 @@ pub fn plan_layers_on_cells(
         let spec = layer_spec(cavity, index, candidate, options, cell_mm);
         let part = shares.part(k);
         part.checkpoint()?;
-        plan_insertion_sampled(&cavity.layers[index].pocket, &spec, None, candidate.force_model, &part)
+        plan_insertion_sampled(&cavity.layers[index].pocket, &spec, None, candidate.force_model, keep_stock, &part)
     });
     let mut plans: Vec<LayerPlan> = Vec::with_capacity(n);
     let mut planned = originals.iter().copied().zip(planned);
@@ -132,10 +138,11 @@ pub fn plan_layers_on_cells(
                     steps: original.steps.clone(),
                     analysis,
                     geometry: None,
+                    stock: None,
                 }
             }
             None => {
-                let (insertion, geometry) = match planned.next() {
+                let (insertion, geometry, stock) = match planned.next() {
                     Some((i, result)) if i == index => result?,
                     _ => return Err(CoreError::unsolvable("layers", format!("layer {index} was not planned"))),
                 };
@@ -151,6 +158,7 @@ pub fn plan_layers_on_cells(
                     steps,
                     analysis,
                     geometry: Some(Arc::new(geometry)),
+                    stock: stock.map(Arc::new),
                 }
             }
         };

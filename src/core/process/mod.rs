@@ -21,6 +21,7 @@ pub mod baseline;
 pub mod cavity;
 pub mod evaluate;
 pub mod feeds;
+pub mod kept_layers;
 pub mod layer;
 mod overload_lines;
 mod parallel;
@@ -140,10 +141,15 @@ pub fn plan_process(
         let baseline = side.map(|h| h.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)));
         (chosen, baseline)
     });
-    let Chosen { reports, chosen, layers, evaluation, tuning, warnings } = chosen?;
+    let Chosen { reports, chosen, layers, evaluation, tuning, mut warnings } = chosen?;
     let baseline = baseline.transpose()?;
+    let stock = kept_layers::plan_stock(&layers)
+        .map_err(|reason| warnings.push(format!("the plan keeps no stock for another job to start from: {reason}")))
+        .ok();
     progress.report(1.0);
-    Ok(report::assemble(cavity, reports, chosen, &layers, evaluation, tuning, baseline, warnings))
+    let mut plan = report::assemble(cavity, reports, chosen, &layers, evaluation, tuning, baseline, warnings);
+    plan.stock = stock;
+    Ok(plan)
 }
 
 /// The candidates' plans, the one chosen, and its tuning.
@@ -272,8 +278,8 @@ fn choose_and_tune(
         if better {
             best = Some((k, layers, evaluation, passes));
         } else {
-            // Only the best plan keeps its samples (for the tuning).
-            layers.iter_mut().for_each(|l| l.geometry = None);
+            // Only the best plan keeps its samples (for the tuning) and its stock.
+            layers.iter_mut().for_each(|l| (l.geometry, l.stock) = (None, None));
         }
     }
     let Some((chosen, layers, standard, passes)) = best else {

@@ -37,6 +37,10 @@ pub enum CandidateStatus {
 pub struct CandidateReport {
     pub name: String,
     pub diameter_mm: f64,
+    /// The end mill's type (plans rough with square and radius end mills).
+    pub tool_type: crate::core::tool::ToolType,
+    /// Its corner radius, mm (0 for a square end mill).
+    pub corner_radius_mm: f64,
     pub status: CandidateStatus,
     pub reason: Option<String>,
     /// Area of the cavity the tool cannot reach, mm² (over the layers).
@@ -65,6 +69,8 @@ impl CandidateReport {
         CandidateReport {
             name: c.name.clone(),
             diameter_mm: c.tool.diameter_mm,
+            tool_type: c.tool.tool_type,
+            corner_radius_mm: c.tool.corner_radius_mm,
             status: CandidateStatus::Planned,
             reason: None,
             unreachable_area_mm2,
@@ -176,6 +182,9 @@ pub struct ProcessPlan {
     pub cavity_volume_mm3: f64,
     pub min_concave_radius_mm: Option<f64>,
     pub warnings: Vec<String>,
+    /// The stock the chosen plan leaves in the cavity, and its rest material (`None`, with
+    /// a warning, where it cannot be kept).
+    pub stock: Option<super::kept_layers::PlanStock>,
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -240,5 +249,6 @@ pub(super) fn assemble(
         cavity_volume_mm3: cavity.volume_mm3(),
         min_concave_radius_mm: cavity.min_concave_radius_mm(),
         warnings,
+        stock: None,
     }
 }

@@ -155,3 +155,36 @@ fn the_unreachable_area_of_a_sharp_rectangle_is_its_four_corners() {
     assert!((a - corners).abs() < 0.05 * corners, "{a} vs {corners}");
     assert!(crate::core::pocketing::unreachable_area_mm2(&rounded_box(50.0, 40.0, 6.0), 5.0) < 1e-3);
 }
+
+#[test]
+fn a_plan_keeps_the_stock_its_layers_leave_with_the_corners_the_tool_cannot_reach_as_rest_material() {
+    // A sharp 40 × 30 rectangle 24 mm deep: two rough layers (the second a copy of the
+    // first, moved down) and an intermediate-rough one, each leaving the four corners the
+    // 10 mm tool cannot reach, 25 (1 − π/4) mm² each.
+    let sharp = Pocket::new(Loop::rectangle(0.0, 0.0, 40.0, 30.0), vec![]).unwrap();
+    let input = CavityInput::Depth { pocket: sharp, z_top_mm: 0.0, z_bottom_mm: -24.0 };
+    let plan = plan_process(&input, &[ten_mm(10.0)], &options(), None, &NoProgress).unwrap();
+    assert!(plan.layers.iter().any(|l| l.copy_of.is_some()), "{:?}", plan.layers);
+    let kept = plan.stock.as_ref().expect("the plan keeps its stock");
+    let stock = &kept.stock;
+    stock.validate().unwrap();
+    assert!(stock.cavity);
+    assert!((stock.z_top() - 0.0).abs() < 1e-9 && (stock.z_bottom() + 24.0).abs() < 1e-9, "{:?}", stock.slices);
+    assert_eq!(stock.floor(), Some(crate::core::analysis::kept::Floor::Unbounded));
+
+    // Every slice holds the four corners, and nothing above a place a lower layer cleared.
+    let corners_mm2 = 4.0 * 25.0 * (1.0 - std::f64::consts::FRAC_PI_4);
+    for level in &kept.rest.levels {
+        assert!((level.area_mm2 - corners_mm2).abs() < 0.25 * corners_mm2, "{level:?}");
+    }
+    let expected_mm3 = corners_mm2 * 24.0;
+    assert!((kept.rest.volume_mm3 - expected_mm3).abs() < 0.25 * expected_mm3, "{}", kept.rest.volume_mm3);
+    for pair in stock.slices.windows(2) {
+        let (upper, lower) = (&stock.rasters[pair[0].raster], &stock.rasters[pair[1].raster]);
+        assert!(upper.iter().zip(lower).all(|(&u, &l)| u <= 0 || l > 0), "{:?} over {:?}", pair[0], pair[1]);
+    }
+    // What the cavity lost and what is left make the cavity.
+    let removed = plan.evaluation.removed_volume_mm3;
+    let cavity = 40.0 * 30.0 * 24.0;
+    assert!((removed + kept.rest.volume_mm3 - cavity).abs() < 0.01 * cavity, "{removed} + {}", kept.rest.volume_mm3);
+}

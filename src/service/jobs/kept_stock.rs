@@ -272,7 +272,7 @@ pub async fn find(pool: &Pool, caller: &Caller, id: &JobId) -> Result<Result<(i6
     }
     Ok(stored(pool, id.as_str()).await?.ok_or_else(|| {
         format!(
-            "job {id} ({}) kept no stock: analysis, costing, side-milling feeds and trochoids jobs keep theirs",
+            "job {id} ({}) kept no stock: analysis, costing, side-milling feeds, trochoids and plan jobs keep theirs",
             row.kind
         )
     }))

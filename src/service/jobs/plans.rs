@@ -9,6 +9,7 @@ use super::output::{OutputOptions, DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM};
 use super::plan_rows;
 use super::plans_result::PlanResult;
 use super::setup::NamedRef;
+use crate::core::analysis::kept::KeptStock;
 use crate::core::conditions::{standard_centres, CuttingConditions};
 use crate::core::drawing::process_scene::{process_scene, WrittenLines};
 use crate::core::drawing::scene::Scene;
@@ -395,16 +396,19 @@ pub fn run(request: PlanRequest, prepared: PlanPrepared, progress: &dyn Progress
     let scene = process_scene(&cavity.whole(), &plan, lines);
     let baseline_program = baseline.map(|b| b.text);
     let result = PlanResult::new(&prepared, &plan, &written, baseline_program.as_deref().unwrap_or_default());
-    Ok(PlanOutput { result, program: written.text, baseline_program, scene })
+    let stock = plan.stock.map(|s| s.stock);
+    Ok(PlanOutput { result, program: written.text, baseline_program, scene, stock })
 }
 
 /// What a plan job hands back: its result, the chosen tool's program, the baseline's program
-/// (when it has a baseline) and the drawing scene.
+/// (when it has a baseline), the drawing scene and the stock it leaves.
 pub struct PlanOutput {
     pub result: PlanResult,
     pub program: String,
     pub baseline_program: Option<String>,
     pub scene: Scene,
+    /// The stock the chosen plan leaves in the cavity.
+    pub stock: Option<KeptStock>,
 }
 
 /// The `plan` job kind.
@@ -447,7 +451,7 @@ impl JobKindSpec for Plan {
             baseline_program: out.baseline_program,
             base_program: None,
             scene: Some(out.scene),
-            stock: None,
+            stock: out.stock,
         })
     }
 }

@@ -7,6 +7,7 @@ use super::feeds_result::ProgramInfo;
 use super::plans::{BaselinePrepared, PlanPrepared, RowRef};
 use super::setup::NamedRef;
 use super::trochoids_result::OverloadReport;
+use crate::core::analysis::rest::RestMaterial;
 use crate::core::nc::WrittenProgram;
 use crate::core::process::{
     overload_program_lines, Baseline, CandidateReport, Comparison, Figures, LayerReport, ProcessPlan, Tuning,
@@ -123,6 +124,11 @@ pub struct PlanResult {
     /// The proposed plan over the baseline.
     pub comparison: Option<Comparison>,
     pub program: ProgramInfo,
+    /// The material the chosen plan leaves in the cavity, per slice (the corners and necks
+    /// its tool cannot reach), as its layers' verifications simulated it: the stock the job
+    /// keeps for another job to start from (`"stock": {"from_job": …}`). Null, with a
+    /// warning, when no stock could be kept.
+    pub rest_material: Option<RestMaterial>,
     pub warnings: Vec<String>,
 }
 
@@ -175,6 +181,7 @@ impl PlanResult {
                 .map(|(b, p)| PlanBaseline::new(b, p, baseline_program)),
             comparison: plan.comparison,
             program: ProgramInfo::new(e.program.moves.len(), e.program.moves.len(), &program.text),
+            rest_material: plan.stock.as_ref().map(|s| s.rest.clone()),
             warnings: plan.warnings.clone(),
         }
     }

@@ -20,8 +20,7 @@ const RADIUS_EPS_MM = 1e-9;
 /**
  * The end mill the job's result names for `path`: `{ shape, diameter_mm, corner_radius_mm }`
  * (`shape` square, radius or ball); a plan's baseline path its ball; a plan's program the
- * chosen candidate's diameter with no shape (its result does not keep it); null when the
- * result names no tool.
+ * chosen candidate's end mill; null when the result names no tool.
  */
 export function toolOf(job, path) {
   const r = job.result || {};
@@ -32,7 +31,8 @@ export function toolOf(job, path) {
     return { shape: r.tool.tool_type ?? null, diameter_mm: r.tool.diameter_mm, corner_radius_mm: r.tool.corner_radius_mm ?? 0 };
   }
   const chosen = (r.candidates || []).find((c) => c.tool_id === r.chosen_tool_id);
-  return chosen?.diameter_mm ? { shape: null, diameter_mm: chosen.diameter_mm, corner_radius_mm: 0 } : null;
+  if (!chosen?.diameter_mm) return null;
+  return { shape: chosen.tool_type ?? null, diameter_mm: chosen.diameter_mm, corner_radius_mm: chosen.corner_radius_mm ?? 0 };
 }
 
 /** The corner radius the tool is drawn with: R for a ball, 0 for a square end mill or none named, else its own within 0–R. */

@@ -25,6 +25,6 @@ export function view3dPanel(job) {
   } }, 'Show in 3-D');
   if (openedFor === job.id) requestAnimationFrame(() => open.click());
   return h('section', { class: 'card view3d-card', id: 'view3d-card' }, h('h2', {}, '3-D view'),
-    h('p', { class: 'hint' }, 'The stock the job left (analysis, costing, side-milling feeds and trochoids jobs keep it) and the tool path in 3-D, coloured as in the drawing; play the path with the time slider.'),
+    h('p', { class: 'hint' }, 'The stock the job left (analysis, costing, side-milling feeds, trochoids and plan jobs keep it) and the tool path in 3-D, coloured as in the drawing; play the path with the time slider.'),
     open, body);
 }

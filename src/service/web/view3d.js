@@ -268,7 +268,7 @@ export function view3d(job, views) {
     view = createScene(canvas, { stock, tool: toolSpec() });
     view.resize();
     canvas.dataset.stock = stock ? `${stock.grid.columns}x${stock.grid.rows}` : 'none';
-    if (!stock) status.textContent = 'This job kept no stock (analysis, costing, side-milling feeds and trochoids jobs keep theirs): the path alone.';
+    if (!stock) status.textContent = 'This job kept no stock (analysis, costing, side-milling feeds, trochoids and plan jobs keep theirs): the path alone.';
     load();
     const observer = new ResizeObserver(() => {
       if (!canvas.isConnected) { observer.disconnect(); stop(); view.dispose(); return; }
