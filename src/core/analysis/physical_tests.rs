@@ -111,3 +111,22 @@ fn a_centre_path_turning_at_0_3_mm_with_material_outside_gets_the_pivot_bounded_
     }
     assert!(on_arc.iter().any(|r| (r.cutting_point_ratio - bound).abs() < 1e-9), "the bound is reached");
 }
+
+#[test]
+fn a_slot_cut_in_more_levels_than_slices_keeps_its_floor() {
+    // 450 passes 0.01 mm apart down to −4.5 through a 20 × 40 block 5 mm deep: the levels
+    // are merged into 16 slices, and the slot's floor stays.
+    let moves = (1..=450)
+        .map(|i| {
+            let z = -0.01 * f64::from(i);
+            mv(Motion::Linear, P3::new(-10.0, 20.0, z), P3::new(30.0, 20.0, z), 2000.0, 5)
+        })
+        .collect();
+    let path = Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] };
+    let block = Rect { x_min: 0.0, y_min: 0.0, x_max: 20.0, y_max: 40.0 };
+    let s = AnalysisSpec { z_bottom: -5.0, force_model: None, ..spec(block) };
+    let a = analyze(&path, &s, &NoProgress).expect("analyses");
+    let slot_mm2 = 20.0 * 2.0 * R;
+    let removed = a.summary.removed_volume_mm3;
+    assert!((removed - slot_mm2 * 4.5).abs() < 0.01 * slot_mm2 * 4.5, "{removed}");
+}

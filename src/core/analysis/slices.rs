@@ -119,7 +119,8 @@ impl SliceStock {
 /// roughs at stays exact beside the end of a ramp just above it. Beyond [`MAX_SLICES`]
 /// slices, inner levels are merged away one by one, always the one whose neighbours are
 /// closest, taken first among the levels that are not layer levels (see
-/// [`LAYER_LEVEL_SHARE`]). The top and the bottom are kept exact.
+/// [`LAYER_LEVEL_SHARE`]). The top, the bottom and the deepest level the program cuts (its
+/// floor, at the deepest height among those merged into it) are kept exact.
 pub fn slice_levels(path: &Toolpath, z_bottom: f64, z_top: f64) -> Vec<f64> {
     let feeds = || path.moves.iter().filter(|m| !matches!(m.motion, Motion::Rapid));
     let mut candidates: Vec<(f64, f64)> = feeds()
@@ -147,6 +148,7 @@ pub fn slice_levels(path: &Toolpath, z_bottom: f64, z_top: f64) -> Vec<f64> {
     }
     // Levels as (z, the flat length at z, the flat length of the heights merged into it);
     // top first, bottom last, and neither is ever merged away.
+    let deepest = heights.last().map(|h| h.0);
     let mut levels: Vec<(f64, f64, f64)> = Vec::with_capacity(heights.len() + 2);
     levels.push((z_top, f64::INFINITY, f64::INFINITY));
     for (z, flat_mm, _) in heights {
@@ -160,11 +162,18 @@ pub fn slice_levels(path: &Toolpath, z_bottom: f64, z_top: f64) -> Vec<f64> {
             _ => levels.push((z, flat_mm, flat_mm)),
         }
     }
+    // The deepest level the program cuts is its floor: the stock below it is never cut, and
+    // a slice reaching past it would be cut through. It lies at the deepest height of its
+    // level (not the heaviest), and is kept, as the top and bottom are.
+    let floor = usize::from(levels.len() > 1);
+    if let (Some(z), true, Some(last)) = (deepest, floor == 1, levels.last_mut()) {
+        last.0 = z;
+    }
     levels.push((z_bottom, f64::INFINITY, f64::INFINITY));
     let layer_mm = LAYER_LEVEL_SHARE * feeds().map(move_length).sum::<f64>();
     while levels.len() > MAX_SLICES + 1 {
         // The thinnest slice two neighbours would make, among the lighter levels if any.
-        let inner = 1..levels.len() - 1;
+        let inner = 1..levels.len() - 1 - floor;
         let light = inner.clone().any(|i| levels[i].2 < layer_mm);
         let gap = |i: usize| levels[i - 1].0 - levels[i + 1].0;
         let drop =
@@ -303,6 +312,17 @@ mod tests {
     }
 
     #[test]
+    fn the_floor_of_a_program_cut_in_more_levels_than_slices_stays_a_level() {
+        // 450 passes 0.01 mm apart down to −4.5 in a 5 mm layer: beyond the slice limit the
+        // levels are merged, but a slice from above −4.5 down to −5 would be cut through.
+        let z: Vec<f64> = (1..=450).map(|i| -0.01 * f64::from(i)).collect();
+        let levels = slice_levels(&at_z(&z), -5.0, 0.0);
+        assert_eq!(levels.len(), MAX_SLICES + 1);
+        assert!((levels[MAX_SLICES - 1] + 4.5).abs() < 1e-9, "{levels:?}");
+        assert!((levels[MAX_SLICES] + 5.0).abs() < 1e-12);
+    }
+
+    #[test]
     fn a_layer_thinner_than_the_smallest_slice_is_one_slice() {
         assert_levels(slice_levels(&at_z(&[-0.01]), -0.02, 0.0), &[0.0, -0.02]);
     }
@@ -329,9 +349,19 @@ mod tests {
             moves.extend(ramps.iter().map(|&(at, deep)| {
                 line(P3::new(0.0, 0.0, depth(at)), P3::new(0.5, 0.0, depth(at) - deep))
             }));
-            let levels = slice_levels(&program(moves), z_bottom, z_top);
+            let levels = slice_levels(&program(moves.clone()), z_bottom, z_top);
             prop_assert!(levels.len() >= 2 && levels.len() <= MAX_SLICES + 1, "{} levels", levels.len());
             prop_assert!((levels[0] - z_top).abs() < 1e-12 && (levels[levels.len() - 1] - z_bottom).abs() < 1e-12);
+            // The floor: the deepest height cut.
+            let deepest = moves
+                .iter()
+                .flat_map(|m| [m.start.z, m.end.z])
+                .filter(|&z| z > z_bottom + MIN_SLICE_MM && z < z_top - MIN_SLICE_MM)
+                .fold(f64::INFINITY, f64::min);
+            if deepest.is_finite() {
+                let floor = levels[levels.len() - 2];
+                prop_assert!((floor - deepest).abs() <= Z_CONTACT_EPS_MM, "floor {deepest} lost: {levels:?}");
+            }
             for pair in levels.windows(2) {
                 prop_assert!(pair[0] - pair[1] >= MIN_SLICE_MM - LEVEL_ROUNDING_MM, "{pair:?} closer than the smallest slice");
             }
