@@ -5,12 +5,13 @@
 //! Each layer is simulated on its own, from its own untouched stock, so what one leaves
 //! above another is joined here as a vertical end mill leaves it: the tool that cuts a layer
 //! also cuts everything above its tip, so no material is left over a place a lower layer's
-//! tool passed. Every slice of a layer is therefore cut back to the material of the top
-//! slice of the layer below (each slice's material lies inside that of the slice below it,
-//! as within one simulation: see [`crate::core::analysis::slices`]).
+//! tool passed. Every slice of a layer therefore loses what the layer below cleared: the
+//! cells of that layer's footprint (its pocket) that its top slice no longer holds. Where
+//! the layers share one contour, each slice's material then lies inside that of the slice
+//! below it, as within one simulation (see [`crate::core::analysis::slices`]).
 
 use super::layer::LayerPlan;
-use crate::core::analysis::kept::{keep, same_grid, Floor, KeptSlice, KeptStock};
+use crate::core::analysis::kept::{keep, same_grid, Below, Floor, KeptSlice, KeptStock};
 use crate::core::analysis::rest::RestMaterial;
 use crate::core::analysis::Stack;
 use crate::core::stock::Grid;
@@ -29,13 +30,14 @@ pub fn plan_stock(layers: &[LayerPlan]) -> Result<PlanStock, String> {
     let mut grid: Option<Grid> = None;
     let mut slices: Vec<KeptSlice> = Vec::new();
     let mut rasters: Vec<Vec<i8>> = Vec::new();
-    // Per layer, the index of its first (top) raster.
+    // Per layer, the index of its first (top) raster, and its footprint.
     let mut first_raster: Vec<usize> = Vec::with_capacity(layers.len());
+    let mut footprints: Vec<Vec<i8>> = Vec::with_capacity(layers.len());
     for l in layers {
         let source = original(layers, l)?;
         let stack = stack_of(source, l)?;
         let dz = l.z_top_mm - source.z_top_mm;
-        let kept = stack.keep(true);
+        let kept = keep(stack, &source.analysis, None, Floor::Unbounded, true).map_err(|e| e.to_string())?;
         match grid {
             None => grid = Some(kept.grid),
             Some(g) if same_grid(&g, &kept.grid) => {}
@@ -46,6 +48,8 @@ pub fn plan_stock(layers: &[LayerPlan]) -> Result<PlanStock, String> {
                 ))
             }
         }
+        let below = kept.below.ok_or_else(|| format!("layer {}'s pocket does not lie on its grid", l.index))?;
+        footprints.push(below.footprint);
         first_raster.push(rasters.len());
         let offset = rasters.len();
         slices.extend(kept.slices.iter().map(|s| KeptSlice {
@@ -55,20 +59,23 @@ pub fn plan_stock(layers: &[LayerPlan]) -> Result<PlanStock, String> {
         }));
         rasters.extend(kept.rasters);
     }
-    let (Some(grid), Some(last)) = (grid, layers.last()) else {
+    let Some(grid) = grid else {
         return Err("the plan has no layers".to_string());
     };
-    // From the bottom up: each layer's material inside the top slice's of the layer below.
+    // From the bottom up: each layer loses what the layer below cleared; material stays
+    // where the top slice below holds some, or outside that layer's footprint. In signed
+    // distances: the least of its own and the larger of the one below and the footprint's
+    // negation.
     for k in (0..layers.len().saturating_sub(1)).rev() {
         let (upper, lower) = rasters.split_at_mut(first_raster[k + 1]);
-        let below = &lower[0];
+        let (below, footprint) = (&lower[0], &footprints[k + 1]);
         for raster in &mut upper[first_raster[k]..] {
-            raster.iter_mut().zip(below).for_each(|(cell, &under)| *cell = (*cell).min(under));
+            for ((cell, &under), &inside) in raster.iter_mut().zip(below).zip(footprint) {
+                *cell = (*cell).min(under.max(inside.saturating_neg()));
+            }
         }
     }
-    let source = original(layers, last)?;
-    let below =
-        keep(stack_of(source, last)?, &source.analysis, None, Floor::Unbounded, true).map_err(|e| e.to_string())?.below;
+    let below = footprints.pop().map(|footprint| Below { footprint, floor: Floor::Unbounded });
     let stock = KeptStock { grid, slices, rasters, cavity: true, below };
     stock.validate()?;
     let mut levels: Vec<f64> = stock.slices.iter().map(|s| s.z_top).collect();

@@ -188,3 +188,31 @@ fn a_plan_keeps_the_stock_its_layers_leave_with_the_corners_the_tool_cannot_reac
     let cavity = 40.0 * 30.0 * 24.0;
     assert!((removed + kept.rest.volume_mm3 - cavity).abs() < 0.01 * cavity, "{removed} + {}", kept.rest.volume_mm3);
 }
+
+#[test]
+fn a_plan_of_layers_with_different_contours_keeps_what_the_upper_layer_leaves_outside_the_lower() {
+    // A 40 × 30 rectangle 6 mm deep over an L, the quadrant x > 20, y > 15 not cut below:
+    // the upper layer's corner there lies outside the lower layer's pocket, which does not
+    // cut it away. Both contours have the same bounds, so the layers share one grid.
+    let rectangle = Pocket::new(Loop::rectangle(0.0, 0.0, 40.0, 30.0), vec![]).unwrap();
+    let l_shape = Pocket::new(
+        Loop::new(
+            [(0.0, 0.0), (40.0, 0.0), (40.0, 15.0), (20.0, 15.0), (20.0, 30.0), (0.0, 30.0)]
+                .into_iter()
+                .map(|(x, y)| Vertex::new(x, y, 0.0))
+                .collect(),
+        ),
+        vec![],
+    )
+    .unwrap();
+    let layer = |pocket: Pocket, z_top_mm: f64, z_bottom_mm: f64| CavityLayer { pocket, z_top_mm, z_bottom_mm };
+    let cavity = Cavity { layers: vec![layer(rectangle, 0.0, -6.0), layer(l_shape, -6.0, -11.0)] };
+    let plan = plan_process(&CavityInput::Layers(cavity), &[ten_mm(10.0)], &options(), None, &NoProgress).unwrap();
+    let kept = plan.stock.as_ref().expect("the plan keeps its stock");
+    kept.stock.validate().unwrap();
+    let corners_mm2 = 4.0 * 25.0 * (1.0 - std::f64::consts::FRAC_PI_4);
+    for level in kept.rest.levels.iter().filter(|l| l.z_bottom > -6.0 - 1e-9) {
+        assert!((level.area_mm2 - corners_mm2).abs() < 0.25 * corners_mm2, "upper layer: {level:?}");
+    }
+    assert!(kept.rest.levels.iter().any(|l| l.z_top < -6.0 + 1e-9), "{:?}", kept.rest.levels);
+}
