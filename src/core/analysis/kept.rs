@@ -8,10 +8,11 @@
 //! **From one program's slices to the next's.** The next program cuts its own z levels
 //! ([`super::slices::slice_levels`] over the kept layer), which need not be the kept
 //! ones. A new slice holds, conservatively, all the material the kept stock has anywhere
-//! over its z range: the raster of the lowest kept slice it overlaps (a kept slice's
-//! material lies inside that of the slice below it, so that raster holds the material of
-//! all the kept slices above it). A new slice that lies inside one kept slice is exactly
-//! that slice; one that spans a kept level gets the lower slice's material; where the
+//! over its z range: the kept rasters it overlaps together, a cell holding material where
+//! any of them does (within one simulation a kept slice's material lies inside that of
+//! the slice below it, so that is the lowest one's material; a plan's layers of different
+//! contours need not nest). A new slice that lies inside one kept slice is exactly
+//! that slice; one that spans a kept level gets the material of both; where the
 //! levels are the same, the stock is the kept one cell for cell, and the next program is
 //! simulated exactly as if it had run on after the first on one stock. Where the first
 //! program never cut below the layer's top, every slice is the untouched stock, as it was.
@@ -22,8 +23,9 @@
 //! to the stock's own bottom ([`Floor::At`]: a box's `z_min`; nothing lies below it) or
 //! on down ([`Floor::Unbounded`]: a pocket's cavity runs on in its outline). The layer then
 //! reaches down to the program's deepest feed move ([`layer_bottom`]), never below the
-//! floor, and every new slice below the kept bottom, or across it, holds the footprint:
-//! the footprint holds all the material of the kept slices, so the rule above is kept. A
+//! floor, and every new slice below the kept bottom holds the footprint, and one across it
+//! the footprint together with the kept slices it overlaps (within one simulation the
+//! footprint holds all their material; a plan's upper layers may reach beyond its last). A
 //! stock kept before this was recorded (format 1) has no [`Below`]: a program cutting
 //! below it is refused, since what lies there is not known.
 
@@ -83,6 +85,9 @@ pub enum Source {
     Raster(usize),
     /// The footprint under the kept layer.
     Footprint,
+    /// The material of the kept rasters `first..=last` together, and of the footprint when
+    /// `footprint`: a slice across kept levels, or across the kept bottom.
+    Union { first: usize, last: usize, footprint: bool },
 }
 
 /// The stock `stack` holds after simulating `spec`'s layer, kept with what lies under it:
@@ -219,39 +224,53 @@ impl KeptStock {
         Ok(())
     }
 
-    /// Where a new slice from `z_top` down to `z_bottom` takes its material from: the
-    /// footprint when it reaches below the kept layer (`Err` when what lies there is not
-    /// known), else [`KeptStock::raster_for`].
+    /// Where a new slice from `z_top` down to `z_bottom` takes its material from: all the
+    /// material the kept stock has over that z range, the kept rasters it overlaps together
+    /// ([`KeptStock::rasters_over`]), with the footprint when it reaches below the kept layer
+    /// (`Err` when what lies there is not known).
     pub fn source_for(&self, z_top: f64, z_bottom: f64) -> Result<Source, String> {
-        if z_bottom >= self.z_bottom() - super::slices::Z_CONTACT_EPS_MM {
-            return Ok(Source::Raster(self.raster_for(z_top, z_bottom)));
+        let below = z_bottom < self.z_bottom() - super::slices::Z_CONTACT_EPS_MM;
+        if below && self.below.is_none() {
+            layer_bottom(self.z_bottom(), None, Some(z_bottom))?;
         }
-        match &self.below {
-            Some(_) => Ok(Source::Footprint),
-            None => layer_bottom(self.z_bottom(), None, Some(z_bottom)).map(|_| Source::Footprint),
+        let within = z_top > self.z_bottom() + super::slices::Z_CONTACT_EPS_MM;
+        Ok(match (self.rasters_over(z_top, z_bottom), below) {
+            ((first, last), false) if first == last => Source::Raster(first),
+            (_, true) if !within => Source::Footprint,
+            ((first, last), footprint) => Source::Union { first, last, footprint },
+        })
+    }
+
+    /// The material of `source`: a kept raster's or the footprint's cells as they are, a
+    /// union's as the largest of its cells' signed distances (a cell holds material where
+    /// any of them does).
+    pub fn cells(&self, source: Source) -> std::borrow::Cow<'_, [i8]> {
+        use std::borrow::Cow;
+        let footprint = || self.below.as_ref().map_or(&self.rasters[self.rasters.len() - 1], |b| &b.footprint);
+        match source {
+            Source::Raster(k) => Cow::Borrowed(&self.rasters[k]),
+            Source::Footprint => Cow::Borrowed(footprint()),
+            Source::Union { first, last, footprint: with_footprint } => {
+                let mut cells = self.rasters[first].clone();
+                let others = self.rasters[first + 1..=last].iter().chain(with_footprint.then(footprint));
+                for other in others {
+                    cells.iter_mut().zip(other).for_each(|(cell, &o)| *cell = (*cell).max(o));
+                }
+                Cow::Owned(cells)
+            }
         }
     }
 
-    /// The cells of `source`.
-    pub fn cells(&self, source: Source) -> &[i8] {
-        match (source, &self.below) {
-            (Source::Raster(k), _) => &self.rasters[k],
-            (Source::Footprint, Some(below)) => &below.footprint,
-            (Source::Footprint, None) => &self.rasters[self.rasters.len() - 1],
-        }
-    }
-
-    /// The index of the kept raster a new slice from `z_top` down to `z_bottom` holds:
-    /// that of the lowest kept slice the range overlaps (see the module's doc); the bottom
-    /// slice's below the kept layer, the top slice's above it.
-    pub fn raster_for(&self, z_top: f64, z_bottom: f64) -> usize {
+    /// The first and last kept rasters of the kept slices the range from `z_top` down to
+    /// `z_bottom` overlaps (rasters run from the top down); the bottom slice's below the kept
+    /// layer, the top slice's above it.
+    pub fn rasters_over(&self, z_top: f64, z_bottom: f64) -> (usize, usize) {
         let eps = super::slices::Z_CONTACT_EPS_MM;
-        self.slices
-            .iter()
-            .rev()
-            .find(|s| s.z_top > z_bottom + eps && s.z_bottom < z_top - eps)
-            .or_else(|| if z_top <= self.z_bottom() + eps { self.slices.last() } else { self.slices.first() })
-            .map_or(0, |s| s.raster)
+        let overlaps = |s: &&KeptSlice| s.z_top > z_bottom + eps && s.z_bottom < z_top - eps;
+        let outside = || if z_top <= self.z_bottom() + eps { self.slices.last() } else { self.slices.first() };
+        let first = self.slices.iter().find(overlaps).or_else(outside).map_or(0, |s| s.raster);
+        let last = self.slices.iter().rev().find(overlaps).or_else(outside).map_or(0, |s| s.raster);
+        (first, last)
     }
 }
 
@@ -272,17 +291,29 @@ mod tests {
     }
 
     #[test]
-    fn a_new_slice_holds_the_material_of_the_lowest_kept_slice_it_overlaps() {
+    fn a_new_slice_holds_the_material_of_every_kept_slice_it_overlaps() {
         let k = kept();
         assert!(k.validate().is_ok());
         // Inside the top kept slice: the top slice's raster.
-        assert_eq!(k.raster_for(0.0, -2.5), 0);
-        assert_eq!(k.raster_for(-7.5, -10.0), 0);
-        // Across the level at −10: the slice below's.
-        assert_eq!(k.raster_for(-7.5, -12.5), 1);
-        // Below the kept layer: its bottom slice's; above: its top slice's.
-        assert_eq!(k.raster_for(-30.0, -35.0), 1);
-        assert_eq!(k.raster_for(5.0, 0.0), 0);
+        assert_eq!(k.source_for(0.0, -2.5), Ok(Source::Raster(0)));
+        assert_eq!(k.source_for(-7.5, -10.0), Ok(Source::Raster(0)));
+        // Across the level at −10: both, together.
+        assert_eq!(k.source_for(-7.5, -12.5), Ok(Source::Union { first: 0, last: 1, footprint: false }));
+        assert_eq!(&*k.cells(Source::Union { first: 0, last: 1, footprint: false }), &[1; 4]);
+        // Two slices sharing one raster are that raster.
+        assert_eq!(k.source_for(-15.0, -25.0), Ok(Source::Raster(1)));
+        // Above the kept layer: its top slice's.
+        assert_eq!(k.rasters_over(5.0, 0.0), (0, 0));
+        assert_eq!(k.rasters_over(-30.0, -35.0), (1, 1));
+    }
+
+    #[test]
+    fn a_slice_across_kept_levels_holds_material_the_slice_below_does_not() {
+        // Layers of different contours (a plan's): the upper slice holds a cell (the second)
+        // the lower one does not; a new slice across both holds it.
+        let mut k = kept();
+        k.rasters = vec![vec![-5, 7, -5, 3], vec![4, -6, -6, 9]];
+        assert_eq!(&*k.cells(Source::Union { first: 0, last: 1, footprint: false }), &[4, 7, -5, 9]);
     }
 
     #[test]
@@ -311,9 +342,10 @@ mod tests {
     fn a_new_slice_below_or_across_the_kept_bottom_holds_the_footprint_and_one_of_a_stock_that_never_knew_is_refused() {
         let k = kept();
         assert_eq!(k.source_for(-25.0, -30.0), Ok(Source::Raster(1)));
-        assert_eq!(k.source_for(-25.0, -32.0), Ok(Source::Footprint));
+        assert_eq!(k.source_for(-25.0, -32.0), Ok(Source::Union { first: 1, last: 1, footprint: true }));
         assert_eq!(k.source_for(-30.0, -35.0), Ok(Source::Footprint));
-        assert_eq!(k.cells(Source::Footprint), &[2; 4]);
+        assert_eq!(&*k.cells(Source::Footprint), &[2; 4]);
+        assert_eq!(&*k.cells(Source::Union { first: 1, last: 1, footprint: true }), &[2; 4]);
         let unknown = KeptStock { below: None, ..kept() };
         assert!(unknown.source_for(-30.0, -35.0).unwrap_err().contains("not known"));
     }

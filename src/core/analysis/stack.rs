@@ -170,7 +170,7 @@ impl Stack {
         for (k, &source) in held.iter().enumerate() {
             let owner = held.get(k + 1) != Some(&source);
             let own = match owner {
-                true => Some(SliceStock::new(Raster::from_cells(kept.grid, kept.cells(source).to_vec())?)),
+                true => Some(SliceStock::new(Raster::from_cells(kept.grid, kept.cells(source).into_owned())?)),
                 false => None,
             };
             let z_top = levels.get(k).copied().unwrap_or(0.0);
