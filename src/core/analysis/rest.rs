@@ -2,7 +2,9 @@
 //! stock was a pocket's, the rest material inside the cavity per slice (issue 32 item 3),
 //! for the next program to remove.
 
+use super::kept::KeptStock;
 use super::stack::Stack;
+use crate::core::stock::Raster;
 use serde::Serialize;
 
 /// The rest material of one slice.
@@ -29,22 +31,39 @@ pub struct RestMaterial {
 impl RestMaterial {
     /// The rest material of the slices of `stack`.
     pub fn of(stack: &Stack) -> RestMaterial {
-        let levels: Vec<RestLevel> = stack
-            .slices()
-            .iter()
-            .enumerate()
-            .map(|(k, s)| {
-                let raster = stack.raster(k);
-                RestLevel {
-                    z_top: s.z_top,
-                    z_bottom: s.z_bottom,
-                    area_mm2: raster.material_area_mm2(),
-                    point: raster.deepest_material_point().map(|(x, y)| [x, y]),
-                }
-            })
-            .collect();
+        let levels = stack.slices().iter().enumerate().map(|(k, s)| level(s.z_top, s.z_bottom, stack.raster(k)));
+        RestMaterial::of_levels(levels.collect())
+    }
+
+    /// The rest material of the slices of a kept stock (each distinct raster read once).
+    pub fn of_kept(kept: &KeptStock) -> Result<RestMaterial, String> {
+        let mut levels: Vec<RestLevel> = Vec::with_capacity(kept.slices.len());
+        let mut read: Option<(usize, Raster)> = None;
+        for s in &kept.slices {
+            if read.as_ref().is_none_or(|(k, _)| *k != s.raster) {
+                let cells = kept.rasters.get(s.raster).ok_or("a slice names no kept raster")?;
+                read = Some((s.raster, Raster::from_cells(kept.grid, cells.clone())?));
+            }
+            if let Some((_, raster)) = &read {
+                levels.push(level(s.z_top, s.z_bottom, raster));
+            }
+        }
+        Ok(RestMaterial::of_levels(levels))
+    }
+
+    fn of_levels(levels: Vec<RestLevel>) -> RestMaterial {
         let volume_mm3 = levels.iter().map(|l| l.area_mm2 * (l.z_top - l.z_bottom)).sum();
         RestMaterial { volume_mm3, levels }
+    }
+}
+
+/// The rest material of the slice from `z_top` down to `z_bottom` holding `raster`.
+fn level(z_top: f64, z_bottom: f64, raster: &Raster) -> RestLevel {
+    RestLevel {
+        z_top,
+        z_bottom,
+        area_mm2: raster.material_area_mm2(),
+        point: raster.deepest_material_point().map(|(x, y)| [x, y]),
     }
 }
 

@@ -37,7 +37,15 @@ pub fn plan_stock(layers: &[LayerPlan]) -> Result<PlanStock, String> {
         let source = original(layers, l)?;
         let stack = stack_of(source, l)?;
         let dz = l.z_top_mm - source.z_top_mm;
-        let kept = keep(stack, &source.analysis, None, Floor::Unbounded, true).map_err(|e| e.to_string())?;
+        // A copy's footprint is its original's: painted once.
+        let painted = first_raster.iter().zip(layers).position(|(_, o)| o.copy_of.unwrap_or(o.index) == source.index);
+        let kept = match painted {
+            Some(k) => KeptStock {
+                below: Some(Below { footprint: footprints[k].clone(), floor: Floor::Unbounded }),
+                ..stack.keep(true)
+            },
+            None => keep(stack, &source.analysis, None, Floor::Unbounded, true).map_err(|e| e.to_string())?,
+        };
         match grid {
             None => grid = Some(kept.grid),
             Some(g) if same_grid(&g, &kept.grid) => {}
@@ -78,9 +86,7 @@ pub fn plan_stock(layers: &[LayerPlan]) -> Result<PlanStock, String> {
     let below = footprints.pop().map(|footprint| Below { footprint, floor: Floor::Unbounded });
     let stock = KeptStock { grid, slices, rasters, cavity: true, below };
     stock.validate()?;
-    let mut levels: Vec<f64> = stock.slices.iter().map(|s| s.z_top).collect();
-    levels.push(stock.z_bottom());
-    let rest = RestMaterial::of(&Stack::carried(&levels, &stock)?);
+    let rest = RestMaterial::of_kept(&stock)?;
     Ok(PlanStock { stock, rest })
 }
 
