@@ -11,7 +11,9 @@
 //! over its z range: the kept rasters it overlaps together, a cell holding material where
 //! any of them does (within one simulation a kept slice's material lies inside that of
 //! the slice below it, so that is the lowest one's material; a plan's layers of different
-//! contours need not nest). A new slice that lies inside one kept slice is exactly
+//! contours need not nest outside the lower layer's pocket, though they do inside it, where
+//! a program cutting the pocket's rest moves: the simulation's shortcuts that read the
+//! slice below for the slices above hold there). A new slice that lies inside one kept slice is exactly
 //! that slice; one that spans a kept level gets the material of both; where the
 //! levels are the same, the stock is the kept one cell for cell, and the next program is
 //! simulated exactly as if it had run on after the first on one stock. Where the first

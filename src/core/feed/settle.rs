@@ -1,7 +1,10 @@
 //! The feeds a program's blocks are cut from: the change-rate limit (MODEL.md §4) over the
 //! feeds the samples need, with the moves min_cost keeps at their programmed feed
 //! ([`super::guarantee`]) taken at that feed. A neighbour then ramps towards the feed the
-//! program will really have there, not towards a new feed the kept move never gets.
+//! program will really have there, not towards a new feed the kept move never gets. A kept
+//! move is written whole at its programmed feed, so where the move after it is slower, the
+//! feed still steps down at the block boundary (the limit's ramp inside the kept move is
+//! not written), as a programmed feed change does.
 
 use super::blocks::{split_feeds, Piece};
 use super::collect::Kept;

@@ -14,7 +14,7 @@ use super::layer::LayerPlan;
 use crate::core::analysis::kept::{keep, same_grid, Below, Floor, KeptSlice, KeptStock};
 use crate::core::analysis::rest::RestMaterial;
 use crate::core::analysis::Stack;
-use crate::core::stock::Grid;
+use crate::core::stock::{resample, Grid};
 
 /// What a plan leaves: its stock, and the rest material in it.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,66 +24,72 @@ pub struct PlanStock {
 }
 
 /// The stock the planned `layers` (top first) leave in the cavity, with the cavity's
-/// outline running on down under the last one (as a pocket's stock does); `Err` says why
-/// none can be kept: a layer that kept no stock, or layers simulated on different grids.
+/// outline running on down under the last one (as a pocket's stock does). Layers of
+/// different outlines were simulated on grids of their own: they are brought onto the grid
+/// covering them all (at the finest cell among them, each cell interpolated as a probe
+/// reads it, see [`resample`]). `Err` says why no stock can be kept: a layer that kept none,
+/// a layer whose pocket does not lie on its grid, or layers that do not follow each other
+/// from the top down.
 pub fn plan_stock(layers: &[LayerPlan]) -> Result<PlanStock, String> {
-    let mut grid: Option<Grid> = None;
+    // Per original layer: its kept slices and rasters, and its footprint.
+    let mut originals: Vec<(usize, KeptStock)> = Vec::new();
+    for l in layers.iter().filter(|l| l.copy_of.is_none()) {
+        let kept = keep(stack_of(l, l)?, &l.analysis, None, Floor::Unbounded, true).map_err(|e| e.to_string())?;
+        if kept.below.is_none() {
+            return Err(format!("layer {}'s pocket does not lie on its grid", l.index));
+        }
+        originals.push((l.index, kept));
+    }
+    let grids: Vec<Grid> = originals.iter().map(|(_, k)| k.grid).collect();
+    let finest = grids.iter().map(|g| g.cell_mm).fold(f64::INFINITY, f64::min);
+    let grid = match grids.first() {
+        None => return Err("the plan has no layers".to_string()),
+        Some(g) if grids.iter().all(|o| same_grid(g, o)) => *g,
+        Some(_) => Grid::covering(&grids, finest).ok_or("the plan has no layers")?,
+    };
+    let onto = |cells: Vec<i8>, from: Grid| if same_grid(&from, &grid) { cells } else { resample(&cells, from, grid) };
+    let mut footprints: Vec<Vec<i8>> = Vec::with_capacity(originals.len());
+    let mut kept_rasters: Vec<Vec<Vec<i8>>> = Vec::with_capacity(originals.len());
+    for (_, kept) in &mut originals {
+        let from = kept.grid;
+        let below = kept.below.take().map(|b| b.footprint).unwrap_or_default();
+        footprints.push(onto(below, from));
+        kept_rasters.push(std::mem::take(&mut kept.rasters).into_iter().map(|r| onto(r, from)).collect());
+    }
+    // The layers in order, copies as their originals moved down.
     let mut slices: Vec<KeptSlice> = Vec::new();
     let mut rasters: Vec<Vec<i8>> = Vec::new();
-    // Per layer, the index of its first (top) raster, and its footprint.
-    let mut first_raster: Vec<usize> = Vec::with_capacity(layers.len());
-    let mut footprints: Vec<Vec<i8>> = Vec::with_capacity(layers.len());
+    // Per layer, the index of its first (top) raster, and of its original (its footprint's).
+    let (mut first_raster, mut footprint_of) = (Vec::with_capacity(layers.len()), Vec::with_capacity(layers.len()));
     for l in layers {
         let source = original(layers, l)?;
-        let stack = stack_of(source, l)?;
+        let k = originals.iter().position(|(index, _)| *index == source.index).ok_or("a layer was not kept")?;
         let dz = l.z_top_mm - source.z_top_mm;
-        // A copy's footprint is its original's: painted once.
-        let painted = first_raster.iter().zip(layers).position(|(_, o)| o.copy_of.unwrap_or(o.index) == source.index);
-        let kept = match painted {
-            Some(k) => KeptStock {
-                below: Some(Below { footprint: footprints[k].clone(), floor: Floor::Unbounded }),
-                ..stack.keep(true)
-            },
-            None => keep(stack, &source.analysis, None, Floor::Unbounded, true).map_err(|e| e.to_string())?,
-        };
-        match grid {
-            None => grid = Some(kept.grid),
-            Some(g) if same_grid(&g, &kept.grid) => {}
-            Some(_) => {
-                return Err(format!(
-                    "layer {} was simulated on another grid than the layers above it (cells of {} mm)",
-                    l.index, kept.grid.cell_mm
-                ))
-            }
-        }
-        let below = kept.below.ok_or_else(|| format!("layer {}'s pocket does not lie on its grid", l.index))?;
-        footprints.push(below.footprint);
         first_raster.push(rasters.len());
+        footprint_of.push(k);
         let offset = rasters.len();
-        slices.extend(kept.slices.iter().map(|s| KeptSlice {
+        slices.extend(originals[k].1.slices.iter().map(|s| KeptSlice {
             z_top: s.z_top + dz,
             z_bottom: s.z_bottom + dz,
             raster: s.raster + offset,
         }));
-        rasters.extend(kept.rasters);
+        rasters.extend(kept_rasters[k].iter().cloned());
     }
-    let Some(grid) = grid else {
-        return Err("the plan has no layers".to_string());
-    };
-    // From the bottom up: each layer loses what the layer below cleared; material stays
-    // where the top slice below holds some, or outside that layer's footprint. In signed
-    // distances: the least of its own and the larger of the one below and the footprint's
-    // negation.
+    // From the bottom up: each layer loses what the layer below cleared, the cells of that
+    // layer's footprint (material there) that its top slice no longer holds.
     for k in (0..layers.len().saturating_sub(1)).rev() {
         let (upper, lower) = rasters.split_at_mut(first_raster[k + 1]);
-        let (below, footprint) = (&lower[0], &footprints[k + 1]);
+        let (below, footprint) = (&lower[0], &footprints[footprint_of[k + 1]]);
         for raster in &mut upper[first_raster[k]..] {
             for ((cell, &under), &inside) in raster.iter_mut().zip(below).zip(footprint) {
-                *cell = (*cell).min(under.max(inside.saturating_neg()));
+                if inside > 0 {
+                    *cell = (*cell).min(under);
+                }
             }
         }
     }
-    let below = footprints.pop().map(|footprint| Below { footprint, floor: Floor::Unbounded });
+    let last = footprint_of.last().copied().unwrap_or(0);
+    let below = Some(Below { footprint: std::mem::take(&mut footprints[last]), floor: Floor::Unbounded });
     let stock = KeptStock { grid, slices, rasters, cavity: true, below };
     stock.validate()?;
     let rest = RestMaterial::of_kept(&stock)?;

@@ -141,11 +141,10 @@ pub fn plan_process(
         let baseline = side.map(|h| h.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)));
         (chosen, baseline)
     });
-    let Chosen { reports, chosen, layers, evaluation, tuning, mut warnings } = chosen?;
+    let Chosen { reports, chosen, mut layers, evaluation, tuning, warnings, stock } = chosen?;
+    // The layers' stocks are kept in `stock` now.
+    layers.iter_mut().for_each(|l| l.stock = None);
     let baseline = baseline.transpose()?;
-    let stock = kept_layers::plan_stock(&layers)
-        .map_err(|reason| warnings.push(format!("the plan keeps no stock for another job to start from: {reason}")))
-        .ok();
     progress.report(1.0);
     let mut plan = report::assemble(cavity, reports, chosen, &layers, evaluation, tuning, baseline, warnings);
     plan.stock = stock;
@@ -160,6 +159,8 @@ struct Chosen {
     evaluation: Evaluation,
     tuning: Tuning,
     warnings: Vec<String>,
+    /// The stock the chosen plan leaves (`None`: a warning says why).
+    stock: Option<kept_layers::PlanStock>,
 }
 
 /// Screens and plans the candidates, chooses the cheapest complete plan and tunes it.
@@ -298,7 +299,16 @@ fn choose_and_tune(
         ));
     }
     let tune_stage = Stage { inner: progress, from: CANDIDATES_SHARE, span: TUNING_SHARE };
-    let (evaluation, tuning) = tune::tune(&layers, &candidates[chosen], options, standard, &tune_stage)?;
+    // The stock the plan leaves does not depend on its feeds: stacked beside the tuning.
+    let (tuned, stock) = std::thread::scope(|scope| {
+        let stock = scope.spawn(|| kept_layers::plan_stock(&layers));
+        let tuned = tune::tune(&layers, &candidates[chosen], options, standard, &tune_stage);
+        (tuned, stock.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
+    });
+    let (evaluation, tuning) = tuned?;
+    let stock = stock
+        .map_err(|reason| warnings.push(format!("the plan keeps no stock for another job to start from: {reason}")))
+        .ok();
     if tuning.outcome == TuningOutcome::AboveTargetAtStandardForce {
         warnings.push(format!(
             "the job uses {:.0} % of a tool at the standard force: it needs {} tools (a lower force does not save the tool in the wear model)",
@@ -306,5 +316,5 @@ fn choose_and_tune(
             tuning.tools_needed
         ));
     }
-    Ok(Chosen { reports, chosen, layers, evaluation, tuning, warnings })
+    Ok(Chosen { reports, chosen, layers, evaluation, tuning, warnings, stock })
 }

@@ -216,3 +216,30 @@ fn a_plan_of_layers_with_different_contours_keeps_what_the_upper_layer_leaves_ou
     }
     assert!(kept.rest.levels.iter().any(|l| l.z_top < -6.0 + 1e-9), "{:?}", kept.rest.levels);
 }
+
+#[test]
+fn a_stepped_cavity_keeps_its_stock_on_the_grid_covering_every_layer() {
+    // A 40 × 30 rectangle 6 mm deep over a 30 × 20 one 5 mm deep: each layer is simulated on
+    // a grid of its own outline; the kept stock lies on one grid covering both, each layer
+    // with the four corners the 10 mm tool leaves in it.
+    let big = Pocket::new(Loop::rectangle(0.0, 0.0, 40.0, 30.0), vec![]).unwrap();
+    let small = Pocket::new(Loop::rectangle(5.0, 5.0, 35.0, 25.0), vec![]).unwrap();
+    let layer = |pocket: Pocket, z_top_mm: f64, z_bottom_mm: f64| CavityLayer { pocket, z_top_mm, z_bottom_mm };
+    let cavity = Cavity { layers: vec![layer(big, 0.0, -6.0), layer(small, -6.0, -11.0)] };
+    let plan = plan_process(&CavityInput::Layers(cavity), &[ten_mm(10.0)], &options(), None, &NoProgress).unwrap();
+    let kept = plan.stock.as_ref().unwrap_or_else(|| panic!("no stock: {:?}", plan.warnings));
+    kept.stock.validate().unwrap();
+    let g = kept.stock.grid;
+    assert!(g.x0_mm <= 0.0 && g.y0_mm <= 0.0, "{g:?}");
+    assert!(g.x0_mm + g.nx as f64 * g.cell_mm >= 40.0 && g.y0_mm + g.ny as f64 * g.cell_mm >= 30.0, "{g:?}");
+    let corners_mm2 = 4.0 * 25.0 * (1.0 - std::f64::consts::FRAC_PI_4);
+    for level in &kept.rest.levels {
+        assert!((level.area_mm2 - corners_mm2).abs() < 0.25 * corners_mm2, "{level:?}");
+    }
+    let inside = |[x, y]: [f64; 2], (x0, y0, x1, y1): (f64, f64, f64, f64)| x0 <= x && x <= x1 && y0 <= y && y <= y1;
+    for level in &kept.rest.levels {
+        let point = level.point.expect("rest material");
+        let bounds = if level.z_top > -6.0 + 1e-9 { (0.0, 0.0, 40.0, 30.0) } else { (5.0, 5.0, 35.0, 25.0) };
+        assert!(inside(point, bounds), "{level:?}");
+    }
+}

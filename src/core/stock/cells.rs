@@ -21,6 +21,46 @@ impl Grid {
     }
 }
 
+impl Grid {
+    /// The grid of cells of `cell_mm` from the lower-left corner of `grids`' union to its
+    /// upper-right corner (`None` without grids).
+    pub fn covering(grids: &[Grid], cell_mm: f64) -> Option<Grid> {
+        let x0_mm = grids.iter().map(|g| g.x0_mm).reduce(f64::min)?;
+        let y0_mm = grids.iter().map(|g| g.y0_mm).reduce(f64::min)?;
+        let x1 = grids.iter().map(|g| g.x0_mm + g.nx as f64 * g.cell_mm).fold(x0_mm, f64::max);
+        let y1 = grids.iter().map(|g| g.y0_mm + g.ny as f64 * g.cell_mm).fold(y0_mm, f64::max);
+        let count = |span: f64| ((span / cell_mm) - COVER_SLACK_CELLS).ceil().max(1.0) as usize;
+        Some(Grid { x0_mm, y0_mm, cell_mm, nx: count(x1 - x0_mm), ny: count(y1 - y0_mm) })
+    }
+}
+
+/// A span this close to a whole number of cells takes no extra cell, cells.
+const COVER_SLACK_CELLS: f64 = 1e-6;
+
+/// `cells` of grid `from` on grid `to`: each cell's stored distance interpolated bilinearly
+/// from the four cell centres of `from` around its centre, as a probe reads it; outside
+/// `from`, far outside material.
+pub fn resample(cells: &[i8], from: Grid, to: Grid) -> Vec<i8> {
+    let at = |i: isize, j: isize| -> f64 {
+        let inside = (0..from.nx as isize).contains(&i) && (0..from.ny as isize).contains(&j);
+        let k = (j.max(0) as usize) * from.nx + i.max(0) as usize;
+        f64::from(if inside { cells[k] } else { -FULL })
+    };
+    let mut out = Vec::with_capacity(to.cells());
+    for row in 0..to.ny {
+        let gy = (to.y0_mm + (row as f64 + 0.5) * to.cell_mm - from.y0_mm) / from.cell_mm - 0.5;
+        let (j, ty) = (gy.floor() as isize, gy - gy.floor());
+        for col in 0..to.nx {
+            let gx = (to.x0_mm + (col as f64 + 0.5) * to.cell_mm - from.x0_mm) / from.cell_mm - 0.5;
+            let (i, tx) = (gx.floor() as isize, gx - gx.floor());
+            let bottom = at(i, j) * (1.0 - tx) + at(i + 1, j) * tx;
+            let top = at(i, j + 1) * (1.0 - tx) + at(i + 1, j + 1) * tx;
+            out.push((bottom * (1.0 - ty) + top * ty).round().clamp(f64::from(-FULL), f64::from(FULL)) as i8);
+        }
+    }
+    out
+}
+
 impl Raster {
     /// The grid of the raster.
     pub fn layout_grid(&self) -> Grid {
@@ -74,6 +114,21 @@ impl Raster {
 mod tests {
     use super::super::test_blocks::block;
     use super::*;
+
+    #[test]
+    fn cells_brought_onto_a_covering_grid_keep_their_values_and_are_far_outside_beyond() {
+        let from = Grid { x0_mm: 1.0, y0_mm: 2.0, cell_mm: 0.5, nx: 2, ny: 2 };
+        let other = Grid { x0_mm: 0.0, y0_mm: 2.0, cell_mm: 0.5, nx: 4, ny: 3 };
+        let to = Grid::covering(&[from, other], 0.5).expect("two grids");
+        assert_eq!(to, Grid { x0_mm: 0.0, y0_mm: 2.0, cell_mm: 0.5, nx: 4, ny: 3 });
+        let cells = [10, -20, 30, 40];
+        assert_eq!(resample(&cells, from, from), cells);
+        let moved = resample(&cells, from, to);
+        // Cell (i, j) of `from` is cell (i + 2, j) of `to`; the rest is far outside.
+        assert_eq!(&moved[2..4], &[10, -20]);
+        assert_eq!(&moved[6..8], &[30, 40]);
+        assert!(moved[..2].iter().chain(&moved[4..6]).chain(&moved[8..]).all(|&v| v == -FULL), "{moved:?}");
+    }
 
     #[test]
     fn a_raster_rebuilt_from_its_cells_holds_the_same_cells_counts_and_probes() {

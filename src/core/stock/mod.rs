@@ -27,7 +27,7 @@ pub use arc_rows::ArcRows;
 pub use arc_sweep::{ArcSweep, MAX_ARC_SWEEP_RAD};
 pub use capsule::Capsule;
 pub use capsule_rows::CapsuleRows;
-pub use cells::Grid;
+pub use cells::{resample, Grid};
 pub use compare::CellRect;
 pub use tiles::Certified;
 use tiles::Tiles;
