@@ -141,9 +141,7 @@ pub fn plan_process(
         let baseline = side.map(|h| h.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)));
         (chosen, baseline)
     });
-    let Chosen { reports, chosen, mut layers, evaluation, tuning, warnings, stock } = chosen?;
-    // The layers' stocks are kept in `stock` now.
-    layers.iter_mut().for_each(|l| l.stock = None);
+    let Chosen { reports, chosen, layers, evaluation, tuning, warnings, stock } = chosen?;
     let baseline = baseline.transpose()?;
     progress.report(1.0);
     let mut plan = report::assemble(cavity, reports, chosen, &layers, evaluation, tuning, baseline, warnings);
@@ -299,16 +297,15 @@ fn choose_and_tune(
         ));
     }
     let tune_stage = Stage { inner: progress, from: CANDIDATES_SHARE, span: TUNING_SHARE };
-    // The stock the plan leaves does not depend on its feeds: stacked beside the tuning.
-    let (tuned, stock) = std::thread::scope(|scope| {
-        let stock = scope.spawn(|| kept_layers::plan_stock(&layers));
-        let tuned = tune::tune(&layers, &candidates[chosen], options, standard, &tune_stage);
-        (tuned, stock.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
-    });
-    let (evaluation, tuning) = tuned?;
-    let stock = stock
+    let (evaluation, tuning) = tune::tune(&layers, &candidates[chosen], options, standard, &tune_stage)?;
+    // The samples have served (the tuning was the last to read them): let them go before
+    // the layers' stocks are stacked into the one the plan keeps, and those after.
+    let mut layers = layers;
+    layers.iter_mut().for_each(|l| l.geometry = None);
+    let stock = kept_layers::plan_stock(&layers)
         .map_err(|reason| warnings.push(format!("the plan keeps no stock for another job to start from: {reason}")))
         .ok();
+    layers.iter_mut().for_each(|l| l.stock = None);
     if tuning.outcome == TuningOutcome::AboveTargetAtStandardForce {
         warnings.push(format!(
             "the job uses {:.0} % of a tool at the standard force: it needs {} tools (a lower force does not save the tool in the wear model)",
