@@ -54,3 +54,30 @@ async fn a_plan_keeps_the_corners_its_tool_leaves_and_a_smaller_tool_starts_from
     assert!(close(&s["rest_material"]["volume_mm3"], left, 0.05 * expected), "{s}");
     app.stop().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_stepped_cavity_keeps_its_stock_on_one_grid_with_each_layers_corners() {
+    // A 40 × 30 rectangle 6 mm deep over a 30 × 20 one 5 mm deep: each layer is simulated
+    // on a grid of its own outline, and the plan keeps one stock over both.
+    let app = TestApp::start().await;
+    let body = json!({
+        "layers": [
+            {"contour": {"outer": [[0, 0], [40, 0], [40, 30], [0, 30]]}, "z_top": 0, "z_bottom": -6},
+            {"contour": {"outer": [[5, 5], [35, 5], [35, 25], [5, 25]]}, "z_top": -6, "z_bottom": -11}
+        ],
+        "diameters_mm": [10], "sample_spacing_mm": 0.2, "baseline": false
+    });
+    let plan = app.send(reqwest::Method::POST, "/v1/plans", Some(body), &[("prefer", "wait=300")]).await;
+    assert_eq!(plan.body["status"], "succeeded", "{}", &plan.text[..plan.text.len().min(3000)]);
+    let rest = &plan.body["result"]["rest_material"];
+    let corners = 4.0 * corner_mm2(5.0);
+    let levels =
+        rest["levels"].as_array().unwrap_or_else(|| panic!("no rest material: {}", plan.body["result"]["warnings"]));
+    for level in levels {
+        assert!(close(&level["area_mm2"], corners, 0.3 * corners), "{level}");
+    }
+    assert!(close(&rest["volume_mm3"], corners * 11.0, 0.3 * corners * 11.0), "{rest}");
+    let id = plan.body["id"].as_str().unwrap();
+    assert_eq!(app.get(&format!("/v1/jobs/{id}/stock")).await.status, 200);
+    app.stop().await;
+}
