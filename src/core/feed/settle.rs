@@ -86,6 +86,9 @@ pub fn settle(
     let mut required = needed.clone();
     let mut keeps_programmed = vec![false; moves.len()];
     let mut limited = rate_limited(kept, &required, spec.max_change_per_mm);
+    // The feeds the moves were last found to pay at (none yet): a move whose feeds have not
+    // changed since still pays.
+    let mut checked_at: Option<Vec<f64>> = None;
     let mut all_checked = false;
     for _ in 0..MAX_SETTLE_RUNS {
         let Some(objective) = objective else { break };
@@ -94,6 +97,16 @@ pub fn settle(
             let range = ranges[index].clone();
             let Some(programmed) = m.feed_mm_min else { continue };
             if keeps_programmed[index] || matches!(m.motion, Motion::Rapid) || range.is_empty() {
+                continue;
+            }
+            // Its pieces read its samples' feeds and the one before them: the very same
+            // values give the very same pieces.
+            let read = range.start.saturating_sub(1)..range.end;
+            let same = |before: &Vec<f64>| {
+                before[read.clone()].iter().zip(&limited[read.clone()]).all(|(a, b)| a.to_bits() == b.to_bits())
+            };
+            let unchanged = checked_at.as_ref().is_some_and(same);
+            if unchanged {
                 continue;
             }
             let pieces = move_pieces(m, kept, &limited, range.clone(), spec);
@@ -107,7 +120,8 @@ pub fn settle(
             all_checked = true;
             break;
         }
-        limited = rate_limited(kept, &required, spec.max_change_per_mm);
+        let next = rate_limited(kept, &required, spec.max_change_per_mm);
+        checked_at = Some(std::mem::replace(&mut limited, next));
     }
     let in_kept_move = |s: usize| keeps_programmed.get(kept[s].move_index as usize).copied().unwrap_or(false);
     let rate_limited_mm = (0..kept.len())
