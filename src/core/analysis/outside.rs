@@ -224,7 +224,7 @@ impl ForceOverload {
             let lines: Vec<String> = self.lines.iter().map(|l| l.line.to_string()).collect();
             let more = self.line_count - self.lines.len();
             format!(
-                "the predicted force exceeds {OVERLOAD_FORCE_FACTOR} × the tool's standard force ({:.0} N) on {:.1} mm of the cut, up to {:.0} N, at line{} {}{}: the tool may break there",
+                "the predicted force exceeds {OVERLOAD_FORCE_FACTOR} × the tool's standard force ({:.0} N) on {:.1} mm of the cut, up to {:.0} N, at line{} {}{}: the tool may break there (trochoids, `POST /v1/trochoids`, or a smaller axial depth lower the load where a feed alone cannot)",
                 self.threshold_n,
                 self.length_mm,
                 self.max_force_n,
