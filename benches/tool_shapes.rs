@@ -18,7 +18,7 @@
 //!
 //! Arguments: words that pick the cases whose label contains one.
 
-use dieplan::core::analysis::{analyze, AnalysisSpec, StockRegion, DEFAULT_ALPHA_LIMIT_DEG};
+use dieplan::core::analysis::{analyze, AnalysisSpec, StockRegion};
 use dieplan::core::nc::{parse_gcode, ParseOptions};
 use dieplan::core::progress::NoProgress;
 use dieplan::core::stock::Rect;
@@ -102,20 +102,8 @@ fn exact_volume_mm3(tool: &EndMill, passes: &[Pass]) -> f64 {
 }
 
 fn spec(tool: EndMill) -> AnalysisSpec {
-    AnalysisSpec {
-        tool,
-        stock: vec![StockRegion::Rect(BLOCK)],
-        open: vec![],
-        z_top: 0.0,
-        z_bottom: -BLOCK_DEPTH_MM,
-        force_model: None,
-        default_spindle_rpm: Some(10000.0),
-        rapid_mm_min: 20000.0,
-        sample_spacing_mm: None,
-        cell_mm: None,
-        alpha_limit_deg: DEFAULT_ALPHA_LIMIT_DEG,
-        series_points: 0,
-    }
+    let block = AnalysisSpec::new(tool, vec![StockRegion::Rect(BLOCK)], 0.0, -BLOCK_DEPTH_MM);
+    AnalysisSpec { default_spindle_rpm: Some(10000.0), ..block }
 }
 
 fn case(label: &str, tool: EndMill, passes: &[Pass]) {

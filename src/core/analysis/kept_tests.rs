@@ -10,19 +10,10 @@ use crate::core::toolpath::{Move, Units, P3};
 const BLOCK: Rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 100.0, y_max: 40.0 };
 
 pub(super) fn spec(z_bottom: f64) -> AnalysisSpec {
+    let tool = EndMill { tool_type: ToolType::Square, diameter_mm: 10.0, flutes: 6, corner_radius_mm: 0.0 };
     AnalysisSpec {
-        tool: EndMill { tool_type: ToolType::Square, diameter_mm: 10.0, flutes: 6, corner_radius_mm: 0.0 },
-        stock: vec![StockRegion::Rect(BLOCK)],
-        open: vec![],
-        z_top: 0.0,
-        z_bottom,
-        force_model: None,
         default_spindle_rpm: Some(9600.0),
-        rapid_mm_min: 20000.0,
-        sample_spacing_mm: None,
-        cell_mm: None,
-        alpha_limit_deg: DEFAULT_ALPHA_LIMIT_DEG,
-        series_points: 0,
+        ..AnalysisSpec::new(tool, vec![StockRegion::Rect(BLOCK)], 0.0, z_bottom)
     }
 }
 

@@ -69,6 +69,10 @@ pub const MAX_SAMPLES: f64 = 100_000_000.0;
 /// Coordinates beyond ±100 m are refused, mm.
 pub const MAX_COORDINATE_MM: f64 = 100_000.0;
 
+/// Rapid rate used for the time estimate when none is given, mm/min (**assumed**: the
+/// papers do not give the OKK VM4-II's rapid rate).
+pub const DEFAULT_RAPID_MM_MIN: f64 = 20_000.0;
+
 /// What to analyse and how finely.
 #[derive(Debug, Clone)]
 pub struct AnalysisSpec {
@@ -90,6 +94,28 @@ pub struct AnalysisSpec {
     pub alpha_limit_deg: f64,
     /// 0: no series.
     pub series_points: usize,
+}
+
+impl AnalysisSpec {
+    /// `tool` through `stock` from `z_top` down to `z_bottom`, with the defaults for the
+    /// rest: nothing open, no force model or spindle speed, the default rapid rate, sample
+    /// spacing, cell and engagement limit, and no series.
+    pub fn new(tool: EndMill, stock: Vec<StockRegion>, z_top: f64, z_bottom: f64) -> AnalysisSpec {
+        AnalysisSpec {
+            tool,
+            stock,
+            open: vec![],
+            z_top,
+            z_bottom,
+            force_model: None,
+            default_spindle_rpm: None,
+            rapid_mm_min: DEFAULT_RAPID_MM_MIN,
+            sample_spacing_mm: None,
+            cell_mm: None,
+            alpha_limit_deg: DEFAULT_ALPHA_LIMIT_DEG,
+            series_points: 0,
+        }
+    }
 }
 
 /// One z slice of the simulated stock. The slices follow the z levels the program cuts
@@ -439,20 +465,7 @@ mod tests {
 
     /// `tool` in `block`, 5 mm deep, without a force model or a spindle speed.
     fn block_spec(tool: EndMill, block: Rect) -> AnalysisSpec {
-        AnalysisSpec {
-            tool,
-            stock: vec![StockRegion::Rect(block)],
-            open: vec![],
-            z_top: 0.0,
-            z_bottom: -5.0,
-            force_model: None,
-            default_spindle_rpm: None,
-            rapid_mm_min: 20000.0,
-            sample_spacing_mm: None,
-            cell_mm: None,
-            alpha_limit_deg: DEFAULT_ALPHA_LIMIT_DEG,
-            series_points: 0,
-        }
+        AnalysisSpec::new(tool, vec![StockRegion::Rect(block)], 0.0, -5.0)
     }
 
     #[test]

@@ -10,9 +10,7 @@ use serde::{Deserialize, Serialize};
 /// papers give no plunge feed; a third of the cutting feed is a common shop default).
 pub const DEFAULT_PLUNGE_FEED_RATIO: f64 = 1.0 / 3.0;
 
-/// Rapid rate used for the time estimate when none is given, mm/min (**assumed**: the
-/// papers do not give the OKK VM4-II's rapid rate).
-pub const DEFAULT_RAPID_MM_MIN: f64 = 20_000.0;
+pub use crate::core::analysis::DEFAULT_RAPID_MM_MIN;
 
 /// Milling direction (MODEL.md §1: down (climb) cut unless the request says otherwise).
 ///
