@@ -142,6 +142,25 @@ impl ForceModel {
             / self.edge_length_mm(self.ad_ref_mm)
     }
 
+    /// The force of the edge between `h_bottom_mm` and `h_bottom_mm + thickness_mm` above the
+    /// tool's tip (one z slice of the stock, MODEL.md §3 on the engaged edge): the model's
+    /// force scaled by that stretch of edge over the edge engaged at `Ad_ref`. For a square
+    /// end mill's model, [`ForceModel::force_n`] at the slice's thickness.
+    pub fn slice_force_n(
+        &self,
+        chip_thickness_um: f64,
+        arc_length_mm: f64,
+        h_bottom_mm: f64,
+        thickness_mm: f64,
+    ) -> f64 {
+        if self.corner_radius_mm <= 0.0 {
+            return self.force_n(chip_thickness_um, arc_length_mm, thickness_mm);
+        }
+        let c = self.coded(chip_thickness_um, arc_length_mm);
+        let edge = self.edge_length_mm(h_bottom_mm + thickness_mm) - self.edge_length_mm(h_bottom_mm);
+        self.coefficients.evaluate(c.x1, c.x2) * edge / self.edge_length_mm(self.ad_ref_mm)
+    }
+
     /// The engaged edge length of this model's tool at axial depth `Ad`, mm.
     fn edge_length_mm(&self, axial_depth_mm: f64) -> f64 {
         engaged_edge_length_mm(self.corner_radius_mm, axial_depth_mm)

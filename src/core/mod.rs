@@ -33,6 +33,7 @@ pub mod pocketing;
 /// Process planning of a cavity: tool choice, layers, feeds, cost, tuning (seed 002 §2.6).
 pub mod process;
 pub mod progress;
+pub mod standard_cut;
 pub mod stock;
 pub mod tolerance;
 pub mod tool;

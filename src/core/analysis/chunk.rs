@@ -7,6 +7,7 @@
 //! time instead of every few samples.
 
 use super::arcs::ArcGuide;
+use super::profile::SAME_RADIUS_MM;
 use super::recent::Corridor;
 use super::sampling::has_heading;
 use super::stack::Stack;
@@ -100,13 +101,13 @@ impl Chunk {
     /// is no arc in XY), before the sample is probed. A chunk along another arc, or along
     /// a line, is applied first; a chunk follows an arc only from a start on its circle
     /// (otherwise the sample joins the line chunk, and the arc is followed from it on).
-    pub fn follow(&mut self, stack: &mut Stack, radius: f64, guide: Option<&ArcGuide>) {
+    pub fn follow(&mut self, stack: &mut Stack, radii: &[f64], guide: Option<&ArcGuide>) {
         let same = matches!((&self.arc, guide), (Some((a, _)), Some(g)) if a.move_index == g.move_index);
         if same {
             return;
         }
         if self.arc.is_some() || (guide.is_some() && self.recent.len() > 1) {
-            self.flush(stack, radius);
+            self.flush(stack, radii);
             self.arc = None;
         }
         let Some(g) = guide else {
@@ -154,8 +155,8 @@ impl Chunk {
 
     /// Applies the chunk and starts an empty one cutting `cut` slices (along the same arc,
     /// if it follows one).
-    pub fn restart(&mut self, stack: &mut Stack, radius: f64, cut: usize) {
-        self.flush(stack, radius);
+    pub fn restart(&mut self, stack: &mut Stack, radii: &[f64], cut: usize) {
+        self.flush(stack, radii);
         if let Some((_, swept)) = self.arc.as_mut() {
             *swept = 0.0;
         }
@@ -169,7 +170,7 @@ impl Chunk {
     /// Adds the centre `p` of a sample reached by a step of `step_mm` along `heading`;
     /// when `p` would turn the chunk or bow it away from its chord, or it is full, the
     /// chunk is first applied, so it ends at the previous centre.
-    pub fn push(&mut self, stack: &mut Stack, radius: f64, p: (f64, f64), heading: (f64, f64), step_mm: f64) {
+    pub fn push(&mut self, stack: &mut Stack, radii: &[f64], p: (f64, f64), heading: (f64, f64), step_mm: f64) {
         let last = self.recent.last().copied();
         if last.is_some_and(|q| (p.0 - q.0).abs() <= SAME_XY_MM && (p.1 - q.1).abs() <= SAME_XY_MM) {
             // A move along z only: the tool sweeps nothing new in XY.
@@ -180,7 +181,7 @@ impl Chunk {
             let step_rad = step_mm / guide.radius_mm;
             let mut swept = swept + step_rad;
             if swept > MAX_ARC_SWEEP_RAD || self.recent.len() > MAX_CHUNK_STEPS {
-                self.flush(stack, radius);
+                self.flush(stack, radii);
                 swept = step_rad;
             }
             self.arc = Some((guide, swept));
@@ -200,7 +201,7 @@ impl Chunk {
             let turned = h.0 * c.0 + h.1 * c.1 < self.cos_turn;
             let bowed = (self.length_mm + step_mm) * turn / KINK_DEVIATION_PER_TURN > self.max_deviation_mm;
             if turned || bowed || self.recent.len() > MAX_CHUNK_STEPS {
-                self.flush(stack, radius);
+                self.flush(stack, radii);
                 self.heading = heading;
             }
         }
@@ -229,10 +230,10 @@ impl Chunk {
         self.last_along_mm = 0.0;
     }
 
-    /// Removes the area the chunk swept from the rasters of the slices it cuts: its capsule
-    /// or, along an arc, the area swept along the arc. The next chunk starts at its last
-    /// centre.
-    pub fn flush(&mut self, stack: &mut Stack, radius: f64) {
+    /// Removes the area the chunk swept from the rasters of the slices it cuts, each at its
+    /// radius in `radii` (top first): its capsule or, along an arc, the area swept along the
+    /// arc. The next chunk starts at its last centre.
+    pub fn flush(&mut self, stack: &mut Stack, radii: &[f64]) {
         let (Some(a), Some(&b)) = (self.start, self.recent.last()) else {
             return;
         };
@@ -241,29 +242,39 @@ impl Chunk {
             // Only the start, whose disc a previous update already removed.
             return;
         }
-        // From the deepest slice cut up: above a slice with no material near the
-        // capsule, none has any (see [`super::slices`]).
-        let mut material_near = true;
         let cut = self.cut.min(stack.len());
         self.capsules += 1;
-        // All slices share one grid: the rows are found once.
-        if !stack.is_empty() {
-            let grid = stack.raster(0);
-            match (arc, self.rows.as_mut(), self.arc_rows.as_mut()) {
-                (Some(arc), _, Some(rows)) => rows.set(grid, arc, radius),
-                (Some(arc), _, None) => self.arc_rows = Some(ArcRows::new(grid, arc, radius)),
-                (None, Some(rows), _) => rows.set(grid, a, b, radius, self.start_cleared),
-                (None, None, _) => self.rows = Some(CapsuleRows::new(grid, a, b, radius, self.start_cleared)),
+        let same = |i: usize, j: usize| (radii[i] - radii[j]).abs() <= SAME_RADIUS_MM;
+        if cut > 0 {
+            // The deepest slice cut is cut apart from the one below, and so is a slice cut at
+            // another radius than the one below; a slice above that is alike with the one
+            // below, at its radius, takes the update with it.
+            stack.separate(cut - 1);
+            for k in 0..cut - 1 {
+                if !same(k, k + 1) {
+                    stack.separate(k);
+                }
             }
         }
-        if cut > 0 {
-            // The deepest slice cut is cut apart from the one below; a slice above it that is
-            // alike with the one below takes the update with it.
-            stack.separate(cut - 1);
-        }
+        // From the deepest slice cut up: above a slice with no material near the capsule,
+        // none cut at the same radius has any (see [`super::slices`]). The rows are found
+        // once per radius: all slices share one grid.
+        let mut material_near = true;
+        let mut rows_for: Option<usize> = None;
         for k in (0..cut).rev() {
             if stack.alike_below(k) {
                 continue;
+            }
+            if rows_for.is_none_or(|j| !same(j, k)) {
+                rows_for = Some(k);
+                material_near = true;
+                let (grid, radius) = (stack.raster(0), radii[k]);
+                match (arc, self.rows.as_mut(), self.arc_rows.as_mut()) {
+                    (Some(arc), _, Some(rows)) => rows.set(grid, arc, radius),
+                    (Some(arc), _, None) => self.arc_rows = Some(ArcRows::new(grid, arc, radius)),
+                    (None, Some(rows), _) => rows.set(grid, a, b, radius, self.start_cleared),
+                    (None, None, _) => self.rows = Some(CapsuleRows::new(grid, a, b, radius, self.start_cleared)),
+                }
             }
             let s = stack.own(k);
             material_near = match (material_near, arc.is_some(), self.rows.as_mut(), self.arc_rows.as_mut()) {
@@ -309,11 +320,11 @@ mod tests {
     fn a_move_along_z_only_sweeps_nothing_new_and_applies_nothing() {
         let mut slices = block();
         let mut chunk = Chunk::new(1, CELL);
-        chunk.push(&mut slices, RADIUS, (0.0, 0.0), (1.0, 0.0), 0.05);
-        chunk.push(&mut slices, RADIUS, (0.05, 0.0), (1.0, 0.0), 0.05);
+        chunk.push(&mut slices, &[RADIUS], (0.0, 0.0), (1.0, 0.0), 0.05);
+        chunk.push(&mut slices, &[RADIUS], (0.05, 0.0), (1.0, 0.0), 0.05);
         let version = slices.raster(0).version();
         for _ in 0..100 {
-            chunk.push(&mut slices, RADIUS, (0.05, 0.0), (0.0, 0.0), 0.05);
+            chunk.push(&mut slices, &[RADIUS], (0.05, 0.0), (0.0, 0.0), 0.05);
         }
         assert_eq!(slices.raster(0).version(), version, "a plunge in place applied a capsule");
         assert_eq!(chunk.recent().len(), 2);
@@ -325,15 +336,15 @@ mod tests {
         let version = slices.raster(0).version();
         let mut chunk = Chunk::new(1, CELL);
         for _ in 0..10 {
-            chunk.push(&mut slices, RADIUS, (0.0, 0.0), (0.0, 0.0), 0.05);
+            chunk.push(&mut slices, &[RADIUS], (0.0, 0.0), (0.0, 0.0), 0.05);
         }
-        chunk.push(&mut slices, RADIUS, (0.0, 0.05), (0.0, 1.0), 0.05);
-        chunk.push(&mut slices, RADIUS, (0.0, 0.10), (0.0, 1.0), 0.05);
+        chunk.push(&mut slices, &[RADIUS], (0.0, 0.05), (0.0, 1.0), 0.05);
+        chunk.push(&mut slices, &[RADIUS], (0.0, 0.10), (0.0, 1.0), 0.05);
         assert_eq!(slices.raster(0).version(), version, "the plunge's foot was applied on its own");
         let corridor = chunk.corridor();
         assert!(corridor.ordered && corridor.dir.1 > 1.0 - 1e-12);
         // The chunk, when applied, clears the plunge's foot and the move.
-        chunk.flush(&mut slices, RADIUS);
+        chunk.flush(&mut slices, &[RADIUS]);
         assert!(!slices.raster(0).is_material(0.0, -RADIUS + 0.5));
         assert!(!slices.raster(0).is_material(0.0, RADIUS + 0.05));
         assert!(slices.raster(0).is_material(0.0, -RADIUS - 0.5));

@@ -7,9 +7,11 @@ use super::chunk::{Chunk, Swept};
 use super::engages::interior_points;
 use super::lines::straight_runs;
 use super::probe::{AngleTable, Contact, ProbeSite};
+use super::profile::{Profile, SAME_RADIUS_MM};
 use super::same_below::SameBelow;
 use super::sampling::{for_each_sample, has_heading, move_curvatures, Sample};
 use super::scan_memory::{Line, ScanMemory};
+use super::slice_radii::SliceRadii;
 use super::stack::{Slice, Stack};
 use crate::core::engagement::{pivot_bounded_centre_radius_mm, tooth_chip_thickness_mm, ToothCut};
 use crate::core::force_model::{Coded, ForceModel};
@@ -36,7 +38,8 @@ const PROGRESS_EVERY: usize = 4096;
 /// What the tool and the cut are, and how finely to sample.
 #[derive(Debug, Clone, Copy)]
 pub struct Cutter {
-    pub radius_mm: f64,
+    /// The tool's radius by height above its tip.
+    pub profile: Profile,
     pub flutes: u32,
     /// Used where the program has no S word.
     pub default_spindle_rpm: Option<f64>,
@@ -60,6 +63,9 @@ pub struct SampleResult {
     pub ad_mm: f64,
     /// Maximum undeformed chip thickness at the programmed feed, µm.
     pub t_m_um: f64,
+    /// The radius the slice of the largest engagement takes the tool at (the tool's radius
+    /// but in the corner of a radius or ball end mill, see [`super::profile`]), mm.
+    pub contact_radius_mm: f64,
     /// Predicted XY force, N, when a force model is given.
     pub force_n: Option<f64>,
     /// A move straight down (no XY motion) into material: no leading half to measure.
@@ -78,13 +84,14 @@ pub struct SampleResult {
 }
 
 impl SampleResult {
-    /// What bounds the chip of one tooth at this sample.
-    pub fn tooth_cut(&self, tool_radius_mm: f64) -> ToothCut {
+    /// What bounds the chip of one tooth at this sample (at the radius of the slice of the
+    /// largest engagement).
+    pub fn tooth_cut(&self) -> ToothCut {
         ToothCut {
             alpha_rad: self.contact.alpha_rad,
             cutting_point_ratio: self.cutting_point_ratio,
             centre_radius_mm: self.centre_radius_mm,
-            tool_radius_mm,
+            tool_radius_mm: self.contact_radius_mm,
         }
     }
 }
@@ -122,15 +129,15 @@ pub fn simulate(
     let curvatures = move_curvatures(path);
     // All slices share one cell size (with none, nothing is probed).
     let cell_mm = if slices.is_empty() { 0.0 } else { slices.raster(0).cell_mm() };
+    let mut radii = SliceRadii::new(cutter.profile, slices.len(), cell_mm);
     let mut probes = SliceProbes {
-        table: AngleTable::new(cutter.radius_mm, cell_mm),
         site: ProbeSite::default(),
         contacts: vec![Contact::default(); slices.len()],
         memories: vec![ScanMemory::default(); slices.len()],
         engaged_at: vec![0; slices.len()],
         same_below: SameBelow::new(slices.len()),
     };
-    let r = cutter.radius_mm;
+    let r = cutter.profile.radius_mm;
     let mut chunk = Chunk::new(0, cell_mm);
     let runs = straight_runs(path);
     let arcs = arc_guides(path, spacing_mm);
@@ -150,10 +157,14 @@ pub fn simulate(
         s_mm += sample.step_mm;
         let p = (sample.p.x, sample.p.y);
         let cut = slices.cut_at(sample.p.z);
-        if cut != chunk.cut {
-            chunk.restart(slices, r, cut);
+        // A radius or ball end mill cuts the slices in its corner at radii that follow the
+        // tip: the chunk swept at the old ones is applied first.
+        let reshaped = radii.differ_at(slices, cut, sample.p.z);
+        if cut != chunk.cut || reshaped {
+            chunk.restart(slices, radii.current(), cut);
+            radii.adopt(|k| probes.memories[k] = ScanMemory::default());
         }
-        chunk.follow(slices, r, arcs[sample.move_index].as_ref());
+        chunk.follow(slices, radii.current(), arcs[sample.move_index].as_ref());
         let plunge = !has_heading(sample.heading);
         let mut result = SampleResult {
             sample: *sample,
@@ -162,9 +173,12 @@ pub fn simulate(
             arc_length_mm: 0.0,
             ad_mm: 0.0,
             t_m_um: 0.0,
+            contact_radius_mm: r,
             force_n: force_model.map(|_| 0.0),
             // The deepest slice cut holds the material of all above it (see `slices`).
-            plunge: plunge && cut > 0 && slices.stock_mut(cut - 1).any_material_near(p.0, p.1, r),
+            plunge: plunge
+                && cut > 0
+                && slices.stock_mut(cut - 1).any_material_near(p.0, p.1, radii.current()[cut - 1]),
             force_extrapolated: false,
             coded: None,
             cutting_point_ratio: 1.0,
@@ -177,36 +191,40 @@ pub fn simulate(
                 let to_end = ((run.end.0 - p.0).powi(2) + (run.end.1 - p.1).powi(2)).sqrt();
                 Line { id: run.id, dir: sample.heading, ahead_cells: to_end / cell_mm }
             });
-            match chunk.swept(r) {
-                Swept::Arc(arc) => {
-                    probes.site.set(&probes.table, p, grid, sample.heading, &[], &chunk.corridor(), line);
-                    probes.site.set_swept_arc(arc);
+            let at = Site { p, grid, heading: sample.heading, line };
+            if radii.cylinder() {
+                probes.place(radii.full_table(), &chunk, &at);
+                if force_model.is_some() {
+                    probes.measure_every_slice(radii.full_table(), slices, cut, p, sample.heading, r);
+                } else {
+                    probes.measure_deepest_slice(radii.full_table(), slices, cut, p, r);
                 }
-                Swept::Centres => {
-                    probes.site.set(&probes.table, p, grid, sample.heading, chunk.recent(), &chunk.corridor(), line)
-                }
-            }
-            if force_model.is_some() {
-                probes.measure_every_slice(slices, cut, p, sample.heading, r);
             } else {
-                probes.measure_deepest_slice(slices, cut, p, r);
+                probes.measure_shaped(&mut radii, &chunk, &at, slices, cut);
             }
-            evaluate(&mut result, &probes.contacts[..cut], slices.slices(), cutter, force_model);
+            evaluate(&mut result, &probes.contacts[..cut], slices.slices(), radii.current(), cutter, force_model);
         }
-        chunk.push(slices, r, p, sample.heading, sample.step_mm);
+        chunk.push(slices, radii.current(), p, sample.heading, sample.step_mm);
         sink(&result);
         true
     });
-    chunk.flush(slices, r);
+    chunk.flush(slices, radii.current());
     match failure {
         Some(e) => Err(e),
         None => Ok(()),
     }
 }
 
+/// Where a sample's tool is: its centre (mm and on the rasters' grid), heading and line.
+struct Site {
+    p: (f64, f64),
+    grid: (f64, f64),
+    heading: (f64, f64),
+    line: Option<Line>,
+}
+
 /// What the probes of the slices keep from sample to sample.
 struct SliceProbes {
-    table: AngleTable,
     site: ProbeSite,
     /// Per slice, its contact at the current sample: from the deepest slice cut up to the
     /// first that does not engage. Above that one none engages (see `engages`), and they
@@ -219,9 +237,57 @@ struct SliceProbes {
 }
 
 impl SliceProbes {
+    /// Places the probe site of a tool of `table`'s radius at `at`, with what the chunk
+    /// swept since the rasters were last updated.
+    fn place(&mut self, table: &AngleTable, chunk: &Chunk, at: &Site) {
+        match chunk.swept(table.radius_mm()) {
+            Swept::Arc(arc) => {
+                self.site.set(table, at.p, at.grid, at.heading, &[], &chunk.corridor(), at.line);
+                self.site.set_swept_arc(arc);
+            }
+            Swept::Centres => {
+                self.site.set(table, at.p, at.grid, at.heading, chunk.recent(), &chunk.corridor(), at.line)
+            }
+        }
+    }
+
+    /// Measures the contact of each of the `cut` slices of a radius or ball end mill at
+    /// `at`, each at its radius. Slices at one radius nest as the cylinder's do (see
+    /// `slices`): a slice alike with the one below at its radius has its contact, and above
+    /// a slice at the full radius with no material near the tool none has any. A slice at a
+    /// smaller radius than the one above tells nothing of it: each is measured.
+    fn measure_shaped(&mut self, radii: &mut SliceRadii, chunk: &Chunk, at: &Site, slices: &mut Stack, cut: usize) {
+        for k in (0..cut).rev() {
+            if k + 1 < cut && radii.same(k, k + 1) && slices.alike_below(k) {
+                self.contacts[k] = self.contacts[k + 1];
+                continue;
+            }
+            if !slices.stock_mut(k).any_material_near(at.p.0, at.p.1, radii.current()[k]) {
+                self.contacts[k] = Contact::default();
+                if radii.is_full(k) {
+                    self.contacts[..k].fill(Contact::default());
+                    break;
+                }
+                continue;
+            }
+            let table = radii.table(k);
+            self.place(table, chunk, at);
+            let memory = Some(&mut self.memories[k]);
+            self.contacts[k] = table.contact_and_states(slices.raster(k), &self.site, memory, 0).0;
+        }
+    }
+
     /// Measures the contact of each of the `cut` slices at the site, tool centre `p`
     /// moving along `heading`: a force model needs every slice's α.
-    fn measure_every_slice(&mut self, slices: &mut Stack, cut: usize, p: (f64, f64), heading: (f64, f64), r: f64) {
+    fn measure_every_slice(
+        &mut self,
+        table: &AngleTable,
+        slices: &mut Stack,
+        cut: usize,
+        p: (f64, f64),
+        heading: (f64, f64),
+        r: f64,
+    ) {
         // From the deepest slice cut up. Each slice's material lies inside the material of
         // the one below (see `slices`), and so does each coarse point's state: above a
         // slice with no material near the tool, or none at an interior coarse point (no
@@ -235,7 +301,7 @@ impl SliceProbes {
                 _ if !slices.stock_mut(k).any_material_near(p.0, p.1, r) => (Contact::default(), 0),
                 _ => {
                     let known_air = below.map_or(0, |states| !states);
-                    self.table.contact_and_states(slices.raster(k), &self.site, Some(&mut self.memories[k]), known_air)
+                    table.contact_and_states(slices.raster(k), &self.site, Some(&mut self.memories[k]), known_air)
                 }
             };
             self.contacts[k] = contact;
@@ -257,10 +323,10 @@ impl SliceProbes {
     /// sample differs.)
     ///
     /// [`measure_every_slice`]: SliceProbes::measure_every_slice
-    fn measure_deepest_slice(&mut self, slices: &mut Stack, cut: usize, p: (f64, f64), r: f64) {
+    fn measure_deepest_slice(&mut self, table: &AngleTable, slices: &mut Stack, cut: usize, p: (f64, f64), r: f64) {
         let deepest = cut - 1;
         let (contact, states) = if slices.stock_mut(deepest).any_material_near(p.0, p.1, r) {
-            self.table.contact_and_states(slices.raster(deepest), &self.site, Some(&mut self.memories[deepest]), 0)
+            table.contact_and_states(slices.raster(deepest), &self.site, Some(&mut self.memories[deepest]), 0)
         } else {
             (Contact::default(), 0)
         };
@@ -273,8 +339,7 @@ impl SliceProbes {
                 self.contacts[k] = contact;
                 continue;
             }
-            if candidates == 0
-                || !self.table.engages(slices.raster(k), &self.site, &mut candidates, &mut self.engaged_at[k])
+            if candidates == 0 || !table.engages(slices.raster(k), &self.site, &mut candidates, &mut self.engaged_at[k])
             {
                 self.contacts[k] = Contact::default();
                 break;
@@ -285,56 +350,75 @@ impl SliceProbes {
 }
 
 /// Fills α, L, Ad, t_m and the force of `result` from the contacts of the cut slices
-/// (read from the deepest up to the first that does not engage, see [`SliceProbes`]).
+/// (read from the deepest up to the first that does not engage, see [`SliceProbes`]), each
+/// slice cutting at its radius in `radii`. The sample's engagement is the largest, with the
+/// radius of its slice; the force sums the slices' (MODEL.md §3: the engaged edge, slice by
+/// slice), and is an extrapolation wherever a slice cuts in a radius or ball end mill's
+/// corner: the papers' model is the flat end mill's flank.
 fn evaluate(
     result: &mut SampleResult,
     contacts: &[Contact],
     slices: &[Slice],
+    radii: &[f64],
     cutter: Cutter,
     model: Option<&ForceModel>,
 ) {
-    let r = cutter.radius_mm;
+    let r = cutter.profile.radius_mm;
     let tip = result.sample.p.z;
-    // The slices that engage are a run from the deepest cut up: a slice engages only
-    // where the one below does (see `engages`).
-    let first = contacts.len() - contacts.iter().rev().take_while(|c| c.alpha_rad > 0.0).count();
+    // A cylinder's slices that engage are a run from the deepest cut up: a slice engages
+    // only where the one below does (see `engages`), and those above are not measured. A
+    // radius or ball end mill's slices are all measured: its corner may miss what its
+    // flank above cuts.
+    let first = match cutter.profile.is_cylinder() {
+        true => contacts.len() - contacts.iter().rev().take_while(|c| c.alpha_rad > 0.0).count(),
+        false => 0,
+    };
     let (contacts, slices) = (&contacts[first..], slices.get(first..).unwrap_or_default());
-    let Some(best) = contacts.iter().copied().max_by(|a, b| a.alpha_rad.total_cmp(&b.alpha_rad)) else {
+    let radii = radii.get(first..).unwrap_or_default();
+    let Some((best, best_radius)) = contacts
+        .iter()
+        .copied()
+        .zip(radii.iter().copied())
+        .max_by(|a, b| a.0.alpha_rad.total_cmp(&b.0.alpha_rad).then(a.1.total_cmp(&b.1)))
+    else {
         return;
     };
     let rpm = result.sample.spindle_rpm.or(cutter.default_spindle_rpm).unwrap_or(0.0);
     let fz_c_mm = if rpm > 0.0 { result.sample.feed_mm_min / (f64::from(cutter.flutes) * rpm) } else { 0.0 };
-    let (ratio, centre_radius_mm) = cutting_point_ratio(&result.sample, &best, r);
-    let tooth = |c: &Contact| ToothCut {
+    let (ratio, centre_radius_mm) = cutting_point_ratio(&result.sample, &best, best_radius);
+    let tooth = |c: &Contact, radius: f64| ToothCut {
         alpha_rad: c.alpha_rad,
         cutting_point_ratio: ratio,
         centre_radius_mm,
-        tool_radius_mm: r,
+        tool_radius_mm: radius,
     };
-    let t_m_best = tooth_chip_thickness_mm(fz_c_mm, &tooth(&best)) * UM_PER_MM;
+    let t_m_best = tooth_chip_thickness_mm(fz_c_mm, &tooth(&best, best_radius)) * UM_PER_MM;
     // Slices engaged like the best one (most often all of them) share its chip thickness.
-    let t_m = |c: &Contact| {
-        if (c.alpha_rad - best.alpha_rad).abs() < SAME_ALPHA_RAD {
+    let t_m = |c: &Contact, radius: f64| {
+        if (c.alpha_rad - best.alpha_rad).abs() < SAME_ALPHA_RAD && (radius - best_radius).abs() <= SAME_RADIUS_MM {
             t_m_best
         } else {
-            tooth_chip_thickness_mm(fz_c_mm, &tooth(c)) * UM_PER_MM
+            tooth_chip_thickness_mm(fz_c_mm, &tooth(c, radius)) * UM_PER_MM
         }
     };
     result.contact = best;
+    result.contact_radius_mm = best_radius;
     result.cutting_point_ratio = ratio;
     result.centre_radius_mm = centre_radius_mm;
-    result.arc_length_mm = r * best.alpha_rad;
+    result.arc_length_mm = best_radius * best.alpha_rad;
     result.t_m_um = t_m_best;
     let mut force = 0.0;
-    for (c, s) in contacts.iter().zip(slices) {
+    let mut in_corner = false;
+    for ((c, s), &radius) in contacts.iter().zip(slices).zip(radii) {
         if c.alpha_rad <= 0.0 {
             continue;
         }
         let thickness = s.z_top - tip.max(s.z_bottom);
         result.ad_mm += thickness;
+        in_corner |= r - radius > SAME_RADIUS_MM;
         if let Some(m) = model {
-            let (t, l) = (t_m(c), r * c.alpha_rad);
-            force += m.force_n(t, l, thickness);
+            let (t, l) = (t_m(c, radius), radius * c.alpha_rad);
+            force += m.slice_force_n(t, l, s.z_bottom.max(tip) - tip, thickness);
             let coded = m.coded(t, l);
             if result.coded.is_none_or(|c| coded.radius_squared() > c.radius_squared()) {
                 result.coded = Some(coded);
@@ -342,7 +426,7 @@ fn evaluate(
         }
     }
     if let Some(coded) = result.coded {
-        result.force_extrapolated = !coded.within_design_region();
+        result.force_extrapolated = in_corner || !coded.within_design_region();
     }
     if model.is_some() {
         result.force_n = Some(force);
@@ -394,7 +478,7 @@ mod tests {
 
     fn relief_cutter(force_model: Option<ForceModel>) -> Cutter {
         Cutter {
-            radius_mm: 2.0,
+            profile: Profile::cylinder(2.0),
             flutes: 2,
             default_spindle_rpm: Some(9600.0),
             force_model,

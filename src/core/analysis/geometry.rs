@@ -4,8 +4,8 @@
 //! time and cost at any feed are arithmetic over these samples, without simulating again
 //! (MODEL.md §2–3, §9).
 //!
-//! A sample takes 60 bytes (f32 values): the 1 M samples of the case study's chosen program
-//! take about 60 MB.
+//! A sample takes 64 bytes (f32 values): the 1 M samples of the case study's chosen program
+//! take about 64 MB.
 
 use super::engine::SampleResult;
 use super::report::PathPoint;
@@ -27,6 +27,9 @@ pub struct SampleGeometry {
     pub z: f32,
     /// Engagement angle, rad (0: in air).
     pub alpha_rad: f32,
+    /// The radius the engagement is measured at: the tool's, but in the corner of a radius
+    /// or ball end mill (see [`super::profile`]), mm.
+    pub contact_radius_mm: f32,
     /// Axial depth of cut in material, mm.
     pub ad_mm: f32,
     /// Feed at the cutting point over feed at the tool centre, and the centre-path radius it
@@ -67,6 +70,7 @@ impl SampleGeometry {
             y: s.p.y as f32,
             z: s.p.z as f32,
             alpha_rad: r.contact.alpha_rad as f32,
+            contact_radius_mm: r.contact_radius_mm as f32,
             ad_mm: r.ad_mm as f32,
             cutting_point_ratio: r.cutting_point_ratio as f32,
             centre_radius_mm: r.centre_radius_mm as f32,
@@ -95,9 +99,9 @@ impl SampleGeometry {
         self.alpha_rad > 0.0
     }
 
-    /// Engagement arc length `L = r·α` for a tool of radius `tool_radius_mm`, mm.
-    pub fn arc_length_mm(&self, tool_radius_mm: f64) -> f64 {
-        tool_radius_mm * f64::from(self.alpha_rad)
+    /// Engagement arc length `L = ρ·α` at the contact radius ρ, mm.
+    pub fn arc_length_mm(&self) -> f64 {
+        f64::from(self.contact_radius_mm) * f64::from(self.alpha_rad)
     }
 
     /// The spindle speed, when known, min⁻¹.
@@ -110,13 +114,13 @@ impl SampleGeometry {
         self.force_n.is_finite().then_some(f64::from(self.force_n))
     }
 
-    /// What bounds one tooth's chip here, for a tool of radius `tool_radius_mm`.
-    pub fn tooth(&self, tool_radius_mm: f64) -> ToothCut {
+    /// What bounds one tooth's chip here (at the contact radius).
+    pub fn tooth(&self) -> ToothCut {
         ToothCut {
             alpha_rad: f64::from(self.alpha_rad),
             cutting_point_ratio: f64::from(self.cutting_point_ratio),
             centre_radius_mm: f64::from(self.centre_radius_mm),
-            tool_radius_mm,
+            tool_radius_mm: f64::from(self.contact_radius_mm),
         }
     }
 
@@ -205,7 +209,7 @@ mod tests {
         assert_eq!(geometry.len(), analysis.summary.samples);
         for (g, r) in geometry.iter().zip(&results) {
             assert!((f64::from(g.alpha_rad) - r.contact.alpha_rad).abs() < 1e-6);
-            assert!((g.arc_length_mm(5.0) - r.arc_length_mm).abs() < 1e-5);
+            assert!((g.arc_length_mm() - r.arc_length_mm).abs() < 1e-5);
             assert_eq!(g.rapid(), r.sample.rapid);
             assert_eq!(g.force().is_some(), r.contact.alpha_rad > 0.0);
         }

@@ -2,6 +2,7 @@
 //! two on one stock where the levels are the same, and sensible where they are not.
 
 use super::engine::{simulate, Cutter};
+use super::profile::Profile;
 use super::*;
 use crate::core::progress::NoProgress;
 use crate::core::tool::ToolType;
@@ -53,7 +54,7 @@ fn a_stack_carried_over_gives_the_samples_of_the_second_program_run_on_after_the
     // On after the first on the same stock …
     let (spacing, _) = resolution(&spec, BLOCK, levels.len() - 1);
     let cutter = Cutter {
-        radius_mm: 5.0,
+        profile: Profile::cylinder(5.0),
         flutes: 6,
         default_spindle_rpm: spec.default_spindle_rpm,
         force_model: None,

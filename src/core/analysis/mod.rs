@@ -13,6 +13,7 @@ pub mod kept;
 pub mod lines;
 pub mod outside;
 pub mod probe;
+pub mod profile;
 pub mod recent;
 pub mod region;
 pub mod report;
@@ -21,6 +22,7 @@ pub mod same_below;
 pub mod samples;
 pub mod sampling;
 pub mod scan_memory;
+pub mod slice_radii;
 pub mod slices;
 pub mod stack;
 
@@ -291,6 +293,7 @@ pub fn analyze_from(
         Some(kept) => kept::with_kept_bottom(levels, kept.z_bottom()),
         None => levels,
     };
+    let levels = profile::with_corner_levels(levels, &profile::Profile::of(&spec.tool));
     let (spacing, painted_cell) = resolution(spec, bounds, levels.len() - 1);
     let total_samples: usize =
         path.moves.iter().map(|m| ((crate::core::toolpath::move_length(m) / spacing).ceil() as usize).max(1)).sum();
@@ -311,11 +314,11 @@ pub fn analyze_from(
         }
     };
     let cell = slices.raster(0).cell_mm();
-    let initial: Vec<f64> = (0..slices.len()).map(|k| slices.raster(k).material_area_mm2()).collect();
+    let initial: Vec<f64> = (0..slices.len()).map(|k| slices.raster(k).material_area_fine_mm2()).collect();
 
     let total_length: f64 = path.moves.iter().map(crate::core::toolpath::move_length).sum();
     let cutter = Cutter {
-        radius_mm: spec.tool.radius_mm(),
+        profile: profile::Profile::of(&spec.tool),
         flutes: spec.tool.flutes,
         default_spindle_rpm: spec.default_spindle_rpm,
         force_model: spec.force_model,
@@ -361,16 +364,15 @@ fn assemble(
     let (outside_model, force_overload) = report.model_domain.clone().unzip();
     warnings.extend(outside_model.as_ref().and_then(OutsideModel::warning));
     warnings.extend(force_overload.as_ref().and_then(ForceOverload::warning));
-    match spec.tool.tool_type {
-        ToolType::Ball => warnings.push(
-            "ball end mill: the stock simulation treats the tool as a cylinder of its diameter (2.5-D side milling)"
-                .to_string(),
-        ),
-        ToolType::Radius if spec.tool.corner_radius_mm > 0.0 => warnings.push(format!(
-            "radius end mill: the stock simulation treats the tool as a cylinder of its diameter, without its {} mm corner radius",
-            spec.tool.corner_radius_mm
-        )),
-        _ => {}
+    let corner = profile::Profile::of(&spec.tool).corner_mm;
+    if spec.force_model.is_some() && corner > 0.0 {
+        let tool = match spec.tool.tool_type {
+            ToolType::Ball => "ball end mill".to_string(),
+            _ => format!("radius end mill (corner radius {corner} mm)"),
+        };
+        warnings.push(format!(
+            "{tool}: the slices its corner cuts are simulated at the corner's radius; their force is extrapolated from the flat end mill's model"
+        ));
     }
     if spec.default_spindle_rpm.is_none() {
         if let Some(m) = path.moves.iter().find(|m| !matches!(m.motion, Motion::Rapid) && m.spindle_rpm.is_none()) {
@@ -391,7 +393,7 @@ fn assemble(
         .map(|(k, (s, a0))| SliceSummary {
             z_top: s.z_top,
             z_bottom: s.z_bottom,
-            removed_area_mm2: a0 - slices.raster(k).material_area_mm2(),
+            removed_area_mm2: a0 - slices.raster(k).material_area_fine_mm2(),
         })
         .collect();
     let removed_volume_mm3 = slice_summaries.iter().map(|s| s.removed_area_mm2 * (s.z_top - s.z_bottom)).sum();
@@ -442,6 +444,8 @@ mod kept_tests;
 mod physical_tests;
 #[cfg(test)]
 mod probe_tests;
+#[cfg(test)]
+mod shape_tests;
 
 #[cfg(test)]
 mod tests {
@@ -495,7 +499,7 @@ mod tests {
     }
 
     #[test]
-    fn ball_and_radius_end_mills_are_told_that_their_profile_is_simulated_as_a_cylinder() {
+    fn ball_and_radius_end_mills_are_told_that_the_force_where_their_corner_cuts_is_extrapolated() {
         let block = Rect { x_min: 0.0, y_min: 0.0, x_max: 30.0, y_max: 30.0 };
         let line = Move {
             motion: Motion::Linear,
@@ -508,12 +512,19 @@ mod tests {
         };
         let path = Toolpath { moves: vec![line], events: vec![], source_units: Units::Mm, warnings: vec![] };
         let warned = |tool_type: ToolType, corner_radius_mm: f64| {
-            let spec = block_spec(EndMill { tool_type, diameter_mm: 10.0, flutes: 2, corner_radius_mm }, block);
-            let a = analyze(&path, &spec, &NoProgress).expect("analyses");
-            a.summary.warnings.into_iter().find(|w| w.contains("as a cylinder"))
+            let spec = AnalysisSpec {
+                force_model: Some(crate::core::fixtures::seed_001_ten_mm()),
+                ..block_spec(EndMill { tool_type, diameter_mm: 10.0, flutes: 2, corner_radius_mm }, block)
+            };
+            let mut extrapolated = false;
+            let a =
+                analyze_with(&path, &spec, &NoProgress, |r| extrapolated |= r.force_extrapolated).expect("analyses");
+            (a.summary.warnings.into_iter().find(|w| w.contains("extrapolated from the flat end mill")), extrapolated)
         };
-        assert!(warned(ToolType::Square, 0.0).is_none());
-        assert!(warned(ToolType::Ball, 5.0).is_some_and(|w| w.starts_with("ball end mill")));
-        assert!(warned(ToolType::Radius, 1.0).is_some_and(|w| w.contains("without its 1 mm corner radius")));
+        assert!(warned(ToolType::Square, 0.0).0.is_none());
+        let (ball, ball_samples) = warned(ToolType::Ball, 5.0);
+        assert!(ball.is_some_and(|w| w.starts_with("ball end mill")) && ball_samples);
+        let (bull, bull_samples) = warned(ToolType::Radius, 1.0);
+        assert!(bull.is_some_and(|w| w.contains("corner radius 1 mm")) && bull_samples);
     }
 }

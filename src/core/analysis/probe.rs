@@ -141,6 +141,22 @@ impl AngleTable {
                 (a.cos(), a.sin())
             })
             .collect();
+        AngleTable::of_dirs(dirs, radius_mm, cell_mm)
+    }
+
+    /// The table of the same probe directions for a tool of radius `radius_mm` (a slice
+    /// that takes a radius or ball end mill at a smaller radius, see [`super::profile`]).
+    pub fn with_radius(&self, radius_mm: f64, cell_mm: f64) -> AngleTable {
+        AngleTable::of_dirs(self.dirs.clone(), radius_mm, cell_mm)
+    }
+
+    /// The tool radius the table probes at, mm.
+    pub fn radius_mm(&self) -> f64 {
+        self.radius_mm
+    }
+
+    /// The table of the probe directions `dirs` for a tool of radius `radius_mm`.
+    fn of_dirs(dirs: Vec<(f64, f64)>, radius_mm: f64, cell_mm: f64) -> AngleTable {
         let coarse_rad = COARSE_STEP as f64 * 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
         // Coarse points n steps apart are a chord 2r·sin(n·step/2) apart.
         let skips: Vec<usize> = Certified::levels()

@@ -62,12 +62,17 @@ fn level(z_top: f64, z_bottom: f64, raster: &Raster) -> RestLevel {
     RestLevel {
         z_top,
         z_bottom,
-        area_mm2: raster.material_area_mm2(),
+        area_mm2: raster.material_area_fine_mm2(),
         point: raster.deepest_material_point().map(|(x, y)| [x, y]),
     }
 }
 
 /// The volume of material the slices of `stack` hold, mm³.
 pub fn remaining_volume_mm3(stack: &Stack) -> f64 {
-    stack.slices().iter().enumerate().map(|(k, s)| stack.raster(k).material_area_mm2() * (s.z_top - s.z_bottom)).sum()
+    stack
+        .slices()
+        .iter()
+        .enumerate()
+        .map(|(k, s)| stack.raster(k).material_area_fine_mm2() * (s.z_top - s.z_bottom))
+        .sum()
 }

@@ -29,8 +29,14 @@ pub struct Kept {
 }
 
 impl Kept {
-    /// The cut of this sample, as the rules read it (`tool_radius_mm`: the tool's).
+    /// The cut of this sample, as the rules read it (`tool_radius_mm`: the tool's). The
+    /// engagement was measured at the radius its arc length gives (the tool's, but in the
+    /// corner of a radius or ball end mill).
     pub fn cut(&self, tool_radius_mm: f64) -> SampleCut {
+        let tool_radius_mm = match self.alpha_rad > 0.0 {
+            true => f64::from(self.arc_length_mm) / f64::from(self.alpha_rad),
+            false => tool_radius_mm,
+        };
         SampleCut {
             alpha_rad: f64::from(self.alpha_rad),
             arc_length_mm: f64::from(self.arc_length_mm),

@@ -197,7 +197,7 @@ pub fn optimize_side_milling_with(
             ad_mm: r.ad_mm,
             cutting_point_ratio: r.cutting_point_ratio,
             centre_radius_mm: r.centre_radius_mm,
-            tool_radius_mm,
+            tool_radius_mm: r.contact_radius_mm,
             programmed_feed_mm_min: s.feed_mm_min,
             spindle_rpm: s.spindle_rpm.or(default_rpm),
             // A move straight down keeps its feed, in material or not.

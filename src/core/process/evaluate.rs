@@ -166,7 +166,6 @@ fn optimise_layer(
     let (mut wear_mm, mut cutting_mm, mut surface_mm) = (vec![0.0; n], vec![0.0; n], 0.0);
     let model = &candidate.life;
     let flutes = f64::from(candidate.tool.flutes);
-    let r_mm = geometry.tool_radius_mm;
     super::feeds::for_each_sample_in_plan(&layer.toolpath, geometry, &plan, |g, i| {
         let alpha_deg = f64::from(g.alpha_rad).to_degrees();
         let rpm = g.spindle().unwrap_or(0.0);
@@ -175,7 +174,7 @@ fn optimise_layer(
         }
         let feed_mm_min = plan.path.moves[i].feed_mm_min.unwrap_or(0.0);
         let fz_c_mm = feed_mm_min / (flutes * rpm);
-        let arc_length_mm = g.arc_length_mm(r_mm);
+        let arc_length_mm = g.arc_length_mm();
         let cut = if entry[i] {
             WearCut { alpha_deg, arc_length_mm, fz_p_mm: fz_c_mm, force_n: None }
         } else {
@@ -183,7 +182,7 @@ fn optimise_layer(
                 alpha_deg,
                 arc_length_mm,
                 fz_p_mm: fz_c_mm * f64::from(g.cutting_point_ratio),
-                force_n: force_at_feed(candidate.force_model, g, r_mm, candidate.tool.flutes, feed_mm_min),
+                force_n: force_at_feed(candidate.force_model, g, candidate.tool.flutes, feed_mm_min),
             }
         };
         let step_mm = f64::from(g.step_mm);

@@ -13,14 +13,14 @@ use crate::core::toolpath::{Motion, Toolpath};
 use crate::core::CoreError;
 
 /// The cut of a sample as the feed rules read it.
-pub fn sample_cut(g: &SampleGeometry, tool_radius_mm: f64) -> SampleCut {
+pub fn sample_cut(g: &SampleGeometry) -> SampleCut {
     SampleCut {
         alpha_rad: f64::from(g.alpha_rad),
-        arc_length_mm: g.arc_length_mm(tool_radius_mm),
+        arc_length_mm: g.arc_length_mm(),
         ad_mm: f64::from(g.ad_mm),
         cutting_point_ratio: f64::from(g.cutting_point_ratio),
         centre_radius_mm: f64::from(g.centre_radius_mm),
-        tool_radius_mm,
+        tool_radius_mm: f64::from(g.contact_radius_mm),
         programmed_feed_mm_min: f64::from(g.programmed_mm_min),
         spindle_rpm: g.spindle(),
         // A move straight down keeps its feed, in material or not.
@@ -41,7 +41,7 @@ pub fn optimise(path: &Toolpath, geometry: &PathGeometry, spec: &FeedSpec) -> Re
             step_mm: f64::from(g.step_mm),
             move_index: g.move_index as usize,
             rapid: g.rapid(),
-            cut: sample_cut(g, r),
+            cut: sample_cut(g),
             force_before_n: g.force(),
         });
     }
@@ -90,7 +90,7 @@ pub fn for_each_sample_in_plan(
 /// The force at a sample run at centre feed `feed_mm_min`, N: the model's curve through the
 /// simulated force at the programmed feed (exact for a single slice, the slices' shares
 /// kept otherwise; see [`ForceCurve`]).
-pub fn force_at_feed(model: ForceModel, g: &SampleGeometry, r_mm: f64, flutes: u32, feed_mm_min: f64) -> Option<f64> {
+pub fn force_at_feed(model: ForceModel, g: &SampleGeometry, flutes: u32, feed_mm_min: f64) -> Option<f64> {
     let rpm = g.spindle()?;
-    Some(ForceCurve::new(model, &sample_cut(g, r_mm), flutes, rpm, g.force()).force_n(feed_mm_min))
+    Some(ForceCurve::new(model, &sample_cut(g), flutes, rpm, g.force()).force_n(feed_mm_min))
 }

@@ -26,7 +26,6 @@ fn the_wear_and_time_from_the_kept_geometry_are_those_of_the_optimised_program_s
     let cavity = input.layers_for(c.roughing.ad_mm, c.intermediate.ad_mm).unwrap();
     let layers = plan_layers(&cavity, &c, &o, &NoProgress).unwrap();
     let flutes = f64::from(c.tool.flutes);
-    let r = c.tool.radius_mm();
     for factor in [1.0, 2.0] {
         evaluate(&layers, &c, &o, factor, &NoProgress).unwrap();
         let spec = feed_spec(&c, &o, factor);
@@ -62,8 +61,8 @@ fn the_wear_and_time_from_the_kept_geometry_are_those_of_the_optimised_program_s
                 }
                 let feed = m.feed_mm_min.unwrap_or(0.0);
                 let fz_p = feed / (flutes * f64::from(s.spindle_rpm)) * f64::from(s.cutting_point_ratio);
-                let force_n = force_at_feed(c.force_model, s, r, c.tool.flutes, feed);
-                let cut = WearCut { alpha_deg, arc_length_mm: s.arc_length_mm(r), fz_p_mm: fz_p, force_n };
+                let force_n = force_at_feed(c.force_model, s, c.tool.flutes, feed);
+                let cut = WearCut { alpha_deg, arc_length_mm: s.arc_length_mm(), fz_p_mm: fz_p, force_n };
                 kept += c.life.wear_mm(f64::from(s.step_mm), &cut);
             });
             assert!((kept - again).abs() <= 0.02 * again, "layer {} at {factor} × F*: {kept} vs {again}", l.index);

@@ -13,6 +13,7 @@
 mod along;
 mod arc_rows;
 mod arc_sweep;
+mod area;
 mod band;
 mod capsule;
 mod capsule_rows;

@@ -4,10 +4,12 @@
 
 use super::feeds::{CutMode, FeedsPrepared, FeedsRequest};
 use super::setup::{machine_limits, resolve_cost, Resolved, MAX_FEED_PER_STANDARD};
-use crate::core::conditions::{feed_mm_min, standard_centres};
+use crate::core::conditions::feed_mm_min;
 use crate::core::feed::objective::Objective;
 use crate::core::feed::plan::DEFAULT_MAX_FEED_CHANGE_PER_MM;
 use crate::core::feed::rule::FeedStrategy;
+use crate::core::standard_cut::standard_cut;
+use crate::core::tool::EndMill;
 use crate::core::tool::ToolType;
 use crate::service::error::{ApiError, Validator};
 use crate::service::lookup;
@@ -75,8 +77,9 @@ pub async fn resolve(
         (false, ..) => Some(None),
         (true, Some(f), ..) => Some(Some(f)),
         (true, None, Some(c), Some(model)) => {
-            let centres = faults.take(standard_centres(tool.diameter_mm / 2.0, c.data.conditions()))?;
-            centres.map(|(t_um, l_mm)| Some(model.model.force_n(t_um, l_mm, model.model.ad_ref_mm)))
+            let end_mill: EndMill = tool.into();
+            let cut = faults.take(standard_cut(&end_mill, c.data.conditions(), Some(&model.model)))?;
+            cut.map(|cut| cut.force_n)
         }
         // Without a model the strategy is refused; without standard conditions, the target.
         (true, None, None, Some(_)) => {

@@ -3,8 +3,9 @@
 
 use super::plans::{CandidatePrepared, PlanRequest, CANDIDATE_DIAMETER_RANGE_MM};
 use super::setup::{resolve as resolve_path_job, PathJobRefs, PathSetup, Resolved, MAX_FEED_PER_STANDARD};
-use crate::core::conditions::{feed_mm_min, standard_centres};
+use crate::core::conditions::feed_mm_min;
 use crate::core::operation::Operation;
+use crate::core::standard_cut::standard_cut;
 use crate::core::tool::{EndMill, ToolType};
 use crate::service::error::{ApiError, Validator};
 use crate::service::lookup;
@@ -123,8 +124,8 @@ pub async fn resolve(
     };
     let tool: EndMill = base.tool.geometry.into();
     let s = standard.data;
-    let (t_um, arc_mm) = standard_centres(tool.radius_mm(), s.conditions())?;
-    let standard_force_n = model.model.force_n(t_um, arc_mm, model.model.ad_ref_mm);
+    let cut = standard_cut(&tool, s.conditions(), Some(&model.model))?;
+    let (arc_mm, standard_force_n) = (cut.arc_length_mm, cut.force_n.unwrap_or_default());
     let standard_feed = feed_mm_min(s.fz_mm, tool.flutes, s.spindle_rpm);
     let price = sqlx::query_scalar::<_, Option<f64>>("SELECT price FROM tools WHERE id = $1")
         .bind(tool_id)

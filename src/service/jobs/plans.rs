@@ -10,7 +10,7 @@ use super::plan_rows;
 use super::plans_result::PlanResult;
 use super::setup::NamedRef;
 use crate::core::analysis::kept::KeptStock;
-use crate::core::conditions::{standard_centres, CuttingConditions};
+use crate::core::conditions::CuttingConditions;
 use crate::core::drawing::process_scene::{process_scene, WrittenLines};
 use crate::core::drawing::scene::Scene;
 use crate::core::insertion::DEFAULT_INSERTION_ALPHA_LIMIT_DEG;
@@ -21,6 +21,7 @@ use crate::core::process::{
     DEFAULT_MAX_FORCE_FACTOR, DEFAULT_TARGET_CONSUMPTION, MAX_CAVITY_LAYERS,
 };
 use crate::core::progress::Progress;
+use crate::core::standard_cut::standard_cut;
 use crate::core::tool::{EndMill, ToolType};
 use crate::core::tool_life::ToolLifeModel;
 use crate::core::CoreError;
@@ -364,7 +365,7 @@ pub fn run(request: PlanRequest, prepared: PlanPrepared, progress: &dyn Progress
         .as_ref()
         .map(|b| -> Result<BaselineSpec, CoreError> {
             let conditions = b.conditions;
-            let (_, arc) = standard_centres(b.tool.radius_mm(), conditions)?;
+            let arc = standard_cut(&b.tool, conditions, None)?.arc_length_mm;
             Ok(BaselineSpec {
                 name: b.name.clone(),
                 tool: b.tool,

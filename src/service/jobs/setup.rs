@@ -5,12 +5,12 @@
 //! [`crate::service::lookup`]; no kind imports another's helpers.
 use crate::core::analysis::feed_cap::cap_feeds;
 use crate::core::analysis::{AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG};
-use crate::core::conditions::standard_centres;
 use crate::core::costing::cost::Rates;
 use crate::core::costing::estimate::CostModel;
 use crate::core::force_model::ForceModel;
 use crate::core::kinematics::MachineLimits;
 use crate::core::operation::Operation;
+use crate::core::standard_cut::standard_cut;
 use crate::core::tool::{EndMill, ToolType};
 use crate::core::tool_life::ToolLifeModel;
 use crate::core::toolpath::Toolpath;
@@ -412,13 +412,14 @@ pub async fn resolve_cost(
     let (Some(life), Some(standard), Some(rates), Some(limits)) = (life, standard, rates, limits) else {
         return Ok(None);
     };
-    let Some((t_um, arc_mm)) = faults.take(
-        standard_centres(base.tool.geometry.diameter_mm / 2.0, standard.data.conditions()).map_err(ApiError::from),
-    )?
+    let model = base.force_model.as_ref().map(|m| m.model);
+    let tool: EndMill = base.tool.geometry.into();
+    let Some(cut) =
+        faults.take(standard_cut(&tool, standard.data.conditions(), model.as_ref()).map_err(ApiError::from))?
     else {
         return Ok(None);
     };
-    let standard_force_n = base.force_model.as_ref().map(|m| m.model.force_n(t_um, arc_mm, m.model.ad_ref_mm));
+    let (arc_mm, standard_force_n) = (cut.arc_length_mm, cut.force_n);
     let price = sqlx::query_scalar::<_, Option<f64>>("SELECT price FROM tools WHERE id = $1")
         .bind(tool_id)
         .fetch_one(pool)

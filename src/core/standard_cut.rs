@@ -1,0 +1,136 @@
+//! A tool's standard straight cut as the analyses see it: its chip thickness `t_m`, arc
+//! length `L` and the force F* there. The tool life is calibrated at this cut (its life is
+//! the length of it the tool lasts, MODEL.md §9), and the constant-force feed targets F*
+//! (MODEL.md §3), so the analyses must measure the same cut the same way.
+//!
+//! A square end mill's standard cut is MODEL.md §2's straight case: `α = acos(1 − Rd/r)`,
+//! `L = r·α`. A radius or ball end mill is simulated with its profile (see
+//! [`crate::core::analysis::profile`]): where its corner cuts, each slice engages at the
+//! tool's radius there (a ball at Ad 0.6 and Rd 0.4 D is 2.4 mm across at the surface, not
+//! 5, and engages about 62°, not 78.5°). So its standard cut is a straight pass at Rd and Ad
+//! along a wall, simulated, and read in the middle.
+
+use crate::core::analysis::profile::Profile;
+use crate::core::analysis::{analyze_with, AnalysisSpec, StockRegion};
+use crate::core::conditions::{feed_mm_min, standard_centres, CuttingConditions};
+use crate::core::force_model::ForceModel;
+use crate::core::progress::NoProgress;
+use crate::core::stock::Rect;
+use crate::core::tool::EndMill;
+use crate::core::toolpath::{Motion, Move, Toolpath, Units, P3};
+use crate::core::CoreError;
+
+/// The simulated pass is this many tool diameters long; it is read in its middle.
+const PASS_DIAMETERS: f64 = 6.0;
+/// The wall's material reaches this many tool diameters away from it.
+const WALL_DEPTH_DIAMETERS: f64 = 2.0;
+
+/// A tool's standard straight cut.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StandardCut {
+    /// Maximum undeformed chip thickness, µm.
+    pub t_m_um: f64,
+    /// Engagement arc length, mm.
+    pub arc_length_mm: f64,
+    /// The force there, N (F*), when a force model is given: a square end mill's at the
+    /// model's reference depth, as seed 001 measured it; a shaped tool's summed over the
+    /// slices it engages at the cut's Ad.
+    pub force_n: Option<f64>,
+}
+
+/// The standard straight cut of `tool` at `conditions` (with `model`'s force).
+pub fn standard_cut(
+    tool: &EndMill,
+    conditions: CuttingConditions,
+    model: Option<&ForceModel>,
+) -> Result<StandardCut, CoreError> {
+    let (t_m_um, arc_length_mm) = standard_centres(tool.radius_mm(), conditions)?;
+    if Profile::of(tool).is_cylinder() {
+        let force_n = model.map(|m| m.force_n(t_m_um, arc_length_mm, m.ad_ref_mm));
+        return Ok(StandardCut { t_m_um, arc_length_mm, force_n });
+    }
+    simulated(tool, conditions, model)
+}
+
+/// The standard cut of a radius or ball end mill, simulated: a pass along x with the tool's
+/// flank reaching Rd into the material below y = 0, its tip Ad deep, read at the sample
+/// nearest the middle.
+fn simulated(tool: &EndMill, c: CuttingConditions, model: Option<&ForceModel>) -> Result<StandardCut, CoreError> {
+    let d = tool.diameter_mm;
+    let length = PASS_DIAMETERS * d;
+    let wall = Rect { x_min: 0.0, y_min: -WALL_DEPTH_DIAMETERS * d, x_max: length, y_max: 0.0 };
+    let y = tool.radius_mm() - c.rd_mm;
+    let pass = Move {
+        motion: Motion::Linear,
+        start: P3::new(-d, y, -c.ad_mm),
+        end: P3::new(length + d, y, -c.ad_mm),
+        feed_mm_min: Some(feed_mm_min(c.fz_mm, tool.flutes, c.spindle_rpm)),
+        spindle_rpm: Some(c.spindle_rpm),
+        tool: None,
+        line: 1,
+    };
+    let path = Toolpath { moves: vec![pass], events: vec![], source_units: Units::Mm, warnings: vec![] };
+    let spec = AnalysisSpec {
+        force_model: model.copied(),
+        ..AnalysisSpec::new(*tool, vec![StockRegion::Rect(wall)], 0.0, -c.ad_mm - d)
+    };
+    let middle = length / 2.0;
+    let mut nearest: Option<(f64, StandardCut)> = None;
+    analyze_with(&path, &spec, &NoProgress, |r| {
+        let off = (r.sample.p.x - middle).abs();
+        if nearest.is_none_or(|(o, _)| off < o) {
+            let cut = StandardCut { t_m_um: r.t_m_um, arc_length_mm: r.arc_length_mm, force_n: r.force_n };
+            nearest = Some((off, cut));
+        }
+    })?;
+    match nearest {
+        Some((_, cut)) if cut.arc_length_mm > 0.0 => Ok(cut),
+        _ => Err(CoreError::invalid(
+            "conditions",
+            format!("the tool's standard cut (Rd {} mm, Ad {} mm) does not reach the material", c.rd_mm, c.ad_mm),
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::fixtures::seed_001_ten_mm;
+    use crate::core::tool::ToolType;
+
+    fn conditions(rd_mm: f64, ad_mm: f64) -> CuttingConditions {
+        CuttingConditions { spindle_rpm: 10_000.0, fz_mm: 0.1, rd_mm, ad_mm }
+    }
+
+    #[test]
+    fn a_square_end_mills_standard_cut_is_the_straight_case_of_model_section_2() {
+        let tool = EndMill { tool_type: ToolType::Square, diameter_mm: 10.0, flutes: 6, corner_radius_mm: 0.0 };
+        let model = seed_001_ten_mm();
+        let cut = standard_cut(&tool, conditions(0.5, 10.0), Some(&model)).expect("cuts");
+        assert!((cut.t_m_um - 43.6).abs() < 0.05 && (cut.arc_length_mm - 2.26).abs() < 0.005);
+        assert!((cut.force_n.expect("a model") - 269.1).abs() < 0.5, "F* is β0 at the design centre");
+    }
+
+    #[test]
+    fn a_balls_standard_cut_engages_at_its_radius_near_the_surface() {
+        let tool = EndMill { tool_type: ToolType::Ball, diameter_mm: 10.0, flutes: 2, corner_radius_mm: 5.0 };
+        let cut = standard_cut(&tool, conditions(4.0, 0.6), None).expect("cuts");
+        // The wall lies 1 mm from the axis; the ball is 2.375 mm in radius at the surface
+        // and 0 at its tip: the slice engaged most, near the surface, engages between the
+        // cylinder's acos(1/5) and the surface's acos(1/2.375).
+        // t_m = fz·sin α on a straight cut, and L = ρ·α at the slice's radius ρ.
+        let alpha = (cut.t_m_um / 1000.0 / 0.1).asin();
+        assert!(alpha.to_degrees() > 55.0 && alpha.to_degrees() < 65.2, "α {}", alpha.to_degrees());
+        let rho = cut.arc_length_mm / alpha;
+        assert!(rho > 1.0 && rho < 2.375, "ρ {rho}");
+    }
+
+    #[test]
+    fn a_radius_end_mills_standard_cut_at_full_depth_is_its_flanks() {
+        let tool = EndMill { tool_type: ToolType::Radius, diameter_mm: 10.0, flutes: 6, corner_radius_mm: 1.0 };
+        let (t, l) = standard_centres(5.0, conditions(0.5, 10.0)).expect("cuts");
+        let cut = standard_cut(&tool, conditions(0.5, 10.0), None).expect("cuts");
+        assert!((cut.arc_length_mm - l).abs() < 0.5f64.to_radians() * 5.0, "{} against {l}", cut.arc_length_mm);
+        assert!((cut.t_m_um - t).abs() < 0.02 * t);
+    }
+}
