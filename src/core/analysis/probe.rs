@@ -44,7 +44,7 @@ const CERTIFY_MARGIN_CELLS: f64 = 1e-6;
 pub struct AngleTable {
     radius_mm: f64,
     /// Two turns, so a half-turn scan starting anywhere needs no wrap-around.
-    dirs: Vec<(f64, f64)>,
+    dirs: std::sync::Arc<[(f64, f64)]>,
     /// The probe offsets from the tool centre in raster cells, same order.
     offsets: Vec<(f64, f64)>,
     /// Per certification level: coarse points after a certified one that share its state.
@@ -135,7 +135,7 @@ impl AngleTable {
     /// The probe directions, with the coarse points a certified probe decides for a tool
     /// of radius `radius_mm` on rasters with cells of `cell_mm`.
     pub fn new(radius_mm: f64, cell_mm: f64) -> AngleTable {
-        let dirs: Vec<(f64, f64)> = (0..2 * PROBE_STEPS_PER_TURN)
+        let dirs: std::sync::Arc<[(f64, f64)]> = (0..2 * PROBE_STEPS_PER_TURN)
             .map(|k| {
                 let a = k as f64 * 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
                 (a.cos(), a.sin())
@@ -147,7 +147,7 @@ impl AngleTable {
     /// The table of the same probe directions for a tool of radius `radius_mm` (a slice
     /// that takes a radius or ball end mill at a smaller radius, see [`super::profile`]).
     pub fn with_radius(&self, radius_mm: f64, cell_mm: f64) -> AngleTable {
-        AngleTable::of_dirs(self.dirs.clone(), radius_mm, cell_mm)
+        AngleTable::of_dirs(std::sync::Arc::clone(&self.dirs), radius_mm, cell_mm)
     }
 
     /// The tool radius the table probes at, mm.
@@ -155,8 +155,9 @@ impl AngleTable {
         self.radius_mm
     }
 
-    /// The table of the probe directions `dirs` for a tool of radius `radius_mm`.
-    fn of_dirs(dirs: Vec<(f64, f64)>, radius_mm: f64, cell_mm: f64) -> AngleTable {
+    /// The table of the probe directions `dirs` (shared by the tables of one simulation)
+    /// for a tool of radius `radius_mm`.
+    fn of_dirs(dirs: std::sync::Arc<[(f64, f64)]>, radius_mm: f64, cell_mm: f64) -> AngleTable {
         let coarse_rad = COARSE_STEP as f64 * 2.0 * PI / PROBE_STEPS_PER_TURN as f64;
         // Coarse points n steps apart are a chord 2r·sin(n·step/2) apart.
         let skips: Vec<usize> = Certified::levels()

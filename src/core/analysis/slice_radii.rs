@@ -31,6 +31,8 @@ pub struct SliceRadii {
     tables: Vec<(i64, AngleTable)>,
     /// The table of the full radius (every slice of a square end mill).
     full: AngleTable,
+    /// The tip (its z's bits) and cut the wanted radii were last found for.
+    found_for: Option<(u64, usize)>,
 }
 
 impl SliceRadii {
@@ -44,6 +46,7 @@ impl SliceRadii {
             wanted: vec![profile.radius_mm; slices],
             tables: Vec::new(),
             full: AngleTable::new(profile.radius_mm, cell_mm),
+            found_for: None,
         }
     }
 
@@ -83,6 +86,11 @@ impl SliceRadii {
         if self.cylinder() {
             return false;
         }
+        if self.found_for == Some((tip_z.to_bits(), cut)) {
+            // A pass at one height: the radii were adopted when it began.
+            return false;
+        }
+        self.found_for = Some((tip_z.to_bits(), cut));
         let r = self.profile.radius_mm;
         let step = self.cell_mm / RADIUS_STEPS_PER_CELL;
         let mut differ = false;
