@@ -3,13 +3,16 @@
 //! chip thickness and force, and the critical regions where the tool is overloaded.
 
 pub mod arcs;
+pub mod budget;
 pub mod chunk;
+pub mod continued;
 pub mod engages;
 pub mod engine;
 pub mod feed_cap;
 pub mod geometry;
 pub mod height_map;
 pub mod kept;
+pub mod levels;
 pub mod lines;
 pub mod outside;
 pub mod probe;
@@ -31,6 +34,7 @@ use crate::core::stock::{Raster, Rect};
 use crate::core::tool::{EndMill, ToolType};
 use crate::core::toolpath::{Motion, Toolpath};
 use crate::core::CoreError;
+pub use budget::{resolution, DEFAULT_STOCK_MEMORY_BYTES};
 use engine::{simulate, Cutter};
 use kept::KeptStock;
 use outside::{ForceOverload, OutsideModel};
@@ -55,8 +59,6 @@ pub const CELL_PER_DIAMETER: f64 = 1.0 / 100.0;
 /// Raster cell bounds, mm.
 pub const MIN_CELL_MM: f64 = 0.002;
 pub const MAX_CELL_MM: f64 = 0.5;
-/// Raster memory the analysis may use, cells over all slices (one byte each: 128 MiB).
-pub const MAX_RASTER_CELLS: f64 = 128.0 * 1024.0 * 1024.0;
 /// Painting this many raster cells takes about as long as simulating one sample: the
 /// weight of painting the stock in a job's progress. (BENCHMARKS.md: tiger.nc's stock,
 /// 8.4 M cells, paints in about 50 ms, and its samples take about 0.8 µs each; the
@@ -94,12 +96,14 @@ pub struct AnalysisSpec {
     pub alpha_limit_deg: f64,
     /// 0: no series.
     pub series_points: usize,
+    /// Memory the stock's slices may take, bytes (see [`budget`]).
+    pub stock_memory_bytes: usize,
 }
 
 impl AnalysisSpec {
     /// `tool` through `stock` from `z_top` down to `z_bottom`, with the defaults for the
     /// rest: nothing open, no force model or spindle speed, the default rapid rate, sample
-    /// spacing, cell and engagement limit, and no series.
+    /// spacing, cell and engagement limit, no series, and the default stock memory budget.
     pub fn new(tool: EndMill, stock: Vec<StockRegion>, z_top: f64, z_bottom: f64) -> AnalysisSpec {
         AnalysisSpec {
             tool,
@@ -114,12 +118,14 @@ impl AnalysisSpec {
             cell_mm: None,
             alpha_limit_deg: DEFAULT_ALPHA_LIMIT_DEG,
             series_points: 0,
+            stock_memory_bytes: DEFAULT_STOCK_MEMORY_BYTES,
         }
     }
 }
 
-/// One z slice of the simulated stock. The slices follow the z levels the program cuts
-/// (at most 16; where levels are merged, the layers the program cuts flat stay exact).
+/// One z slice of the simulated stock. The slices follow the z levels the program cuts:
+/// every layer it cuts flat, and its other levels merged down to 16 slices; where the
+/// stock memory budget holds fewer, levels are merged further, the layers last.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, utoipa::ToSchema)]
 pub struct SliceSummary {
     pub z_top: f64,
@@ -137,6 +143,9 @@ pub struct Summary {
     /// Memory the slices' rasters took at the end of the simulation, bytes: slices that
     /// were still alike shared one raster.
     pub raster_memory_bytes: usize,
+    /// Memory the slices' rasters were allowed, bytes: levels beyond what it holds at the
+    /// cell are merged, and the cell is coarsened where even 16 slices do not fit.
+    pub stock_memory_budget_bytes: usize,
     pub slices: Vec<SliceSummary>,
     /// Length of feed moves in material, mm.
     pub cutting_length_mm: f64,
@@ -180,16 +189,6 @@ pub struct Analysis {
     pub series: Option<Series>,
 }
 
-/// The sample spacing and raster cell an analysis of `spec` uses.
-pub fn resolution(spec: &AnalysisSpec, bounds: Rect, slices: usize) -> (f64, f64) {
-    let d = spec.tool.diameter_mm;
-    let spacing = spec.sample_spacing_mm.unwrap_or((SPACING_PER_DIAMETER * d).min(DEFAULT_MAX_SPACING_MM));
-    let wanted = spec.cell_mm.unwrap_or((CELL_PER_DIAMETER * d).clamp(MIN_CELL_MM, MAX_CELL_MM));
-    let area = (bounds.x_max - bounds.x_min) * (bounds.y_max - bounds.y_min);
-    let floor = (area * slices as f64 / MAX_RASTER_CELLS).sqrt();
-    (spacing, wanted.max(floor))
-}
-
 /// The sample spacing of an analysis of `path` and the number of samples it takes.
 pub fn sample_count(path: &Toolpath, spec: &AnalysisSpec) -> (f64, f64) {
     let (spacing, _) = resolution(spec, region::union_bounds(&spec.stock), 1);
@@ -208,6 +207,9 @@ pub fn check(path: &Toolpath, spec: &AnalysisSpec) -> Result<(), CoreError> {
         require_positive("cell_mm", c)?;
     }
     require_positive("rapid_mm_min", spec.rapid_mm_min)?;
+    if spec.stock_memory_bytes == 0 {
+        return Err(CoreError::invalid("stock_memory_bytes", "must be positive"));
+    }
     if !(spec.alpha_limit_deg > 0.0 && spec.alpha_limit_deg < 180.0) {
         return Err(CoreError::invalid("alpha_limit_deg", "must be between 0 and 180"));
     }
@@ -286,7 +288,10 @@ pub fn analyze_from(
             .map_err(|e| CoreError::invalid("stock.from_job", e))?,
         None => spec.z_bottom,
     };
-    let levels = slices::slice_levels(path, z_bottom.min(spec.z_bottom), spec.z_top);
+    let wanted = levels::Levels::of(path, z_bottom.min(spec.z_bottom), spec.z_top, spec.tool.diameter_mm).wanted();
+    let wanted_slices = wanted.slices();
+    let (kept_slices, wanted_cell) = budget::slices_within(spec, wanted_slices, bounds, start.map(|k| k.grid));
+    let levels = wanted.merged_to(kept_slices).z();
     let levels = match start {
         Some(kept) => kept::with_kept_bottom(levels, kept.z_bottom()),
         None => levels,
@@ -338,6 +343,7 @@ pub fn analyze_from(
     let report = builder.finish();
     let mut analysis = assemble(path, spec, report, &slices, &initial, spacing, cell);
     analysis.summary.rest_material = cavity.then(|| RestMaterial::of(&slices));
+    analysis.summary.warnings.extend(budget::warning(spec, (wanted_slices, wanted_cell), (kept_slices, cell)));
     Ok((analysis, slices))
 }
 
@@ -411,6 +417,7 @@ fn assemble(
             sample_spacing_mm: spacing,
             cell_mm: cell,
             raster_memory_bytes: slices.memory_bytes(),
+            stock_memory_budget_bytes: spec.stock_memory_bytes,
             slices: slice_summaries,
             cutting_length_mm: report.cutting_length_mm,
             air_cut_length_mm: report.air_cut_length_mm,
@@ -442,6 +449,9 @@ mod kept_tests;
 mod physical_tests;
 #[cfg(test)]
 mod probe_tests;
+
+#[cfg(test)]
+mod depth_tests;
 
 #[cfg(test)]
 mod tests {
