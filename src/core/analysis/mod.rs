@@ -280,7 +280,7 @@ pub fn analyze_from(
     mut sink: impl FnMut(&engine::SampleResult),
 ) -> Result<(Analysis, Stack), CoreError> {
     check(path, spec)?;
-    let bounds = region::union_bounds(&spec.stock);
+    let bounds: Rect = region::union_bounds(&spec.stock);
     // A kept stock's layer reaches down to the program's deepest feed move, within what
     // lies under it (see [`kept`]).
     let z_bottom = match start {
