@@ -167,3 +167,30 @@ impl Config {
         self.max_wait_s.min(self.request_timeout_s.saturating_sub(1))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    /// `dieplan serve`'s flags alone.
+    #[derive(Parser)]
+    struct Serve {
+        #[command(flatten)]
+        config: Config,
+    }
+
+    /// The stock memory budget `args` set, bytes.
+    fn budget(args: &[&str]) -> Result<usize, clap::Error> {
+        let argv = std::iter::once("serve").chain(args.iter().copied());
+        Serve::try_parse_from(argv).map(|s| s.config.stock_memory_bytes())
+    }
+
+    #[test]
+    fn the_stock_memory_budget_is_given_in_mib_defaults_to_a_gib_and_is_never_zero() {
+        assert_eq!(budget(&[]).ok(), Some(1 << 30));
+        assert_eq!(Config::with_database(std::path::PathBuf::from("x.sqlite")).stock_memory_bytes(), 1 << 30);
+        assert_eq!(budget(&["--stock-memory-mb", "64"]).ok(), Some(64 << 20));
+        assert!(budget(&["--stock-memory-mb", "0"]).is_err());
+    }
+}
