@@ -17,6 +17,10 @@ pub const DEFAULT_STOCK_MEMORY_BYTES: usize = 1 << 30;
 /// cells, and per tile of 8 × 8 cells a count and four neighbourhood counts (1 + 4/256 +
 /// 5/64 ≈ 1.09), rounded up.
 pub const RASTER_BYTES_PER_CELL: f64 = 1.1;
+/// Bytes in a mebibyte, the unit the warnings give the budget in.
+pub const MIB: f64 = 1024.0 * 1024.0;
+/// Decimals of the cells the warnings give, mm (a micrometre: the finest cell is 2 µm).
+const CELL_DECIMALS: usize = 3;
 
 /// Most slices an analysis keeps, whatever its budget: a level needs a slice's height
 /// ([`super::levels::MIN_SLICE_MM`]) and ten tool diameters of flat cutting to be wanted,
@@ -40,7 +44,10 @@ pub fn slices_kept(wanted: usize, fit: usize) -> usize {
 pub fn slices_within(spec: &AnalysisSpec, wanted: usize, bounds: Rect, grid: Option<Grid>) -> (usize, f64) {
     let (cell_mm, cells) = match grid {
         Some(g) => (g.cell_mm, g.cells()),
-        None => (wanted_cell_mm(spec), Raster::cell_count(bounds, wanted_cell_mm(spec))),
+        None => {
+            let cell_mm = wanted_cell_mm(spec);
+            (cell_mm, Raster::cell_count(bounds, cell_mm))
+        }
     };
     (slices_kept(wanted, slices_that_fit(spec.stock_memory_bytes, cells)), cell_mm)
 }
@@ -69,17 +76,22 @@ pub fn resolution(spec: &AnalysisSpec, bounds: Rect, slices: usize) -> (f64, f64
 pub fn warning(spec: &AnalysisSpec, wanted: (usize, f64), kept: (usize, f64)) -> Option<String> {
     let ((wanted_slices, wanted_cell), (slices, cell_mm)) = (wanted, kept);
     let budget = format!("the stock memory budget ({} MiB)", spec.stock_memory_bytes as f64 / MIB);
+    let mm = |v: f64| format!("{v:.CELL_DECIMALS$} mm");
     let merged = (slices < wanted_slices).then(|| {
-        format!("levels merged to {slices} slices of the {wanted_slices} the program cuts at: {budget} holds no more at a {cell_mm} mm cell")
+        format!(
+            "levels merged to {slices} slices of the {wanted_slices} the program cuts at: {budget} holds no more at a {} cell",
+            mm(cell_mm)
+        )
     });
     let coarsened = (cell_mm > wanted_cell).then(|| {
-        format!("the raster cell coarsened from {wanted_cell} to {cell_mm:.4} mm: {budget} holds no more than {slices} slices of finer ones")
+        format!(
+            "the raster cell coarsened from {} to {}: {budget} holds no more than {slices} slices of finer ones",
+            mm(wanted_cell),
+            mm(cell_mm)
+        )
     });
     match (merged, coarsened) {
         (Some(m), Some(c)) => Some(format!("{m}; {c}")),
         (m, c) => m.or(c),
     }
 }
-
-/// Bytes in a mebibyte.
-pub const MIB: f64 = 1024.0 * 1024.0;

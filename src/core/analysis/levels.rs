@@ -27,7 +27,8 @@ pub const MAX_SLICES: usize = 16;
 /// A level the program cuts flat for at least this share of its feed length is a layer
 /// level (a roughing or finishing layer). The flat stepovers of a 3-D finishing pass (a
 /// fraction of a millimetre each) stay far below it; each layer of a program that roughs
-/// in a few dozen layers reaches it.
+/// in up to fifty layers reaches it (deeper programs' layers reach
+/// [`LAYER_LEVEL_DIAMETERS`]).
 pub const LAYER_LEVEL_SHARE: f64 = 0.02;
 /// A level the program cuts flat for at least this many tool diameters is a layer level
 /// too, whatever its share: each of the 58 layers of a z-level roughing (under 2 % of its
@@ -116,8 +117,8 @@ impl Levels {
         Levels { levels, floor, layer_mm }
     }
 
-    /// The levels the analysis wants: every layer level, and the others merged down to
-    /// [`MAX_SLICES`] slices (as many as there are layer levels left room for).
+    /// The levels the analysis wants: every layer level, and as many of the others as
+    /// leave [`MAX_SLICES`] slices (none when the layer levels alone make more).
     pub fn wanted(mut self) -> Levels {
         self.merge_to(MAX_SLICES, false);
         self

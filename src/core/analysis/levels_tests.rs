@@ -12,6 +12,7 @@ fn line(start: P3, end: P3) -> Move {
     Move { motion: Motion::Linear, start, end, feed_mm_min: Some(100.0), spindle_rpm: None, tool: None, line: 1 }
 }
 
+/// A program of `moves`, in mm.
 fn program(moves: Vec<Move>) -> Toolpath {
     Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] }
 }
