@@ -228,6 +228,7 @@ fn judge(file: &Path, case: &Case, s: &Setup) -> Judged {
         cell_mm: None,
         alpha_limit_deg: LIMIT_DEG,
         series_points: 0,
+        stock_memory_bytes: dieplan::core::analysis::DEFAULT_STOCK_MEMORY_BYTES,
     };
     let kinds = kinds(&path);
     let (mut full_depth, mut shallow, mut entries) =

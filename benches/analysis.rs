@@ -78,6 +78,7 @@ fn spec(
         cell_mm: None,
         alpha_limit_deg: DEFAULT_ALPHA_LIMIT_DEG,
         series_points: 0,
+        stock_memory_bytes: dieplan::core::analysis::DEFAULT_STOCK_MEMORY_BYTES,
     }
 }
 

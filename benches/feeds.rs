@@ -30,6 +30,7 @@ fn analysis_spec(tool: EndMill, stock: Rect, z_bottom: f64, model: Option<ForceM
         cell_mm: None,
         alpha_limit_deg: DEFAULT_ALPHA_LIMIT_DEG,
         series_points: 0,
+        stock_memory_bytes: dieplan::core::analysis::DEFAULT_STOCK_MEMORY_BYTES,
     }
 }
 

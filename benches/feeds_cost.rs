@@ -126,6 +126,7 @@ fn run(label: &str, gcode: &str, tool: &Tool, stock: Rect, z_bottom: f64, object
         cell_mm: None,
         alpha_limit_deg: DEFAULT_ALPHA_LIMIT_DEG,
         series_points: 0,
+        stock_memory_bytes: dieplan::core::analysis::DEFAULT_STOCK_MEMORY_BYTES,
     };
     let life = ToolLifeModel {
         life_m: 320.0,

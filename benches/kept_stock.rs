@@ -14,6 +14,7 @@
 //!   35 mm deep) as a pocket stock, analysed with the 10 mm end mill along the program the
 //!   README's plan example writes for it (planned first, not timed).
 
+use dieplan::core::analysis::DEFAULT_STOCK_MEMORY_BYTES;
 use dieplan::core::progress::NoProgress;
 use dieplan::service::auth::Caller;
 use dieplan::service::jobs::kept_stock::{decode, encode};
@@ -52,7 +53,8 @@ fn main() {
     let pool =
         runtime.block_on(dieplan::service::store::open(&dir.path().join("bench.sqlite").into())).expect("database");
     let accept = |kind: JobKind, input: Value| {
-        let submission = Submission { pool: &pool, caller: &Caller::Open };
+        let submission =
+            Submission { pool: &pool, caller: &Caller::Open, stock_memory_bytes: DEFAULT_STOCK_MEMORY_BYTES };
         runtime.block_on(kinds::accept(&submission, kind, input, "")).unwrap_or_else(|e| panic!("{kind:?}: {e:?}"))
     };
     // The case study's program: the README's plan example, planned once (not timed).
@@ -60,7 +62,8 @@ fn main() {
         JobKind::Plan,
         json!({"contour": cavity_contour(), "z_top": 0, "z_bottom": -35, "diameters_mm": [10], "sample_spacing_mm": 0.1}),
     );
-    let planned = kinds::run(JobKind::Plan, &plan.input, &plan.prepared, &NoProgress).expect("plans");
+    let planned =
+        kinds::run(JobKind::Plan, &plan.input, &plan.prepared, &NoProgress, DEFAULT_STOCK_MEMORY_BYTES).expect("plans");
     let program = planned.program.expect("a plan writes a program");
     let cases = [
         (
@@ -77,10 +80,13 @@ fn main() {
     ];
     for (label, input) in cases {
         let job = accept(JobKind::Analysis, input);
-        let (analysis_s, out) =
-            fastest(runs, || kinds::run(JobKind::Analysis, &job.input, &job.prepared, &NoProgress).expect("analyses"));
+        let (analysis_s, out) = fastest(runs, || {
+            kinds::run(JobKind::Analysis, &job.input, &job.prepared, &NoProgress, DEFAULT_STOCK_MEMORY_BYTES)
+                .expect("analyses")
+        });
         let stored = out.stock.expect("an analysis keeps its stock");
-        let (decode_s, kept) = fastest(runs, || decode(stored.format, &stored.body).expect("decodes"));
+        let (decode_s, kept) =
+            fastest(runs, || decode(stored.format, &stored.body, DEFAULT_STOCK_MEMORY_BYTES).expect("decodes"));
         let (encode_s, again) = fastest(runs, || encode(&kept));
         assert_eq!(again.body.len(), stored.body.len(), "{label}: encoding again gives the same size");
         let s = &out.result["summary"];

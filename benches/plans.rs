@@ -20,6 +20,7 @@
 //! leave the yardstick out (for profiling one case; no ratios then).
 
 use dieplan::core::analysis::geometry::SampleGeometry;
+use dieplan::core::analysis::DEFAULT_STOCK_MEMORY_BYTES;
 use dieplan::core::progress::NoProgress;
 use dieplan::service::auth::Caller;
 use dieplan::service::jobs::kind::Submission;
@@ -101,7 +102,7 @@ fn time(case: &Prepared, runs: usize) -> (f64, Value, String) {
     let mut program = None;
     for _ in 0..runs {
         let start = Instant::now();
-        let out = kinds::run(case.kind, &case.input, &case.prepared, &NoProgress)
+        let out = kinds::run(case.kind, &case.input, &case.prepared, &NoProgress, DEFAULT_STOCK_MEMORY_BYTES)
             .unwrap_or_else(|e| panic!("{}: {e}", case.label));
         best = best.min(start.elapsed().as_secs_f64());
         result = out.result;
@@ -245,7 +246,8 @@ fn main() {
     let pool =
         runtime.block_on(dieplan::service::store::open(&dir.path().join("bench.sqlite").into())).expect("database");
     let prepare = |case: Case| -> Prepared {
-        let submission = Submission { pool: &pool, caller: &Caller::Open };
+        let submission =
+            Submission { pool: &pool, caller: &Caller::Open, stock_memory_bytes: DEFAULT_STOCK_MEMORY_BYTES };
         let accepted = runtime
             .block_on(kinds::accept(&submission, case.kind, case.input.clone(), ""))
             .unwrap_or_else(|e| panic!("{}: {e:?}", case.label));

@@ -8,7 +8,10 @@
 //! - a z-level roughing with the ball end mill: passes 3 mm apart across a block, five
 //!   levels 0.6 mm apart;
 //! - a raster pass of the ball end mill over a slanted surface: passes 1 mm apart, each
-//!   0.2 mm deeper than the last.
+//!   0.2 mm deeper than the last;
+//! - a z-level roughing of a 35 mm deep cavity at Ad 0.6, square and ball (issue 32 item 2):
+//!   58 levels of passes 3 mm apart, each level under 2 % of the program's feed length,
+//!   with the slices, the stock's memory and the time.
 //!
 //! Every pass runs beyond the block at both ends, so the material each removes depends
 //! only on y: the exact volume is the block's length times the integral across y of the
@@ -29,9 +32,13 @@ use std::time::Instant;
 mod fixtures;
 use fixtures::wanted;
 
-/// The block the passes cross: 50 mm long in x, 40 mm wide in y, 10 mm deep.
+/// The block the passes cross: 50 mm long in x, 40 mm wide in y, 10 mm deep (35 mm for the
+/// deep roughing).
 const BLOCK: Rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 50.0, y_max: 40.0 };
 const BLOCK_DEPTH_MM: f64 = 10.0;
+const DEEP_BLOCK_DEPTH_MM: f64 = 35.0;
+/// Levels of the deep roughing: Ad 35/58 ≈ 0.6 mm.
+const DEEP_LEVELS: u32 = 58;
 /// Steps across y of the numerical integration of the exact volume.
 const INTEGRATION_STEPS: usize = 400_000;
 const D_MM: f64 = 10.0;
@@ -87,41 +94,46 @@ fn program(passes: &[Pass]) -> Toolpath {
     Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] }
 }
 
-/// The volume `passes` of `tool` remove from the block, from the tool's profile, mm³.
-fn exact_volume_mm3(tool: &EndMill, passes: &[Pass]) -> f64 {
+/// The volume `passes` of `tool` remove from the block `depth_mm` deep, from the tool's
+/// profile, mm³.
+fn exact_volume_mm3(tool: &EndMill, passes: &[Pass], depth_mm: f64) -> f64 {
     let dy = (BLOCK.y_max - BLOCK.y_min) / INTEGRATION_STEPS as f64;
     let area: f64 = (0..INTEGRATION_STEPS)
         .map(|i| {
             let y = BLOCK.y_min + (i as f64 + 0.5) * dy;
             let lowest =
                 passes.iter().map(|p| p.z + profile_height_mm(tool, (y - p.y).abs())).fold(f64::INFINITY, f64::min);
-            (0.0 - lowest.max(-BLOCK_DEPTH_MM)).max(0.0) * dy
+            (0.0 - lowest.max(-depth_mm)).max(0.0) * dy
         })
         .sum();
     area * (BLOCK.x_max - BLOCK.x_min)
 }
 
-fn spec(tool: EndMill) -> AnalysisSpec {
-    let block = AnalysisSpec::new(tool, vec![StockRegion::Rect(BLOCK)], 0.0, -BLOCK_DEPTH_MM);
+/// The analysis of `tool` through the block `depth_mm` deep.
+fn spec(tool: EndMill, depth_mm: f64) -> AnalysisSpec {
+    let block = AnalysisSpec::new(tool, vec![StockRegion::Rect(BLOCK)], 0.0, -depth_mm);
     AnalysisSpec { default_spindle_rpm: Some(10000.0), ..block }
 }
 
-fn case(label: &str, tool: EndMill, passes: &[Pass]) {
+/// Analyses `passes` of `tool` through the block `depth_mm` deep and prints the volume
+/// removed against the exact one, the slices, the stock's memory and the time.
+fn case(label: &str, tool: EndMill, passes: &[Pass], depth_mm: f64) {
     if !wanted(label) {
         return;
     }
     let path = program(passes);
-    let exact = exact_volume_mm3(&tool, passes);
+    let exact = exact_volume_mm3(&tool, passes, depth_mm);
     let start = Instant::now();
-    let a = analyze(&path, &spec(tool), &NoProgress).expect("analyses");
+    let a = analyze(&path, &spec(tool, depth_mm), &NoProgress).expect("analyses");
     let secs = start.elapsed().as_secs_f64();
     let s = &a.summary;
     println!(
-        "{label}: removed {:.1} mm³ against {:.1} mm³ from the tool's profile ({:+.1} %); {} slices, {} samples in {:.3} s",
+        "{label}: removed {:.1} mm³ against {:.1} mm³ from the tool's profile ({:+.1} %); {} slices, stock {:.1} MB, {} samples in {:.3} s",
         s.removed_volume_mm3,
         exact,
         100.0 * (s.removed_volume_mm3 / exact - 1.0),
         s.slices.len(),
+        s.raster_memory_bytes as f64 / 1e6,
         s.samples,
         secs
     );
@@ -136,7 +148,7 @@ fn tiger() {
     let path = parse_gcode(&text, &ParseOptions::default()).expect("tiger.nc parses");
     // tiger.camotics's workpiece: x −2…92, y −1…89, z −32…0.
     let stock = Rect { x_min: -2.0, y_min: -1.0, x_max: 92.0, y_max: 89.0 };
-    let mut spec = spec(tool(ToolType::Square));
+    let mut spec = spec(tool(ToolType::Square), BLOCK_DEPTH_MM);
     spec.tool.diameter_mm = 6.0;
     spec.stock = vec![StockRegion::Rect(stock)];
     spec.z_bottom = -32.0;
@@ -162,13 +174,21 @@ fn tiger() {
 fn main() {
     let straight = [Pass { y: 20.0, z: -0.6 }];
     for t in ToolType::ALL {
-        case(&format!("one pass 0.6 mm deep, {} D10", t.as_str()), tool(t), &straight);
+        case(&format!("one pass 0.6 mm deep, {} D10", t.as_str()), tool(t), &straight, BLOCK_DEPTH_MM);
     }
     let levels: Vec<Pass> = (1..=5)
         .flat_map(|level| (0..=13).map(move |i| Pass { y: 1.0 + 3.0 * f64::from(i), z: -0.6 * f64::from(level) }))
         .collect();
-    case("z-level roughing, ball D10, 5 levels at Ad 0.6", tool(ToolType::Ball), &levels);
+    case("z-level roughing, ball D10, 5 levels at Ad 0.6", tool(ToolType::Ball), &levels, BLOCK_DEPTH_MM);
     let raster: Vec<Pass> = (0..=38).map(|i| Pass { y: 1.0 + f64::from(i), z: -0.2 * f64::from(i) - 0.2 }).collect();
-    case("raster over a slanted surface, ball D10, 1 mm stepover", tool(ToolType::Ball), &raster);
+    case("raster over a slanted surface, ball D10, 1 mm stepover", tool(ToolType::Ball), &raster, BLOCK_DEPTH_MM);
+    let ad = DEEP_BLOCK_DEPTH_MM / f64::from(DEEP_LEVELS);
+    let deep: Vec<Pass> = (1..=DEEP_LEVELS)
+        .flat_map(|level| (0..=13).map(move |i| Pass { y: 1.0 + 3.0 * f64::from(i), z: -ad * f64::from(level) }))
+        .collect();
+    for t in [ToolType::Square, ToolType::Ball] {
+        let label = format!("deep z-level roughing, {} D10, 58 levels at Ad 0.6 in 35 mm", t.as_str());
+        case(&label, tool(t), &deep, DEEP_BLOCK_DEPTH_MM);
+    }
     tiger();
 }

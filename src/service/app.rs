@@ -238,9 +238,15 @@ pub async fn start(config: Config) -> Result<RunningServer, StartError> {
     let retention = crate::service::retention::start(pool.clone(), config.job_retention_days);
     crate::service::jobs::summaries::start(pool.clone());
     let workers = config.worker_count();
-    let jobs = JobQueue::start(pool.clone(), workers, config.job_time_limit(), config.job_lease())
-        .await
-        .map_err(|source| StartError::Database { path: config.database.to_string(), source })?;
+    let jobs = JobQueue::start(
+        pool.clone(),
+        workers,
+        config.job_time_limit(),
+        config.job_lease(),
+        config.stock_memory_bytes(),
+    )
+    .await
+    .map_err(|source| StartError::Database { path: config.database.to_string(), source })?;
     let listener =
         TcpListener::bind(config.addr).await.map_err(|source| StartError::Bind { addr: config.addr, source })?;
     let addr = listener.local_addr().map_err(|source| StartError::Bind { addr: config.addr, source })?;

@@ -75,6 +75,11 @@ pub struct Config {
     /// Finished jobs older than this many days are removed with their results; 0: kept.
     #[arg(long, env = "DIEPLAN_JOB_RETENTION_DAYS", default_value_t = DEFAULT_JOB_RETENTION_DAYS)]
     pub job_retention_days: u64,
+    /// Memory each stock simulation of a job may take for its slices, MiB: a program's
+    /// cutting levels beyond what it holds are merged, and the raster cell is coarsened
+    /// where even 16 slices do not fit.
+    #[arg(long, env = "DIEPLAN_STOCK_MEMORY_MB", default_value_t = DEFAULT_STOCK_MEMORY_MB, value_parser = clap::value_parser!(u64).range(1..=MAX_STOCK_MEMORY_MB))]
+    pub stock_memory_mb: u64,
 }
 
 /// Default for [`Config::rate_limit_per_minute`]: 20 requests a second per key, far more
@@ -86,6 +91,12 @@ pub const DEFAULT_RATE_LIMIT_PER_MINUTE: i64 = 1200;
 pub const DEFAULT_JOB_LEASE_SECONDS: u64 = 30;
 /// Default for [`Config::job_retention_days`].
 pub const DEFAULT_JOB_RETENTION_DAYS: u64 = 30;
+/// Default for [`Config::stock_memory_mb`]: the analysis's own default budget.
+pub const DEFAULT_STOCK_MEMORY_MB: u64 = (crate::core::analysis::DEFAULT_STOCK_MEMORY_BYTES / BYTES_PER_MB) as u64;
+/// Largest [`Config::stock_memory_mb`]: 1 TiB.
+pub const MAX_STOCK_MEMORY_MB: u64 = 1024 * 1024;
+/// Bytes in a MiB, the unit of [`Config::stock_memory_mb`].
+const BYTES_PER_MB: usize = 1024 * 1024;
 
 /// A secret that logs and `Debug` never show.
 #[derive(Clone)]
@@ -127,7 +138,13 @@ impl Config {
             rate_limit_per_minute: DEFAULT_RATE_LIMIT_PER_MINUTE,
             job_retention_days: DEFAULT_JOB_RETENTION_DAYS,
             job_lease_seconds: DEFAULT_JOB_LEASE_SECONDS,
+            stock_memory_mb: DEFAULT_STOCK_MEMORY_MB,
         }
+    }
+
+    /// Memory each stock simulation of a job may take, bytes.
+    pub fn stock_memory_bytes(&self) -> usize {
+        usize::try_from(self.stock_memory_mb).map_or(usize::MAX, |mb| mb.saturating_mul(BYTES_PER_MB))
     }
 
     /// The longest a job may run, if limited.
@@ -148,5 +165,32 @@ impl Config {
     /// The wait cap actually applied: never past the request timeout.
     pub fn effective_max_wait_s(&self) -> u64 {
         self.max_wait_s.min(self.request_timeout_s.saturating_sub(1))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    /// `dieplan serve`'s flags alone.
+    #[derive(Parser)]
+    struct Serve {
+        #[command(flatten)]
+        config: Config,
+    }
+
+    /// The stock memory budget `args` set, bytes.
+    fn budget(args: &[&str]) -> Result<usize, clap::Error> {
+        let argv = std::iter::once("serve").chain(args.iter().copied());
+        Serve::try_parse_from(argv).map(|s| s.config.stock_memory_bytes())
+    }
+
+    #[test]
+    fn the_stock_memory_budget_is_given_in_mib_defaults_to_a_gib_and_is_never_zero() {
+        assert_eq!(budget(&[]).ok(), Some(1 << 30));
+        assert_eq!(Config::with_database(std::path::PathBuf::from("x.sqlite")).stock_memory_bytes(), 1 << 30);
+        assert_eq!(budget(&["--stock-memory-mb", "64"]).ok(), Some(64 << 20));
+        assert!(budget(&["--stock-memory-mb", "0"]).is_err());
     }
 }

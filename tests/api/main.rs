@@ -34,6 +34,7 @@ mod replicas;
 mod restarts;
 mod retention;
 mod schemathesis;
+mod stock_budget;
 mod stock_carry;
 mod stock_view;
 mod tool_defaults;

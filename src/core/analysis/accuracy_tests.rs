@@ -29,6 +29,7 @@ fn spec(stock: Vec<StockRegion>, open: Vec<StockRegion>) -> AnalysisSpec {
         cell_mm: None,
         alpha_limit_deg: DEFAULT_ALPHA_LIMIT_DEG,
         series_points: 2000,
+        stock_memory_bytes: crate::core::analysis::DEFAULT_STOCK_MEMORY_BYTES,
     }
 }
 

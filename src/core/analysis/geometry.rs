@@ -202,6 +202,7 @@ mod tests {
             cell_mm: None,
             alpha_limit_deg: 40.0,
             series_points: 0,
+            stock_memory_bytes: crate::core::analysis::DEFAULT_STOCK_MEMORY_BYTES,
         };
         let mut results = Vec::new();
         let analysis = analyze_with(&path, &spec, &NoProgress, |r| results.push(*r)).unwrap();

@@ -3,13 +3,16 @@
 //! chip thickness and force, and the critical regions where the tool is overloaded.
 
 pub mod arcs;
+pub mod budget;
 pub mod chunk;
+pub mod continued;
 pub mod engages;
 pub mod engine;
 pub mod feed_cap;
 pub mod geometry;
 pub mod height_map;
 pub mod kept;
+pub mod levels;
 pub mod lines;
 pub mod outside;
 pub mod probe;
@@ -33,6 +36,7 @@ use crate::core::stock::{Raster, Rect};
 use crate::core::tool::{EndMill, ToolType};
 use crate::core::toolpath::{Motion, Toolpath};
 use crate::core::CoreError;
+pub use budget::{resolution, DEFAULT_STOCK_MEMORY_BYTES};
 use engine::{simulate, Cutter};
 use kept::KeptStock;
 use outside::{ForceOverload, OutsideModel};
@@ -57,8 +61,6 @@ pub const CELL_PER_DIAMETER: f64 = 1.0 / 100.0;
 /// Raster cell bounds, mm.
 pub const MIN_CELL_MM: f64 = 0.002;
 pub const MAX_CELL_MM: f64 = 0.5;
-/// Raster memory the analysis may use, cells over all slices (one byte each: 128 MiB).
-pub const MAX_RASTER_CELLS: f64 = 128.0 * 1024.0 * 1024.0;
 /// Painting this many raster cells takes about as long as simulating one sample: the
 /// weight of painting the stock in a job's progress. (BENCHMARKS.md: tiger.nc's stock,
 /// 8.4 M cells, paints in about 50 ms, and its samples take about 0.8 µs each; the
@@ -96,12 +98,14 @@ pub struct AnalysisSpec {
     pub alpha_limit_deg: f64,
     /// 0: no series.
     pub series_points: usize,
+    /// Memory the stock's slices may take, bytes (see [`budget`]).
+    pub stock_memory_bytes: usize,
 }
 
 impl AnalysisSpec {
     /// `tool` through `stock` from `z_top` down to `z_bottom`, with the defaults for the
     /// rest: nothing open, no force model or spindle speed, the default rapid rate, sample
-    /// spacing, cell and engagement limit, and no series.
+    /// spacing, cell and engagement limit, no series, and the default stock memory budget.
     pub fn new(tool: EndMill, stock: Vec<StockRegion>, z_top: f64, z_bottom: f64) -> AnalysisSpec {
         AnalysisSpec {
             tool,
@@ -116,12 +120,14 @@ impl AnalysisSpec {
             cell_mm: None,
             alpha_limit_deg: DEFAULT_ALPHA_LIMIT_DEG,
             series_points: 0,
+            stock_memory_bytes: DEFAULT_STOCK_MEMORY_BYTES,
         }
     }
 }
 
-/// One z slice of the simulated stock. The slices follow the z levels the program cuts
-/// (at most 16; where levels are merged, the layers the program cuts flat stay exact).
+/// One z slice of the simulated stock. The slices follow the z levels the program cuts:
+/// every layer it cuts flat, and its other levels merged down to 16 slices; where the
+/// stock memory budget holds fewer, levels are merged further, the layers last.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, utoipa::ToSchema)]
 pub struct SliceSummary {
     pub z_top: f64,
@@ -139,6 +145,9 @@ pub struct Summary {
     /// Memory the slices' rasters took at the end of the simulation, bytes: slices that
     /// were still alike shared one raster.
     pub raster_memory_bytes: usize,
+    /// Memory the slices' rasters were allowed, bytes: levels beyond what it holds at the
+    /// cell are merged, and the cell is coarsened where even 16 slices do not fit.
+    pub stock_memory_budget_bytes: usize,
     pub slices: Vec<SliceSummary>,
     /// Length of feed moves in material, mm.
     pub cutting_length_mm: f64,
@@ -182,16 +191,6 @@ pub struct Analysis {
     pub series: Option<Series>,
 }
 
-/// The sample spacing and raster cell an analysis of `spec` uses.
-pub fn resolution(spec: &AnalysisSpec, bounds: Rect, slices: usize) -> (f64, f64) {
-    let d = spec.tool.diameter_mm;
-    let spacing = spec.sample_spacing_mm.unwrap_or((SPACING_PER_DIAMETER * d).min(DEFAULT_MAX_SPACING_MM));
-    let wanted = spec.cell_mm.unwrap_or((CELL_PER_DIAMETER * d).clamp(MIN_CELL_MM, MAX_CELL_MM));
-    let area = (bounds.x_max - bounds.x_min) * (bounds.y_max - bounds.y_min);
-    let floor = (area * slices as f64 / MAX_RASTER_CELLS).sqrt();
-    (spacing, wanted.max(floor))
-}
-
 /// The sample spacing of an analysis of `path` and the number of samples it takes.
 pub fn sample_count(path: &Toolpath, spec: &AnalysisSpec) -> (f64, f64) {
     let (spacing, _) = resolution(spec, region::union_bounds(&spec.stock), 1);
@@ -210,6 +209,9 @@ pub fn check(path: &Toolpath, spec: &AnalysisSpec) -> Result<(), CoreError> {
         require_positive("cell_mm", c)?;
     }
     require_positive("rapid_mm_min", spec.rapid_mm_min)?;
+    if spec.stock_memory_bytes == 0 {
+        return Err(CoreError::invalid("stock_memory_bytes", "must be positive"));
+    }
     if !(spec.alpha_limit_deg > 0.0 && spec.alpha_limit_deg < 180.0) {
         return Err(CoreError::invalid("alpha_limit_deg", "must be between 0 and 180"));
     }
@@ -280,7 +282,7 @@ pub fn analyze_from(
     mut sink: impl FnMut(&engine::SampleResult),
 ) -> Result<(Analysis, Stack), CoreError> {
     check(path, spec)?;
-    let bounds = region::union_bounds(&spec.stock);
+    let bounds: Rect = region::union_bounds(&spec.stock);
     // A kept stock's layer reaches down to the program's deepest feed move, within what
     // lies under it (see [`kept`]).
     let z_bottom = match start {
@@ -288,12 +290,17 @@ pub fn analyze_from(
             .map_err(|e| CoreError::invalid("stock.from_job", e))?,
         None => spec.z_bottom,
     };
-    let levels = slices::slice_levels(path, z_bottom.min(spec.z_bottom), spec.z_top);
+    let wanted = levels::Levels::of(path, z_bottom.min(spec.z_bottom), spec.z_top, spec.tool.diameter_mm).wanted();
+    let wanted_slices = wanted.slices();
+    let (kept_slices, wanted_cell) = budget::slices_within(spec, wanted_slices, bounds, start.map(|k| k.grid));
+    let levels = wanted.merged_to(kept_slices).z();
     let levels = match start {
         Some(kept) => kept::with_kept_bottom(levels, kept.z_bottom()),
         None => levels,
     };
-    let levels = profile::with_corner_levels(levels, &profile::Profile::of(&spec.tool));
+    // A radius or ball end mill's corner levels, as many as the budget holds.
+    let room = budget::slices_within(spec, budget::MOST_SLICES, bounds, start.map(|k| k.grid)).0;
+    let levels = profile::with_corner_levels(levels, &profile::Profile::of(&spec.tool), room);
     let (spacing, painted_cell) = resolution(spec, bounds, levels.len() - 1);
     let total_samples: usize =
         path.moves.iter().map(|m| ((crate::core::toolpath::move_length(m) / spacing).ceil() as usize).max(1)).sum();
@@ -341,6 +348,7 @@ pub fn analyze_from(
     let report = builder.finish();
     let mut analysis = assemble(path, spec, report, &slices, &initial, spacing, cell);
     analysis.summary.rest_material = cavity.then(|| RestMaterial::of(&slices));
+    analysis.summary.warnings.extend(budget::warning(spec, (wanted_slices, wanted_cell), (kept_slices, cell)));
     Ok((analysis, slices))
 }
 
@@ -413,6 +421,7 @@ fn assemble(
             sample_spacing_mm: spacing,
             cell_mm: cell,
             raster_memory_bytes: slices.memory_bytes(),
+            stock_memory_budget_bytes: spec.stock_memory_bytes,
             slices: slice_summaries,
             cutting_length_mm: report.cutting_length_mm,
             air_cut_length_mm: report.air_cut_length_mm,
@@ -439,6 +448,8 @@ fn assemble(
 #[cfg(test)]
 mod accuracy_tests;
 #[cfg(test)]
+mod depth_tests;
+#[cfg(test)]
 mod kept_tests;
 #[cfg(test)]
 mod physical_tests;
@@ -448,83 +459,4 @@ mod probe_tests;
 mod shape_tests;
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::core::progress::NoProgress;
-    use crate::core::toolpath::{Move, Units, P3};
-    use std::sync::Mutex;
-
-    /// Keeps every fraction reported.
-    #[derive(Default)]
-    struct Recorded(Mutex<Vec<f64>>);
-
-    impl Progress for Recorded {
-        fn report(&self, fraction: f64) {
-            self.0.lock().expect("not poisoned").push(fraction);
-        }
-        fn cancelled(&self) -> bool {
-            false
-        }
-    }
-
-    /// `tool` in `block`, 5 mm deep, without a force model or a spindle speed.
-    fn block_spec(tool: EndMill, block: Rect) -> AnalysisSpec {
-        AnalysisSpec::new(tool, vec![StockRegion::Rect(block)], 0.0, -5.0)
-    }
-
-    #[test]
-    fn painting_a_large_stock_moves_the_progress_before_the_simulation_does() {
-        // A 200 mm square block (4 M cells of 0.1 mm) and 10 mm of path (200 samples):
-        // painting is nearly all of the work.
-        let block = Rect { x_min: 0.0, y_min: 0.0, x_max: 200.0, y_max: 200.0 };
-        let tool = EndMill { tool_type: ToolType::Square, diameter_mm: 10.0, flutes: 6, corner_radius_mm: 0.0 };
-        let line = Move {
-            motion: Motion::Linear,
-            start: P3::new(0.0, 100.0, -1.0),
-            end: P3::new(10.0, 100.0, -1.0),
-            feed_mm_min: Some(1000.0),
-            spindle_rpm: Some(9600.0),
-            tool: None,
-            line: 1,
-        };
-        let path = Toolpath { moves: vec![line], events: vec![], source_units: Units::Mm, warnings: vec![] };
-        let spec = block_spec(tool, block);
-        let recorded = Recorded::default();
-        analyze(&path, &spec, &recorded).expect("analyses");
-        let reports = recorded.0.into_inner().expect("not poisoned");
-        assert!(reports.windows(2).all(|w| w[0] <= w[1]), "the progress went back");
-        let while_painting = reports.iter().filter(|&&f| f < 0.99).count();
-        assert!(while_painting > 1000, "{while_painting} reports while painting");
-        assert!(reports.last().is_some_and(|&f| (f - 1.0).abs() < 1e-12));
-    }
-
-    #[test]
-    fn ball_and_radius_end_mills_are_told_that_the_force_where_their_corner_cuts_is_extrapolated() {
-        let block = Rect { x_min: 0.0, y_min: 0.0, x_max: 30.0, y_max: 30.0 };
-        let line = Move {
-            motion: Motion::Linear,
-            start: P3::new(-10.0, 15.0, -1.0),
-            end: P3::new(40.0, 15.0, -1.0),
-            feed_mm_min: Some(1000.0),
-            spindle_rpm: Some(9600.0),
-            tool: None,
-            line: 1,
-        };
-        let path = Toolpath { moves: vec![line], events: vec![], source_units: Units::Mm, warnings: vec![] };
-        let warned = |tool_type: ToolType, corner_radius_mm: f64| {
-            let spec = AnalysisSpec {
-                force_model: Some(crate::core::fixtures::seed_001_ten_mm()),
-                ..block_spec(EndMill { tool_type, diameter_mm: 10.0, flutes: 2, corner_radius_mm }, block)
-            };
-            let mut extrapolated = false;
-            let a =
-                analyze_with(&path, &spec, &NoProgress, |r| extrapolated |= r.force_extrapolated).expect("analyses");
-            (a.summary.warnings.into_iter().find(|w| w.contains("extrapolated from the flat end mill")), extrapolated)
-        };
-        assert!(warned(ToolType::Square, 0.0).0.is_none());
-        let (ball, ball_samples) = warned(ToolType::Ball, 5.0);
-        assert!(ball.is_some_and(|w| w.starts_with("ball end mill")) && ball_samples);
-        let (bull, bull_samples) = warned(ToolType::Radius, 1.0);
-        assert!(bull.is_some_and(|w| w.contains("corner radius 1 mm")) && bull_samples);
-    }
-}
+mod tests;

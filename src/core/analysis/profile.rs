@@ -99,27 +99,44 @@ impl Profile {
     }
 }
 
-/// Levels added above each cutting level within a corner: where the corner's angle from
-/// the tip reaches each of this many equal steps of its quarter turn (the last at the top of
-/// the corner, where the cylinder begins).
+/// Levels added above each cutting level within a corner, at most: where the corner's angle
+/// from the tip reaches each of this many equal steps of its quarter turn (the last at the
+/// top of the corner, where the cylinder begins).
 pub const CORNER_LEVELS: usize = 4;
 
-/// `levels` (top first, as [`super::slices::slice_levels`] gives them) with, above each
-/// level but the top, the heights within a radius or ball end mill's corner where its
-/// radius changes most ([`CORNER_LEVELS`] of them), so a slice cut by the corner takes a
-/// radius close to the tool's over all of it. Heights closer than
-/// [`super::slices::MIN_SLICE_MM`] to a level are left out. A square end mill's levels are
-/// returned as they are.
-pub fn with_corner_levels(levels: Vec<f64>, profile: &Profile) -> Vec<f64> {
-    let (Some(&top), false) = (levels.first(), profile.is_cylinder()) else {
+/// `levels` (top first, as [`super::levels`] chooses them) with, above each level but the
+/// top, the heights within a radius or ball end mill's corner where its radius changes most
+/// ([`CORNER_LEVELS`] of them, or half as many, down to none, until the slices number at
+/// most `room`: what the stock memory budget holds, see [`super::budget`]), so a slice cut by
+/// the corner takes a radius close to the tool's over all of it. Heights closer than
+/// [`super::levels::MIN_SLICE_MM`] to a level are left out. A square end mill's levels are
+/// returned as they are. (Without corner levels a straight pass still removes the exact
+/// section: each slice takes the tool's mean radius over its height.)
+pub fn with_corner_levels(levels: Vec<f64>, profile: &Profile, room: usize) -> Vec<f64> {
+    if profile.is_cylinder() {
         return levels;
+    }
+    let mut n = CORNER_LEVELS;
+    while n > 0 {
+        let refined = with_levels_in_corner(&levels, profile, n);
+        if refined.len().saturating_sub(1) <= room {
+            return refined;
+        }
+        n /= 2;
+    }
+    levels
+}
+
+/// `levels` with `n` levels in the corner above each (see [`with_corner_levels`]).
+fn with_levels_in_corner(levels: &[f64], profile: &Profile, n: usize) -> Vec<f64> {
+    let Some(&top) = levels.first() else {
+        return levels.to_vec();
     };
-    let min = super::slices::MIN_SLICE_MM;
+    let min = super::levels::MIN_SLICE_MM;
     let rc = profile.corner_mm;
-    let heights: Vec<f64> = (1..=CORNER_LEVELS)
-        .map(|j| rc * (1.0 - (j as f64 * std::f64::consts::FRAC_PI_2 / CORNER_LEVELS as f64).cos()))
-        .collect();
-    let mut all = levels.clone();
+    let heights: Vec<f64> =
+        (1..=n).map(|j| rc * (1.0 - (j as f64 * std::f64::consts::FRAC_PI_2 / n as f64).cos())).collect();
+    let mut all = levels.to_vec();
     for &z in &levels[1..] {
         all.extend(heights.iter().map(|h| z + h).filter(|&c| c < top - min));
     }
@@ -218,15 +235,19 @@ mod tests {
     #[test]
     fn a_ball_adds_levels_within_its_corner_above_each_level_and_keeps_the_programs_own() {
         let levels = vec![0.0, -0.6, -1.2, -10.0];
-        let out = with_corner_levels(levels.clone(), &ball(2.0));
+        let out = with_corner_levels(levels.clone(), &ball(2.0), 100);
         for l in &levels {
             assert!(out.iter().any(|o| (o - l).abs() < 1e-12), "{l} lost from {out:?}");
         }
-        assert!(out.windows(2).all(|w| w[0] - w[1] >= crate::core::analysis::slices::MIN_SLICE_MM - 1e-12));
+        assert!(out.windows(2).all(|w| w[0] - w[1] >= crate::core::analysis::levels::MIN_SLICE_MM - 1e-12));
         // Above −1.2: 1 − cos 22.5° of the 1 mm corner (0.076), then 0.293, 0.617 and 1.
         assert!(out.iter().any(|o| (o - (-1.2 + 1.0 - std::f64::consts::FRAC_PI_4.cos())).abs() < 1e-9));
         assert!(out.iter().any(|o| (o - (-10.0 + 1.0)).abs() < 1e-9));
-        assert_eq!(with_corner_levels(levels.clone(), &Profile::cylinder(5.0)), levels);
+        assert_eq!(with_corner_levels(levels.clone(), &Profile::cylinder(5.0), 100), levels);
+        // A budget of fewer slices takes fewer corner levels, down to none.
+        let fewer = with_corner_levels(levels.clone(), &ball(2.0), 8);
+        assert!(fewer.len() - 1 <= 8 && fewer.len() < out.len(), "{fewer:?}");
+        assert_eq!(with_corner_levels(levels.clone(), &ball(2.0), 3), levels);
     }
 
     #[test]

@@ -41,6 +41,7 @@ pub fn spec(stock: Vec<StockRegion>, open: Vec<StockRegion>, z_top: f64, z_botto
         cell_mm: None,
         alpha_limit_deg: DEFAULT_ALPHA_LIMIT_DEG,
         series_points: 0,
+        stock_memory_bytes: crate::core::analysis::DEFAULT_STOCK_MEMORY_BYTES,
     }
 }
 

@@ -31,6 +31,7 @@ fn analysis_spec(open: Vec<StockRegion>) -> AnalysisSpec {
         cell_mm: None,
         alpha_limit_deg: DEFAULT_ALPHA_LIMIT_DEG,
         series_points: 4000,
+        stock_memory_bytes: crate::core::analysis::DEFAULT_STOCK_MEMORY_BYTES,
     }
 }
 

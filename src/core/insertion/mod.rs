@@ -192,6 +192,7 @@ pub fn analysis_spec(pocket: &Pocket, spec: &InsertionSpec) -> AnalysisSpec {
         cell_mm: spec.cell_mm,
         alpha_limit_deg: spec.alpha_limit_deg,
         series_points: 0,
+        stock_memory_bytes: spec.stock_memory_bytes,
     }
 }
 

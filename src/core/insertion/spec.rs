@@ -96,6 +96,8 @@ pub struct InsertionSpec {
     /// The step the contour-parallel path makes, for the program's section labels: rough
     /// side cutting, or intermediate-rough on the last layer of a process plan.
     pub base_step: Step,
+    /// Memory each simulation of the stock may take, bytes (default the analysis's).
+    pub stock_memory_bytes: usize,
 }
 
 impl InsertionSpec {
@@ -128,6 +130,7 @@ impl InsertionSpec {
             cell_mm: None,
             wall_gap_mm: DEFAULT_WALL_GAP_MM,
             base_step: Step::RoughSideCutting,
+            stock_memory_bytes: crate::core::analysis::DEFAULT_STOCK_MEMORY_BYTES,
         }
     }
 

@@ -172,6 +172,7 @@ mod tests {
             cell_mm: None,
             alpha_limit_deg: DEFAULT_ALPHA_LIMIT_DEG,
             series_points: 0,
+            stock_memory_bytes: crate::core::analysis::DEFAULT_STOCK_MEMORY_BYTES,
         };
         let mut overloaded = Vec::new();
         analyze_with(&path, &analysis, &NoProgress, |r| {

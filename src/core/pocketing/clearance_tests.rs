@@ -28,6 +28,7 @@ fn analysis(pocket: &Pocket, path: &Toolpath, series_points: usize) -> Analysis 
         cell_mm: None,
         alpha_limit_deg: DEFAULT_ALPHA_LIMIT_DEG,
         series_points,
+        stock_memory_bytes: crate::core::analysis::DEFAULT_STOCK_MEMORY_BYTES,
     };
     analyze(path, &spec, &NoProgress).unwrap()
 }

@@ -138,6 +138,7 @@ pub fn plan_baseline(
             cell_mm: None,
             alpha_limit_deg: options.alpha_limit_deg,
             series_points: 0,
+            stock_memory_bytes: options.stock_memory_bytes,
         };
         let (mut level_worn, mut level_cut, mut level_surface) = (0.0, 0.0, 0.0);
         let stage = Stage::nth(progress, 0.0, 0.9, i, spans.len());

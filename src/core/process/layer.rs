@@ -71,6 +71,7 @@ pub fn layer_spec(
     spec.rapid_mm_min = options.machine.rapid_mm_min;
     spec.sample_spacing_mm = options.sample_spacing_mm;
     spec.cell_mm = cell_mm;
+    spec.stock_memory_bytes = options.stock_memory_bytes;
     spec
 }
 

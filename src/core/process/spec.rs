@@ -101,6 +101,9 @@ pub struct ProcessOptions {
     pub max_force_factor: f64,
     /// Limit on the change of feed along the path, mm/min per mm (`None`: no limit).
     pub max_feed_change_per_mm: Option<f64>,
+    /// Memory each simulation of the plan's stock may take, bytes (see
+    /// [`crate::core::analysis::budget`]).
+    pub stock_memory_bytes: usize,
 }
 
 impl ProcessOptions {

@@ -46,6 +46,7 @@ pub(super) fn options() -> ProcessOptions {
         tune: true,
         max_force_factor: DEFAULT_MAX_FORCE_FACTOR,
         max_feed_change_per_mm: Some(1000.0),
+        stock_memory_bytes: crate::core::analysis::DEFAULT_STOCK_MEMORY_BYTES,
     }
 }
 

@@ -3,7 +3,7 @@
 
 use super::analysis_result::AnalysisResult;
 use super::inputs::{check_from_job, StockInput};
-use super::kept_stock::{self, CarriedStock};
+use super::kept_stock;
 use super::kind::off_runtime_with;
 use super::program_input::ProgramInput;
 use super::setup::{path_job_refs, read_inputs, resolve, PathJobRefs, PathSetup, Sampling};
@@ -134,12 +134,14 @@ pub fn run(
     request: AnalysisRequest,
     prepared: PathSetup,
     progress: &dyn Progress,
+    stock_memory_bytes: usize,
 ) -> Result<(AnalysisResult, Scene, KeptStock), CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
     let (path, spec) = build(&request, &prepared).map_err(reread)?;
+    let spec = AnalysisSpec { stock_memory_bytes, ..spec };
     let total_length_mm: f64 = path.moves.iter().map(move_length).sum();
     let mut collector = SampleCollector::new(total_length_mm, DRAWING_SAMPLE_BINS);
-    let start = prepared.carried_stock.as_ref().map(CarriedStock::decode).transpose().map_err(reread)?;
+    let start = prepared.carried_stock.as_ref().map(|c| c.decode(stock_memory_bytes)).transpose().map_err(reread)?;
     let (analysis, stack) = analyze_from(&path, &spec, start.as_ref(), progress, |r| collector.add(r))?;
     let scene = analysis_scene(&path, &spec, &analysis, &collector.finish());
     let cavity = analysis.summary.rest_material.is_some();
@@ -183,8 +185,9 @@ impl JobKindSpec for Analysis {
         request: AnalysisRequest,
         prepared: PathSetup,
         progress: &dyn Progress,
+        stock_memory_bytes: usize,
     ) -> Result<Produced<AnalysisResult>, CoreError> {
-        let (result, scene, kept) = run(request, prepared, progress)?;
+        let (result, scene, kept) = run(request, prepared, progress, stock_memory_bytes)?;
         Ok(Produced::drawn(result, scene).keeping(kept))
     }
 }

@@ -289,6 +289,7 @@ impl JobKindSpec for Conditions {
         _request: ConditionsRequest,
         prepared: ConditionsPrepared,
         _progress: &dyn Progress,
+        _stock_memory_bytes: usize,
     ) -> Result<Produced<ConditionsResult>, CoreError> {
         Ok(Produced::result(run(prepared)?))
     }

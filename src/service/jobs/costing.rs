@@ -3,7 +3,7 @@
 
 use super::costing_result::CostingResult;
 use super::inputs::{check_from_job, StockInput};
-use super::kept_stock::{self, CarriedStock};
+use super::kept_stock;
 use super::kind::off_runtime_with;
 use super::model::{JobId, ProgramPart};
 use super::program_input::ProgramInput;
@@ -204,10 +204,13 @@ pub fn run(
     request: CostingRequest,
     prepared: CostingPrepared,
     progress: &dyn Progress,
+    stock_memory_bytes: usize,
 ) -> Result<(CostingResult, Scene, KeptStock), CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
     let (path, spec) = request.analysis(&prepared).map_err(reread)?;
-    let start = prepared.base.carried_stock.as_ref().map(CarriedStock::decode).transpose().map_err(reread)?;
+    let spec = AnalysisSpec { stock_memory_bytes, ..spec };
+    let start =
+        prepared.base.carried_stock.as_ref().map(|c| c.decode(stock_memory_bytes)).transpose().map_err(reread)?;
     let model = prepared.cost.cost_model();
     let (report, estimate, stack) = estimate_from(&path, &spec, start.as_ref(), &model, progress)?;
     let scene = costing_scene(&path, &spec, &report, &estimate.wear, &estimate.time, &estimate.cost);
@@ -247,8 +250,9 @@ impl JobKindSpec for Costing {
         request: CostingRequest,
         prepared: CostingPrepared,
         progress: &dyn Progress,
+        stock_memory_bytes: usize,
     ) -> Result<Produced<CostingResult>, CoreError> {
-        let (result, scene, kept) = run(request, prepared, progress)?;
+        let (result, scene, kept) = run(request, prepared, progress, stock_memory_bytes)?;
         Ok(Produced::drawn(result, scene).keeping(kept))
     }
 }

@@ -56,7 +56,8 @@ struct Serialized {
     stock: Option<super::kept_stock::EncodedStock>,
 }
 
-/// Runs a claimed job under `control` and records its outcome; `Ok(false)` when the
+/// Runs a claimed job under `control`, each of its stock simulations within
+/// `stock_memory_bytes`, and records its outcome; `Ok(false)` when the
 /// outcome was not recorded because this replica no longer holds the job's lease (another
 /// replica runs it), or the job went back to the queue.
 pub async fn execute(
@@ -64,6 +65,7 @@ pub async fn execute(
     lease: &Lease,
     row: &store::Claimed,
     control: Arc<JobControl>,
+    stock_memory_bytes: usize,
 ) -> Result<bool, sqlx::Error> {
     let id = row.id.as_str();
     if row.attempts > MAX_ATTEMPTS {
@@ -91,7 +93,7 @@ pub async fn execute(
     let worker_control = control.clone();
     let mut task = tokio::task::spawn_blocking(move || {
         let kinds::JobOutput { result: value, program, baseline_program: baseline, base_program: base, scene, stock } =
-            kinds::run(kind, &input, &prepared, worker_control.as_ref())?;
+            kinds::run(kind, &input, &prepared, worker_control.as_ref(), stock_memory_bytes)?;
         let result = serde_json::to_string(&value).unwrap_or_default();
         let summary = super::model::headline(&value).to_string();
         Ok::<_, CoreError>(Serialized { result, summary, program, baseline, base, scene, stock })

@@ -5,13 +5,15 @@
 use super::feed_limits;
 use super::feeds_result::FeedsResult;
 use super::inputs::{check_from_job, Stock, StockInput};
-use super::kept_stock::{self, CarriedStock};
+use super::kept_stock;
 use super::kind::off_runtime_with;
 use super::output::OutputOptions;
 use super::program_input::{ProgramInput, ReadProgram};
 use super::setup::{path_job_refs, read_inputs, reread_inputs, resolve, CostSetup, PathSetup};
 use crate::core::analysis::kept::{keep, Floor, KeptStock};
-use crate::core::analysis::{check, sample_count, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, MAX_ALPHA_LIMIT_DEG};
+use crate::core::analysis::{
+    check, sample_count, AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, DEFAULT_STOCK_MEMORY_BYTES, MAX_ALPHA_LIMIT_DEG,
+};
 use crate::core::drawing::feeds_scene::feeds_scene;
 use crate::core::drawing::paths::edited_move_lines;
 use crate::core::drawing::scene::Scene;
@@ -352,6 +354,7 @@ fn build(
                 cell_mm: request.cell_mm,
                 alpha_limit_deg: request.alpha_limit_deg.unwrap_or(DEFAULT_ALPHA_LIMIT_DEG),
                 series_points: 0,
+                stock_memory_bytes: DEFAULT_STOCK_MEMORY_BYTES,
             };
             (Some(analysis), None)
         }
@@ -385,12 +388,17 @@ pub fn run(
     request: FeedsRequest,
     prepared: FeedsPrepared,
     progress: &dyn Progress,
+    stock_memory_bytes: usize,
 ) -> Result<(FeedsResult, String, Scene, Option<KeptStock>), CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
     let stock = request.stock.as_ref().filter(|_| request.mode == CutMode::SideMilling);
     let (stock, read) = reread_inputs(&prepared.base, &request.program, stock).map_err(reread)?;
-    let job = build(&request, &prepared, stock, read).map_err(reread)?;
-    let start = prepared.base.carried_stock.as_ref().map(CarriedStock::decode).transpose().map_err(reread)?;
+    let mut job = build(&request, &prepared, stock, read).map_err(reread)?;
+    if let Some(analysis) = job.analysis.as_mut() {
+        analysis.stock_memory_bytes = stock_memory_bytes;
+    }
+    let start =
+        prepared.base.carried_stock.as_ref().map(|c| c.decode(stock_memory_bytes)).transpose().map_err(reread)?;
     let (plan, costed, kept): (FeedPlan, Option<Costed>, Option<KeptStock>) = match (&job.analysis, &job.surface) {
         (Some(analysis), _) => {
             let Optimised { plan, costed, stock } =
@@ -470,8 +478,9 @@ impl JobKindSpec for Feeds {
         request: FeedsRequest,
         prepared: FeedsPrepared,
         progress: &dyn Progress,
+        stock_memory_bytes: usize,
     ) -> Result<Produced<FeedsResult>, CoreError> {
-        let (result, program, scene, kept) = run(request, prepared, progress)?;
+        let (result, program, scene, kept) = run(request, prepared, progress, stock_memory_bytes)?;
         let produced = Produced::programmed(result, program, scene);
         Ok(match kept {
             Some(kept) => produced.keeping(kept),

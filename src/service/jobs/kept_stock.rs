@@ -20,7 +20,6 @@
 use super::model::{JobId, JobStatus};
 use super::store;
 use crate::core::analysis::kept::{deepest_feed_mm, layer_bottom, Below, Floor, KeptSlice, KeptStock};
-use crate::core::analysis::MAX_RASTER_CELLS;
 use crate::core::stock::{Grid, Rect};
 use crate::service::auth::Caller;
 use crate::service::error::ApiError;
@@ -46,7 +45,8 @@ pub const FORMAT_1: i64 = 1;
 const BELOW_UNKNOWN: u8 = 0;
 const BELOW_AT: u8 = 1;
 const BELOW_UNBOUNDED: u8 = 2;
-/// Most slices a kept stock may have (far above what an analysis makes).
+/// Most slices a kept stock may have (above what an analysis makes,
+/// [`crate::core::analysis::budget::MOST_SLICES`] and the kept stock's bottom).
 const MAX_KEPT_SLICES: usize = 4096;
 /// The field the faults of a `from_job` name.
 pub const FIELD: &str = "stock.from_job";
@@ -118,21 +118,21 @@ impl Reader<'_> {
     }
 }
 
-/// Decodes a stored stock of `format` (2, or 1: nothing known under the layer); `Err`
-/// says why it cannot be read.
-pub fn decode(format: i64, body: &[u8]) -> Result<KeptStock, String> {
+/// Decodes a stored stock of `format` (2, or 1: nothing known under the layer) for a
+/// service whose analyses may take `stock_memory_bytes`; `Err` says why it cannot be read.
+pub fn decode(format: i64, body: &[u8], stock_memory_bytes: usize) -> Result<KeptStock, String> {
     if format != FORMAT && format != FORMAT_1 {
         return Err(format!(
             "it is stored in format {format}, and this version of dieplan reads formats {FORMAT_1} and {FORMAT}"
         ));
     }
-    // Never more than the largest stock an analysis makes (its slices' headers, and a
-    // footprint as large as its rasters).
-    let limit = 2 * MAX_RASTER_CELLS as u64 + 64 + 20 * MAX_KEPT_SLICES as u64;
+    // Never more than the largest stock an analysis within the budget makes (its slices'
+    // headers, and a footprint as large as its rasters, which take at least a byte a cell).
+    let limit = 2 * stock_memory_bytes as u64 + 64 + 20 * MAX_KEPT_SLICES as u64;
     let mut raw = Vec::new();
     ZlibDecoder::new(body).take(limit + 1).read_to_end(&mut raw).map_err(|e| format!("it is not readable: {e}"))?;
     if raw.len() as u64 > limit {
-        return Err("it is larger than any stock a job keeps".to_string());
+        return Err("it is larger than the stock memory budget of this service lets a job keep".to_string());
     }
     let mut r = Reader(&raw);
     let (x0_mm, y0_mm, cell_mm) = (r.f64()?, r.f64()?, r.f64()?);
@@ -253,12 +253,12 @@ impl CarriedStock {
             .map_err(|e| ApiError::field(FIELD, format!("the stock of job {}: {e}", self.from_job)))
     }
 
-    /// The kept stock, decoded.
-    pub fn decode(&self) -> Result<KeptStock, ApiError> {
+    /// The kept stock, decoded for analyses that may take `stock_memory_bytes`.
+    pub fn decode(&self, stock_memory_bytes: usize) -> Result<KeptStock, ApiError> {
         let body = base64::engine::general_purpose::STANDARD
             .decode(&self.body)
             .map_err(|e| ApiError::field(FIELD, format!("the stock of job {} is unreadable: {e}", self.from_job)))?;
-        decode(self.format, &body)
+        decode(self.format, &body, stock_memory_bytes)
             .map_err(|e| ApiError::field(FIELD, format!("the stock of job {} cannot be used: {e}", self.from_job)))
     }
 }
@@ -287,9 +287,9 @@ pub async fn carried(submission: &Submission<'_>, id: &JobId) -> Result<CarriedS
         other => other,
     })?;
     let (format, body) = found.map_err(|reason| ApiError::field(FIELD, reason))?;
-    let from_job = id.to_string();
+    let (from_job, budget) = (id.to_string(), submission.stock_memory_bytes);
     tokio::task::spawn_blocking(move || {
-        let kept = decode(format, &body)
+        let kept = decode(format, &body, budget)
             .map_err(|e| ApiError::field(FIELD, format!("the stock of job {from_job} cannot be used: {e}")))?;
         let g = kept.grid;
         let bounds = [g.x0_mm, g.y0_mm, g.x0_mm + g.nx as f64 * g.cell_mm, g.y0_mm + g.ny as f64 * g.cell_mm];
@@ -311,6 +311,7 @@ pub async fn carried(submission: &Submission<'_>, id: &JobId) -> Result<CarriedS
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::core::analysis::DEFAULT_STOCK_MEMORY_BYTES;
 
     fn kept() -> KeptStock {
         let grid = Grid { x0_mm: -1.0, y0_mm: 2.0, cell_mm: 0.5, nx: 40, ny: 30 };
@@ -342,37 +343,37 @@ mod tests {
         assert_eq!(encoded.format, 2);
         assert_eq!(encoded.raw_bytes, 24 + 8 + 1 + 8 + 3 * 20 + 2 * 40 * 30 + 1 + 8 + 40 * 30);
         assert!(encoded.body.len() < encoded.raw_bytes / 4, "{} bytes compressed", encoded.body.len());
-        assert_eq!(decode(FORMAT, &encoded.body), Ok(kept()));
+        assert_eq!(decode(FORMAT, &encoded.body, DEFAULT_STOCK_MEMORY_BYTES), Ok(kept()));
         let unbounded = KeptStock { below: kept().below.map(|b| Below { floor: Floor::Unbounded, ..b }), ..kept() };
-        assert_eq!(decode(FORMAT, &encode(&unbounded).body), Ok(unbounded));
+        assert_eq!(decode(FORMAT, &encode(&unbounded).body, DEFAULT_STOCK_MEMORY_BYTES), Ok(unbounded));
         let unknown = KeptStock { below: None, ..kept() };
-        assert_eq!(decode(FORMAT, &encode(&unknown).body), Ok(unknown));
+        assert_eq!(decode(FORMAT, &encode(&unknown).body, DEFAULT_STOCK_MEMORY_BYTES), Ok(unknown));
     }
 
     #[test]
     fn a_stock_kept_in_format_1_reads_as_one_under_which_nothing_is_known() {
-        let read = decode(FORMAT_1, &format_1(&kept())).expect("format 1 is read");
+        let read = decode(FORMAT_1, &format_1(&kept()), DEFAULT_STOCK_MEMORY_BYTES).expect("format 1 is read");
         assert_eq!(read, KeptStock { below: None, ..kept() });
         // Format 1 read as format 2 lacks what lies under the layer.
-        assert!(decode(FORMAT, &format_1(&kept())).is_err());
+        assert!(decode(FORMAT, &format_1(&kept()), DEFAULT_STOCK_MEMORY_BYTES).is_err());
     }
 
     #[test]
     fn a_stock_of_another_format_or_damaged_is_refused_saying_why() {
         let encoded = encode(&kept());
-        assert!(decode(3, &encoded.body).unwrap_err().contains("format 3"));
-        assert!(decode(FORMAT, &encoded.body[..encoded.body.len() / 2]).is_err());
-        assert!(decode(FORMAT, b"not a stock").is_err());
+        assert!(decode(3, &encoded.body, DEFAULT_STOCK_MEMORY_BYTES).unwrap_err().contains("format 3"));
+        assert!(decode(FORMAT, &encoded.body[..encoded.body.len() / 2], DEFAULT_STOCK_MEMORY_BYTES).is_err());
+        assert!(decode(FORMAT, b"not a stock", DEFAULT_STOCK_MEMORY_BYTES).is_err());
         let mut bad = kept();
         bad.rasters[0][0] = i8::MIN;
-        assert!(decode(FORMAT, &encode(&bad).body).is_err());
+        assert!(decode(FORMAT, &encode(&bad).body, DEFAULT_STOCK_MEMORY_BYTES).is_err());
         let mut bad_footprint = kept();
         if let Some(b) = &mut bad_footprint.below {
             b.footprint[3] = i8::MIN;
         }
-        assert!(decode(FORMAT, &encode(&bad_footprint).body).is_err());
+        assert!(decode(FORMAT, &encode(&bad_footprint).body, DEFAULT_STOCK_MEMORY_BYTES).is_err());
         let mut floating = kept();
         floating.below = Some(Below { footprint: vec![0; 1200], floor: Floor::At(-10.0) });
-        assert!(decode(FORMAT, &encode(&floating).body).unwrap_err().contains("floor"));
+        assert!(decode(FORMAT, &encode(&floating).body, DEFAULT_STOCK_MEMORY_BYTES).unwrap_err().contains("floor"));
     }
 }

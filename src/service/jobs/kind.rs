@@ -21,6 +21,9 @@ use utoipa::ToSchema;
 pub struct Submission<'a> {
     pub pool: &'a Pool,
     pub caller: &'a Caller,
+    /// Memory a stock simulation of this service may take, bytes (a stock a job starts
+    /// from is read within it).
+    pub stock_memory_bytes: usize,
 }
 
 /// What a run of a job produces: its result, and the NC programs and drawing it made.
@@ -118,10 +121,12 @@ pub trait JobKindSpec: 'static {
         faults: &mut Validator,
     ) -> impl Future<Output = Result<Option<Self::Prepared>, ApiError>> + Send;
 
-    /// Runs a prepared job. CPU-bound: called on a blocking thread.
+    /// Runs a prepared job, each of its stock simulations within `stock_memory_bytes`.
+    /// CPU-bound: called on a blocking thread.
     fn run(
         request: Self::Request,
         prepared: Self::Prepared,
         progress: &dyn Progress,
+        stock_memory_bytes: usize,
     ) -> Result<Produced<Self::Output>, CoreError>;
 }

@@ -54,7 +54,7 @@ pub struct Registered {
     pub description: &'static str,
     pub refuses: &'static str,
     accept: for<'a> fn(&'a Submission<'a>, serde_json::Value) -> Pending<'a, Accepted>,
-    run: fn(&str, &str, &dyn Progress) -> Result<JobOutput, CoreError>,
+    run: fn(&str, &str, &dyn Progress, usize) -> Result<JobOutput, CoreError>,
     /// The names of the schemas of its request and result.
     pub request_schema: fn() -> Cow<'static, str>,
     pub result_schema: fn() -> Cow<'static, str>,
@@ -230,13 +230,19 @@ impl Registered {
     }
 }
 
-/// Runs a prepared job of `K` from its input as submitted and what it resolved to.
-fn run_kind<K: JobKindSpec>(input: &str, prepared: &str, progress: &dyn Progress) -> Result<JobOutput, CoreError> {
+/// Runs a prepared job of `K` from its input as submitted and what it resolved to, each of
+/// its stock simulations within `stock_memory_bytes`.
+fn run_kind<K: JobKindSpec>(
+    input: &str,
+    prepared: &str,
+    progress: &dyn Progress,
+    stock_memory_bytes: usize,
+) -> Result<JobOutput, CoreError> {
     let unreadable = |e: serde_json::Error| CoreError::invalid("prepared", format!("stored job input unreadable: {e}"));
     let request = serde_json::from_str(input).map_err(unreadable)?;
     let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
     let Produced { result, program, baseline_program, base_program, scene, stock } =
-        K::run(request, prepared, progress)?;
+        K::run(request, prepared, progress, stock_memory_bytes)?;
     let result = serde_json::to_value(result).map_err(unreadable)?;
     let scene = scene
         .map(|s| serde_json::to_string(&s))
@@ -246,13 +252,19 @@ fn run_kind<K: JobKindSpec>(input: &str, prepared: &str, progress: &dyn Progress
     Ok(JobOutput { result, program, baseline_program, base_program, scene, stock })
 }
 
-/// Runs a prepared job from its input as submitted and what it resolved to.
-/// CPU-bound: call it on a blocking thread.
-pub fn run(kind: JobKind, input: &str, prepared: &str, progress: &dyn Progress) -> Result<JobOutput, CoreError> {
+/// Runs a prepared job from its input as submitted and what it resolved to, each of its
+/// stock simulations within `stock_memory_bytes`. CPU-bound: call it on a blocking thread.
+pub fn run(
+    kind: JobKind,
+    input: &str,
+    prepared: &str,
+    progress: &dyn Progress,
+    stock_memory_bytes: usize,
+) -> Result<JobOutput, CoreError> {
     progress.checkpoint()?;
     let registered =
         of(kind).ok_or_else(|| CoreError::invalid("kind", format!("job kind {} is not registered", kind.as_str())))?;
-    let output = (registered.run)(input, prepared, progress)?;
+    let output = (registered.run)(input, prepared, progress, stock_memory_bytes)?;
     progress.report(1.0);
     Ok(output)
 }

@@ -10,6 +10,7 @@ use super::plan_rows;
 use super::plans_result::PlanResult;
 use super::setup::NamedRef;
 use crate::core::analysis::kept::KeptStock;
+use crate::core::analysis::DEFAULT_STOCK_MEMORY_BYTES;
 use crate::core::conditions::CuttingConditions;
 use crate::core::drawing::process_scene::{process_scene, WrittenLines};
 use crate::core::drawing::scene::Scene;
@@ -288,7 +289,7 @@ pub async fn prepare(
         let cavity = read_cavity(&request, faults)?;
         if let (Some(prepared), Some(cavity)) = (&checked, cavity) {
             if !faults.has_errors() {
-                let (candidates, options) = build(&request, prepared, &cavity);
+                let (candidates, options) = build(&request, prepared, &cavity, DEFAULT_STOCK_MEMORY_BYTES);
                 faults.take(check_process(&cavity, &candidates, &options))?;
             }
         }
@@ -311,8 +312,9 @@ fn life_model(life_m: f64, gamma: &[(f64, f64)], k: f64, arc_mm: f64, fz_mm: f64
     }
 }
 
-/// The candidates and options of a plan of `cavity`.
-fn build(r: &PlanRequest, p: &PlanPrepared, cavity: &CavityInput) -> Built {
+/// The candidates and options of a plan of `cavity`, its simulations each within
+/// `stock_memory_bytes`.
+fn build(r: &PlanRequest, p: &PlanPrepared, cavity: &CavityInput, stock_memory_bytes: usize) -> Built {
     let candidates = p
         .candidates
         .iter()
@@ -349,15 +351,21 @@ fn build(r: &PlanRequest, p: &PlanPrepared, cavity: &CavityInput) -> Built {
         tune: r.tune.unwrap_or(true),
         max_force_factor: r.max_force_factor.unwrap_or(DEFAULT_MAX_FORCE_FACTOR),
         max_feed_change_per_mm: Some(crate::core::feed::plan::DEFAULT_MAX_FEED_CHANGE_PER_MM),
+        stock_memory_bytes,
     };
     (candidates, options)
 }
 
 /// Plans the cavity and writes the chosen tool's program.
-pub fn run(request: PlanRequest, prepared: PlanPrepared, progress: &dyn Progress) -> Result<PlanOutput, CoreError> {
+pub fn run(
+    request: PlanRequest,
+    prepared: PlanPrepared,
+    progress: &dyn Progress,
+    stock_memory_bytes: usize,
+) -> Result<PlanOutput, CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
     let cavity = Validator::collect(|faults| read_cavity(&request, faults)).map_err(reread)?;
-    let (candidates, options) = build(&request, &prepared, &cavity);
+    let (candidates, options) = build(&request, &prepared, &cavity, stock_memory_bytes);
     // The ball's life (assumed as the straight tool's, MODEL.md §5) counts against its own
     // conventional roughing cut.
     let baseline = prepared
@@ -444,8 +452,9 @@ impl JobKindSpec for Plan {
         request: PlanRequest,
         prepared: PlanPrepared,
         progress: &dyn Progress,
+        stock_memory_bytes: usize,
     ) -> Result<Produced<PlanResult>, CoreError> {
-        let out = run(request, prepared, progress)?;
+        let out = run(request, prepared, progress, stock_memory_bytes)?;
         Ok(Produced {
             result: out.result,
             program: Some(out.program),

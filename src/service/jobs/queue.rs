@@ -38,6 +38,8 @@ struct Inner {
     workers: Mutex<Vec<JoinHandle<()>>>,
     /// Longest a job may run (none: no limit).
     time_limit: Option<Duration>,
+    /// Memory each stock simulation of a job may take, bytes.
+    stock_memory_bytes: usize,
     /// This replica's lease on the jobs it runs.
     lease: Lease,
     /// The lease keeper and the notification listener, stopped at shutdown.
@@ -54,12 +56,14 @@ impl JobQueue {
     /// Recovers jobs a previous run left behind and starts `workers` workers, and with
     /// them one more that runs only the interactive lane (see [`super::lane`]); a job
     /// that runs longer than `time_limit` is stopped and fails. The replica's leases last
-    /// `lease_duration`; another replica takes its jobs that long after it died.
+    /// `lease_duration`; another replica takes its jobs that long after it died. Each
+    /// stock simulation of a job may take `stock_memory_bytes`.
     pub async fn start(
         pool: Pool,
         workers: usize,
         time_limit: Option<Duration>,
         lease_duration: Duration,
+        stock_memory_bytes: usize,
     ) -> Result<JobQueue, sqlx::Error> {
         let requeued = store::recover_interrupted(&pool).await?;
         if requeued > 0 {
@@ -77,6 +81,7 @@ impl JobQueue {
                 shutdown: Arc::new(AtomicBool::new(false)),
                 workers: Mutex::new(Vec::new()),
                 time_limit,
+                stock_memory_bytes,
                 lease: Lease::new(lease_duration),
                 helpers: Mutex::new(Vec::new()),
             }),
@@ -254,7 +259,7 @@ async fn run_one(inner: &Arc<Inner>, row: store::Claimed) {
     let id = row.id.clone();
     let control = Arc::new(JobControl::new(row.cancel_requested, inner.shutdown.clone(), inner.time_limit));
     inner.running.lock().unwrap_or_else(|p| p.into_inner()).insert(id.clone(), control.clone());
-    let recorded = match execution::execute(&inner.pool, &inner.lease, &row, control).await {
+    let recorded = match execution::execute(&inner.pool, &inner.lease, &row, control, inner.stock_memory_bytes).await {
         Ok(recorded) => recorded,
         Err(e) => {
             tracing::error!(job = %id, error = %e, "could not record the outcome of a job");

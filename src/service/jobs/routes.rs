@@ -69,7 +69,7 @@ async fn submit(
     labels: (JobLabels, Vec<FieldError>),
     headers: &HeaderMap,
 ) -> Result<Response, ApiError> {
-    let submission = Submission { pool: &state.pool, caller };
+    let submission = Submission { pool: &state.pool, caller, stock_memory_bytes: state.config.stock_memory_bytes() };
     let (labels, mut faults) = labels;
     faults.extend(labels.faults(""));
     // The faults of the input and of the labels come in one problem.

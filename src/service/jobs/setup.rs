@@ -4,7 +4,7 @@
 //! machine limits a program is costed with. Look-ups of single rows are in
 //! [`crate::service::lookup`]; no kind imports another's helpers.
 use crate::core::analysis::feed_cap::cap_feeds;
-use crate::core::analysis::{AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG};
+use crate::core::analysis::{AnalysisSpec, DEFAULT_ALPHA_LIMIT_DEG, DEFAULT_STOCK_MEMORY_BYTES};
 use crate::core::costing::cost::Rates;
 use crate::core::costing::estimate::CostModel;
 use crate::core::force_model::ForceModel;
@@ -201,6 +201,7 @@ impl PathSetup {
             cell_mm: sampling.cell_mm,
             alpha_limit_deg: sampling.alpha_limit_deg.unwrap_or(DEFAULT_ALPHA_LIMIT_DEG),
             series_points: sampling.series_points,
+            stock_memory_bytes: DEFAULT_STOCK_MEMORY_BYTES,
         }
     }
 }

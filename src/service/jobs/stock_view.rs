@@ -126,9 +126,9 @@ pub async fn get_stock(
     );
     v.finish()?;
     let (format, body) = kept_stock::find(&state.pool, &caller, &id).await?.map_err(ApiError::not_found)?;
-    let job_id = id.to_string();
+    let (job_id, budget) = (id.to_string(), state.config.stock_memory_bytes());
     let map = tokio::task::spawn_blocking(move || {
-        let kept = kept_stock::decode(format, &body)
+        let kept = kept_stock::decode(format, &body, budget)
             .map_err(|e| ApiError::Conflict(format!("the stock job {job_id} kept cannot be read: {e}")))?;
         let map = height_map(&kept, max_cells);
         Ok::<_, ApiError>(StockHeightMap::new(job_id, &map, &kept))

@@ -393,11 +393,16 @@ fn base_program(request: &TrochoidsRequest, plan: &mut InsertionPlan, options: &
 pub type Run = (TrochoidsResult, String, String, Scene, KeptStock);
 
 /// Plans the insertion and writes the program (and the base program).
-pub fn run(request: TrochoidsRequest, prepared: TrochoidsPrepared, progress: &dyn Progress) -> Result<Run, CoreError> {
+pub fn run(
+    request: TrochoidsRequest,
+    prepared: TrochoidsPrepared,
+    progress: &dyn Progress,
+    stock_memory_bytes: usize,
+) -> Result<Run, CoreError> {
     let reread = |e: ApiError| CoreError::invalid("input", e.to_string());
     let radius_mm = prepared.base.tool.geometry.diameter_mm / 2.0;
     let (pocket, path) = Validator::collect(|faults| read_inputs(&request, radius_mm, faults)).map_err(reread)?;
-    let spec = spec(&request, &prepared);
+    let spec = InsertionSpec { stock_memory_bytes, ..spec(&request, &prepared) };
     // With costs, the wear of the paths before and after is counted on the insertion's own
     // simulations of them.
     let simulation = analysis_spec(&pocket, &spec);
@@ -468,8 +473,9 @@ impl JobKindSpec for Trochoids {
         request: TrochoidsRequest,
         prepared: TrochoidsPrepared,
         progress: &dyn Progress,
+        stock_memory_bytes: usize,
     ) -> Result<Produced<TrochoidsResult>, CoreError> {
-        let (result, program, base, scene, kept) = run(request, prepared, progress)?;
+        let (result, program, base, scene, kept) = run(request, prepared, progress, stock_memory_bytes)?;
         Ok(Produced { base_program: Some(base), ..Produced::programmed(result, program, scene).keeping(kept) })
     }
 }
