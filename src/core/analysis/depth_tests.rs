@@ -99,9 +99,17 @@ fn a_z_level_roughing_of_a_35_mm_cavity_at_ad_0_6_is_simulated_on_its_58_layers(
 
 #[test]
 fn a_ball_end_mill_s_z_level_roughing_is_simulated_on_its_58_layers_too() {
-    let a = roughing_analysis(ToolType::Ball, DEFAULT_STOCK_MEMORY_BYTES);
-    assert_eq!(a.summary.slices.len(), LAYERS);
-    assert!(a.summary.removed_volume_mm3 > 0.0 && a.summary.alpha_deg.max > 0.0);
+    let a = roughing_analysis(ToolType::Square, DEFAULT_STOCK_MEMORY_BYTES);
+    let ball = roughing_analysis(ToolType::Ball, DEFAULT_STOCK_MEMORY_BYTES);
+    // Every layer is a slice's bottom, as with the square end mill, and the ball's corner
+    // adds levels between them (see `profile::with_corner_levels`).
+    for layer in &a.summary.slices {
+        let bottom = |s: &SliceSummary| (s.z_bottom - layer.z_bottom).abs() < 1e-9;
+        assert!(ball.summary.slices.iter().any(bottom), "no slice of the ball ends at {}", layer.z_bottom);
+    }
+    assert!(ball.summary.slices.len() > LAYERS, "{} slices", ball.summary.slices.len());
+    assert!(budget_warning(&ball).is_none(), "{:?}", ball.summary.warnings);
+    assert!(ball.summary.removed_volume_mm3 > 0.0 && ball.summary.alpha_deg.max > 0.0);
 }
 
 #[test]
