@@ -45,17 +45,26 @@ pub fn standard_cut(
     model: Option<&ForceModel>,
 ) -> Result<StandardCut, CoreError> {
     let (t_m_um, arc_length_mm) = standard_centres(tool.radius_mm(), conditions)?;
-    if Profile::of(tool).is_cylinder() {
+    let flank = || {
         let force_n = model.map(|m| m.force_n(t_m_um, arc_length_mm, m.ad_ref_mm));
-        return Ok(StandardCut { t_m_um, arc_length_mm, force_n });
+        StandardCut { t_m_um, arc_length_mm, force_n }
+    };
+    if Profile::of(tool).is_cylinder() {
+        return Ok(flank());
     }
-    simulated(tool, conditions, model)
+    // Conditions whose corner never reaches the wall at their Ad (a shop's own, far from
+    // the seeded ones) keep the flank's figures, as before the profile was simulated.
+    Ok(simulated(tool, conditions, model)?.unwrap_or_else(flank))
 }
 
 /// The standard cut of a radius or ball end mill, simulated: a pass along x with the tool's
 /// flank reaching Rd into the material below y = 0, its tip Ad deep, read at the sample
-/// nearest the middle.
-fn simulated(tool: &EndMill, c: CuttingConditions, model: Option<&ForceModel>) -> Result<StandardCut, CoreError> {
+/// nearest the middle; `None` when the tool does not reach the material there.
+fn simulated(
+    tool: &EndMill,
+    c: CuttingConditions,
+    model: Option<&ForceModel>,
+) -> Result<Option<StandardCut>, CoreError> {
     let d = tool.diameter_mm;
     let length = PASS_DIAMETERS * d;
     let wall = Rect { x_min: 0.0, y_min: -WALL_DEPTH_DIAMETERS * d, x_max: length, y_max: 0.0 };
@@ -83,13 +92,7 @@ fn simulated(tool: &EndMill, c: CuttingConditions, model: Option<&ForceModel>) -
             nearest = Some((off, cut));
         }
     })?;
-    match nearest {
-        Some((_, cut)) if cut.arc_length_mm > 0.0 => Ok(cut),
-        _ => Err(CoreError::invalid(
-            "conditions",
-            format!("the tool's standard cut (Rd {} mm, Ad {} mm) does not reach the material", c.rd_mm, c.ad_mm),
-        )),
-    }
+    Ok(nearest.map(|(_, cut)| cut).filter(|cut| cut.arc_length_mm > 0.0))
 }
 
 #[cfg(test)]
@@ -123,6 +126,15 @@ mod tests {
         assert!(alpha.to_degrees() > 55.0 && alpha.to_degrees() < 65.2, "α {}", alpha.to_degrees());
         let rho = cut.arc_length_mm / alpha;
         assert!(rho > 1.0 && rho < 2.375, "ρ {rho}");
+    }
+
+    #[test]
+    fn a_ball_whose_corner_never_reaches_the_wall_at_its_depth_keeps_the_flanks_standard_cut() {
+        // A D20 ball 0.6 mm deep is 3.4 mm across at the surface; the wall lies 6.5 mm off.
+        let tool = EndMill { tool_type: ToolType::Ball, diameter_mm: 20.0, flutes: 2, corner_radius_mm: 10.0 };
+        let (t, l) = standard_centres(10.0, conditions(3.5, 0.6)).expect("cuts");
+        let cut = standard_cut(&tool, conditions(3.5, 0.6), None).expect("no error");
+        assert_eq!((cut.t_m_um, cut.arc_length_mm), (t, l));
     }
 
     #[test]

@@ -3,14 +3,13 @@
 //! the arc length, the chip thickness at the programmed feed and the force are found.
 
 use super::arcs::arc_guides;
-use super::chunk::{Chunk, Swept};
-use super::engages::interior_points;
+use super::chunk::Chunk;
 use super::lines::straight_runs;
-use super::probe::{AngleTable, Contact, ProbeSite};
+use super::probe::Contact;
 use super::profile::{Profile, SAME_RADIUS_MM};
-use super::same_below::SameBelow;
 use super::sampling::{for_each_sample, has_heading, move_curvatures, Sample};
-use super::scan_memory::{Line, ScanMemory};
+use super::scan_memory::Line;
+use super::slice_probes::{Site, SliceProbes};
 use super::slice_radii::SliceRadii;
 use super::stack::{Slice, Stack};
 use crate::core::engagement::{pivot_bounded_centre_radius_mm, tooth_chip_thickness_mm, ToothCut};
@@ -130,13 +129,7 @@ pub fn simulate(
     // All slices share one cell size (with none, nothing is probed).
     let cell_mm = if slices.is_empty() { 0.0 } else { slices.raster(0).cell_mm() };
     let mut radii = SliceRadii::new(cutter.profile, slices.len(), cell_mm);
-    let mut probes = SliceProbes {
-        site: ProbeSite::default(),
-        contacts: vec![Contact::default(); slices.len()],
-        memories: vec![ScanMemory::default(); slices.len()],
-        engaged_at: vec![0; slices.len()],
-        same_below: SameBelow::new(slices.len()),
-    };
+    let mut probes = SliceProbes::new(slices.len());
     let r = cutter.profile.radius_mm;
     let mut chunk = Chunk::new(0, cell_mm);
     let runs = straight_runs(path);
@@ -162,7 +155,7 @@ pub fn simulate(
         let reshaped = radii.differ_at(slices, cut, sample.p.z);
         if cut != chunk.cut || reshaped {
             chunk.restart(slices, radii.current(), cut);
-            radii.adopt(|k| probes.memories[k] = ScanMemory::default());
+            radii.adopt(|k| probes.memories[k].forget());
         }
         chunk.follow(slices, radii.current(), arcs[sample.move_index].as_ref());
         let plunge = !has_heading(sample.heading);
@@ -175,10 +168,9 @@ pub fn simulate(
             t_m_um: 0.0,
             contact_radius_mm: r,
             force_n: force_model.map(|_| 0.0),
-            // The deepest slice cut holds the material of all above it (see `slices`).
-            plunge: plunge
-                && cut > 0
-                && slices.stock_mut(cut - 1).any_material_near(p.0, p.1, radii.current()[cut - 1]),
+            // The deepest slice cut holds the material of all above it (see `slices`): near
+            // the tool's full radius, it holds all a shaped tool's slices may reach.
+            plunge: plunge && cut > 0 && slices.stock_mut(cut - 1).any_material_near(p.0, p.1, r),
             force_extrapolated: false,
             coded: None,
             cutting_point_ratio: 1.0,
@@ -199,10 +191,13 @@ pub fn simulate(
                 } else {
                     probes.measure_deepest_slice(radii.full_table(), slices, cut, p, r);
                 }
+                evaluate(&mut result, &probes.contacts[..cut], slices.slices(), radii.current(), cutter, force_model);
             } else {
-                probes.measure_shaped(&mut radii, &chunk, &at, slices, cut);
+                // Above the first slice not measured none engages.
+                let from = probes.measure_shaped(&mut radii, &chunk, &at, slices, cut);
+                let (contacts, radii) = (&probes.contacts[from..cut], &radii.current()[from..cut]);
+                evaluate(&mut result, contacts, &slices.slices()[from..], radii, cutter, force_model);
             }
-            evaluate(&mut result, &probes.contacts[..cut], slices.slices(), radii.current(), cutter, force_model);
         }
         chunk.push(slices, radii.current(), p, sample.heading, sample.step_mm);
         sink(&result);
@@ -212,140 +207,6 @@ pub fn simulate(
     match failure {
         Some(e) => Err(e),
         None => Ok(()),
-    }
-}
-
-/// Where a sample's tool is: its centre (mm and on the rasters' grid), heading and line.
-struct Site {
-    p: (f64, f64),
-    grid: (f64, f64),
-    heading: (f64, f64),
-    line: Option<Line>,
-}
-
-/// What the probes of the slices keep from sample to sample.
-struct SliceProbes {
-    site: ProbeSite,
-    /// Per slice, its contact at the current sample: from the deepest slice cut up to the
-    /// first that does not engage. Above that one none engages (see `engages`), and they
-    /// are neither measured nor read.
-    contacts: Vec<Contact>,
-    memories: Vec<ScanMemory>,
-    /// Per slice, the coarse point where [`AngleTable::engages`] last found material.
-    engaged_at: Vec<usize>,
-    same_below: SameBelow,
-}
-
-impl SliceProbes {
-    /// Places the probe site of a tool of `table`'s radius at `at`, with what the chunk
-    /// swept since the rasters were last updated.
-    fn place(&mut self, table: &AngleTable, chunk: &Chunk, at: &Site) {
-        match chunk.swept(table.radius_mm()) {
-            Swept::Arc(arc) => {
-                self.site.set(table, at.p, at.grid, at.heading, &[], &chunk.corridor(), at.line);
-                self.site.set_swept_arc(arc);
-            }
-            Swept::Centres => {
-                self.site.set(table, at.p, at.grid, at.heading, chunk.recent(), &chunk.corridor(), at.line)
-            }
-        }
-    }
-
-    /// Measures the contact of each of the `cut` slices of a radius or ball end mill at
-    /// `at`, each at its radius. Slices at one radius nest as the cylinder's do (see
-    /// `slices`): a slice alike with the one below at its radius has its contact, and above
-    /// a slice at the full radius with no material near the tool none has any. A slice at a
-    /// smaller radius than the one above tells nothing of it: each is measured.
-    fn measure_shaped(&mut self, radii: &mut SliceRadii, chunk: &Chunk, at: &Site, slices: &mut Stack, cut: usize) {
-        for k in (0..cut).rev() {
-            if k + 1 < cut && radii.same(k, k + 1) && slices.alike_below(k) {
-                self.contacts[k] = self.contacts[k + 1];
-                continue;
-            }
-            if !slices.stock_mut(k).any_material_near(at.p.0, at.p.1, radii.current()[k]) {
-                self.contacts[k] = Contact::default();
-                if radii.is_full(k) {
-                    self.contacts[..k].fill(Contact::default());
-                    break;
-                }
-                continue;
-            }
-            let table = radii.table(k);
-            self.place(table, chunk, at);
-            let memory = Some(&mut self.memories[k]);
-            self.contacts[k] = table.contact_and_states(slices.raster(k), &self.site, memory, 0).0;
-        }
-    }
-
-    /// Measures the contact of each of the `cut` slices at the site, tool centre `p`
-    /// moving along `heading`: a force model needs every slice's α.
-    fn measure_every_slice(
-        &mut self,
-        table: &AngleTable,
-        slices: &mut Stack,
-        cut: usize,
-        p: (f64, f64),
-        heading: (f64, f64),
-        r: f64,
-    ) {
-        // From the deepest slice cut up. Each slice's material lies inside the material of
-        // the one below (see `slices`), and so does each coarse point's state: above a
-        // slice with no material near the tool, or none at an interior coarse point (no
-        // engagement, see `engages`), none engages, and none is measured; coarse points in
-        // air below are in air above; and a slice with the cells of the one below under the
-        // tool has its contact.
-        let mut below: Option<u128> = None;
-        for k in (0..cut).rev() {
-            let (contact, states) = match below {
-                Some(states) if self.same_below.same(slices, k, p, heading, r) => (self.contacts[k + 1], states),
-                _ if !slices.stock_mut(k).any_material_near(p.0, p.1, r) => (Contact::default(), 0),
-                _ => {
-                    let known_air = below.map_or(0, |states| !states);
-                    table.contact_and_states(slices.raster(k), &self.site, Some(&mut self.memories[k]), known_air)
-                }
-            };
-            self.contacts[k] = contact;
-            if states & interior_points() == 0 {
-                break;
-            }
-            below = Some(states);
-        }
-    }
-
-    /// Measures the contact of the deepest of the `cut` slices at the site, tool centre
-    /// `p`; each slice above takes it where it engages the tool at all, and none where it
-    /// does not. Without a force model that is all a sample needs: the deepest slice's
-    /// material holds every upper slice's, so its contact is the largest and the
-    /// sample's, and the upper slices count only in Ad, where they engage. (Which slices
-    /// engage is exactly what [`measure_every_slice`] finds. The contact could differ from
-    /// its largest one only where a coarse interval holds more than one boundary and the
-    /// bisections of two slices settle on different ones; on the benchmarks' programs no
-    /// sample differs.)
-    ///
-    /// [`measure_every_slice`]: SliceProbes::measure_every_slice
-    fn measure_deepest_slice(&mut self, table: &AngleTable, slices: &mut Stack, cut: usize, p: (f64, f64), r: f64) {
-        let deepest = cut - 1;
-        let (contact, states) = if slices.stock_mut(deepest).any_material_near(p.0, p.1, r) {
-            table.contact_and_states(slices.raster(deepest), &self.site, Some(&mut self.memories[deepest]), 0)
-        } else {
-            (Contact::default(), 0)
-        };
-        self.contacts[deepest] = contact;
-        // Interior points in air below are in air above (see `engages`).
-        let mut candidates = states & interior_points();
-        for k in (0..deepest).rev() {
-            if candidates != 0 && slices.alike_below(k) {
-                // The cells of the slice below, which engages: so does this one.
-                self.contacts[k] = contact;
-                continue;
-            }
-            if candidates == 0 || !table.engages(slices.raster(k), &self.site, &mut candidates, &mut self.engaged_at[k])
-            {
-                self.contacts[k] = Contact::default();
-                break;
-            }
-            self.contacts[k] = contact;
-        }
     }
 }
 
@@ -375,11 +236,16 @@ fn evaluate(
     };
     let (contacts, slices) = (&contacts[first..], slices.get(first..).unwrap_or_default());
     let radii = radii.get(first..).unwrap_or_default();
+    // The sample's engagement is the slice's of the longest contact, L = ρ·α (a cylinder's:
+    // the largest α): a sliver at a ball's tip may engage all its leading half over a
+    // radius too small to carry the cut.
+    let cylinder = cutter.profile.is_cylinder();
+    let weight = |c: &Contact, rho: f64| if cylinder { c.alpha_rad } else { rho * c.alpha_rad };
     let Some((best, best_radius)) = contacts
         .iter()
         .copied()
         .zip(radii.iter().copied())
-        .max_by(|a, b| a.0.alpha_rad.total_cmp(&b.0.alpha_rad).then(a.1.total_cmp(&b.1)))
+        .max_by(|a, b| weight(&a.0, a.1).total_cmp(&weight(&b.0, b.1)).then(a.1.total_cmp(&b.1)))
     else {
         return;
     };

@@ -20,7 +20,7 @@ use crate::core::toolpath::{Motion, Move, Plane, Toolpath};
 pub const MIN_SLICE_MM: f64 = 0.05;
 /// Levels this much closer than [`MIN_SLICE_MM`] are still apart: layers a program steps
 /// down by exactly the smallest slice differ by it only up to rounding, mm.
-const LEVEL_ROUNDING_MM: f64 = 1e-9;
+pub(super) const LEVEL_ROUNDING_MM: f64 = 1e-9;
 /// Slices the levels that are not layer levels are merged down to, and the fewest slices
 /// the stock memory budget may leave (below it the cell is coarsened instead).
 pub const MAX_SLICES: usize = 16;

@@ -25,6 +25,7 @@ pub mod same_below;
 pub mod samples;
 pub mod sampling;
 pub mod scan_memory;
+pub mod slice_probes;
 pub mod slice_radii;
 pub mod slices;
 pub mod stack;

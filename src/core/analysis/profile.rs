@@ -35,7 +35,7 @@ impl Profile {
         let radius_mm = tool.radius_mm();
         let corner_mm = match tool.tool_type {
             ToolType::Square => 0.0,
-            ToolType::Radius => tool.corner_radius_mm.clamp(0.0, radius_mm),
+            ToolType::Radius => tool.corner_radius_mm.max(0.0).min(radius_mm),
             ToolType::Ball => radius_mm,
         };
         Profile { radius_mm, corner_mm }
@@ -132,28 +132,25 @@ fn with_levels_in_corner(levels: &[f64], profile: &Profile, n: usize) -> Vec<f64
     let Some(&top) = levels.first() else {
         return levels.to_vec();
     };
-    let min = super::levels::MIN_SLICE_MM;
+    // Levels this close are one (as the program's own are, see `levels`).
+    let apart = super::levels::MIN_SLICE_MM - super::levels::LEVEL_ROUNDING_MM;
     let rc = profile.corner_mm;
     let heights: Vec<f64> =
         (1..=n).map(|j| rc * (1.0 - (j as f64 * std::f64::consts::FRAC_PI_2 / n as f64).cos())).collect();
-    let mut all = levels.to_vec();
-    for &z in &levels[1..] {
-        all.extend(heights.iter().map(|h| z + h).filter(|&c| c < top - min));
-    }
-    all.sort_by(|a, b| b.total_cmp(a));
-    let mut out: Vec<f64> = Vec::with_capacity(all.len());
-    for z in all {
-        let original = |v: f64| levels.iter().any(|&l| (l - v).abs() <= f64::EPSILON * l.abs().max(1.0));
-        match out.last_mut() {
-            Some(last) if *last - z < min => {
-                // The program's own levels stay exact.
-                if original(z) && !original(*last) {
-                    *last = z;
-                }
-            }
-            _ => out.push(z),
+    let mut corner: Vec<f64> =
+        levels[1..].iter().flat_map(|&z| heights.iter().map(move |h| z + h)).filter(|&c| c < top - apart).collect();
+    corner.sort_by(|a, b| a.total_cmp(b));
+    // Ascending; the program's levels are all kept, a corner level only clear of every level
+    // kept so far.
+    let mut out: Vec<f64> = levels.iter().rev().copied().collect();
+    for c in corner {
+        let at = out.partition_point(|&l| l < c);
+        let clear = |i: Option<usize>| i.and_then(|i| out.get(i)).is_none_or(|&l| (l - c).abs() >= apart);
+        if clear(Some(at)) && clear(at.checked_sub(1)) {
+            out.insert(at, c);
         }
     }
+    out.reverse();
     out
 }
 
@@ -248,6 +245,17 @@ mod tests {
         let fewer = with_corner_levels(levels.clone(), &ball(2.0), 8);
         assert!(fewer.len() - 1 <= 8 && fewer.len() < out.len(), "{fewer:?}");
         assert_eq!(with_corner_levels(levels.clone(), &ball(2.0), 3), levels);
+    }
+
+    #[test]
+    fn corner_levels_never_drop_a_level_of_the_program_not_even_levels_a_rounding_closer_than_a_slice() {
+        // A z-level finish stepping down 0.05 mm: 0.15 − 0.1 is 0.04999999999999999.
+        let levels: Vec<f64> = vec![0.0, -0.05, -0.1, -0.15, -0.2, -0.25, -3.0];
+        let out = with_corner_levels(levels.clone(), &ball(6.0), 1000);
+        for l in &levels {
+            assert!(out.iter().any(|o| o == l), "{l} lost from {out:?}");
+        }
+        assert!(out.windows(2).all(|w| w[0] > w[1]), "{out:?}");
     }
 
     #[test]

@@ -97,6 +97,13 @@ impl ScanMemory {
         rel.0 * self.dir.0 + rel.1 * self.dir.1
     }
 
+    /// Forgets every remembered state (the probe's circle changed: a slice that takes a
+    /// radius or ball end mill at another radius); the next [`ScanMemory::travel`] starts
+    /// afresh. The bisection hints stay: they are hints whatever the line or raster.
+    pub fn forget(&mut self) {
+        self.key = None;
+    }
+
     /// The direction of the remembered line.
     pub fn dir(&self) -> (f64, f64) {
         self.dir

@@ -33,6 +33,10 @@ pub struct SliceRadii {
     full: AngleTable,
     /// The tip (its z's bits) and cut the wanted radii were last found for.
     found_for: Option<(u64, usize)>,
+    /// The slices that may take less than the full radius in `current`, and in `wanted`
+    /// (every other slice takes the full radius in both).
+    band: std::ops::Range<usize>,
+    wanted_band: std::ops::Range<usize>,
 }
 
 impl SliceRadii {
@@ -47,6 +51,8 @@ impl SliceRadii {
             tables: Vec::new(),
             full: AngleTable::new(profile.radius_mm, cell_mm),
             found_for: None,
+            band: 0..0,
+            wanted_band: 0..0,
         }
     }
 
@@ -93,29 +99,33 @@ impl SliceRadii {
         self.found_for = Some((tip_z.to_bits(), cut));
         let r = self.profile.radius_mm;
         let step = self.cell_mm / RADIUS_STEPS_PER_CELL;
-        let mut differ = false;
-        for (k, s) in stack.slices().iter().enumerate() {
-            let rho = if k < cut && s.z_bottom - tip_z < self.profile.corner_mm + Z_CONTACT_EPS_MM {
-                let exact = self.profile.slice_radius_mm(tip_z, s.z_bottom, s.z_top);
-                ((exact / step).round() * step).min(r)
-            } else {
-                r
-            };
-            self.wanted[k] = rho;
-            differ |= (rho - self.current[k]).abs() > super::profile::SAME_RADIUS_MM;
+        // The slices in the corner: a run of the cut ones from the deepest up.
+        let slices = stack.slices();
+        let cut = cut.min(slices.len());
+        let in_corner = |k: usize| slices[k].z_bottom - tip_z < self.profile.corner_mm + Z_CONTACT_EPS_MM;
+        let lo = (0..cut).rev().take_while(|&k| in_corner(k)).last().unwrap_or(cut);
+        for k in self.wanted_band.clone() {
+            self.wanted[k] = r;
         }
-        differ
+        for (wanted, s) in self.wanted[lo..cut].iter_mut().zip(&slices[lo..cut]) {
+            let exact = self.profile.slice_radius_mm(tip_z, s.z_bottom, s.z_top);
+            *wanted = ((exact / step).round() * step).min(r);
+        }
+        self.wanted_band = lo..cut;
+        let seen = union(&self.band, &self.wanted_band);
+        seen.into_iter().any(|k| (self.wanted[k] - self.current[k]).abs() > super::profile::SAME_RADIUS_MM)
     }
 
     /// Takes the radii [`SliceRadii::differ_at`] found; `changed` is called with each slice
     /// whose radius changes.
     pub fn adopt(&mut self, mut changed: impl FnMut(usize)) {
-        for k in 0..self.current.len() {
+        for k in union(&self.band, &self.wanted_band) {
             if (self.current[k] - self.wanted[k]).abs() > super::profile::SAME_RADIUS_MM {
                 self.current[k] = self.wanted[k];
                 changed(k);
             }
         }
+        self.band = self.wanted_band.clone();
     }
 
     /// The probe table of slice `k`'s radius (made on first use, kept for the latest
@@ -139,6 +149,15 @@ impl SliceRadii {
             }
         }
         &self.tables.last().expect("a table was just pushed").1
+    }
+}
+
+/// The slices of either run (and those between them).
+fn union(a: &std::ops::Range<usize>, b: &std::ops::Range<usize>) -> std::ops::Range<usize> {
+    match (a.is_empty(), b.is_empty()) {
+        (true, _) => b.clone(),
+        (_, true) => a.clone(),
+        _ => a.start.min(b.start)..a.end.max(b.end),
     }
 }
 
