@@ -123,3 +123,23 @@ fn a_square_end_mill_is_simulated_as_before_a_cylinder_in_every_slice() {
     assert!((a.summary.removed_volume_mm3 / exact - 1.0).abs() < VOLUME_TOLERANCE);
     assert_eq!(a.summary.slices.len(), 2, "the top slice and the one below the pass: no corner levels");
 }
+
+#[test]
+fn a_ball_near_an_edge_takes_its_engagement_from_the_slice_of_the_longest_contact_not_the_sliver_at_its_tip() {
+    // The centre runs 2 mm inside the block's edge at y = 40, the tip 2 mm deep: the sliver
+    // just above the tip (about 1.3 mm across) lies all in material (180°), the top slice
+    // (about 3.8 mm) reaches past the edge, and carries the longer contact.
+    let path = pass(BLOCK.y_max - 2.0, -2.0);
+    let mut seen = Vec::new();
+    analyze_with(&path, &spec(ball()), &NoProgress, |r| {
+        if r.sample.p.x > 10.0 && r.sample.p.x < 40.0 {
+            seen.push((r.contact.alpha_rad.to_degrees(), r.contact_radius_mm, r.arc_length_mm));
+        }
+    })
+    .expect("analyses");
+    for &(alpha_deg, radius_mm, arc_mm) in &seen {
+        assert!(radius_mm > 3.0, "the sliver's radius {radius_mm} carries the sample");
+        assert!(alpha_deg < 179.0 && alpha_deg > 90.0, "α {alpha_deg}");
+        assert!((arc_mm - radius_mm * alpha_deg.to_radians()).abs() < 1e-9);
+    }
+}

@@ -15,9 +15,12 @@ use super::stack::Stack;
 
 /// Slice radii are rounded to this many steps per raster cell.
 pub const RADIUS_STEPS_PER_CELL: f64 = 16.0;
-/// Probe tables kept for the radii last used (a ramp through a ball's corner uses a few
-/// dozen at a time).
+/// Probe tables kept for the radii last used, at least (a ramp through a ball's corner uses
+/// a few dozen at a time), and at least this many per slice in the corner: every sample
+/// reads each of theirs, so fewer would be made again at every sample. (The corner's
+/// slices are at least [`super::levels::MIN_SLICE_MM`] thick: a 16 mm ball has at most 161.)
 const KEPT_TABLES: usize = 64;
+const KEPT_TABLES_PER_CORNER_SLICE: usize = 2;
 
 /// The radius of each slice for the tip the chunk was started at.
 pub struct SliceRadii {
@@ -142,7 +145,7 @@ impl SliceRadii {
                 self.tables.push(kept);
             }
             None => {
-                if self.tables.len() >= KEPT_TABLES {
+                if self.tables.len() >= KEPT_TABLES.max(KEPT_TABLES_PER_CORNER_SLICE * self.band.len()) {
                     self.tables.remove(0);
                 }
                 self.tables.push((key, self.full.with_radius(rho, self.cell_mm)));
