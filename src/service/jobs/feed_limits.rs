@@ -3,12 +3,12 @@
 //! own, with every fault added to the request's problem.
 
 use super::feeds::{CutMode, FeedsPrepared, FeedsRequest};
+use super::kind::standard_cut_off_runtime;
 use super::setup::{machine_limits, resolve_cost, Resolved, MAX_FEED_PER_STANDARD};
 use crate::core::conditions::feed_mm_min;
 use crate::core::feed::objective::Objective;
 use crate::core::feed::plan::DEFAULT_MAX_FEED_CHANGE_PER_MM;
 use crate::core::feed::rule::FeedStrategy;
-use crate::core::standard_cut::standard_cut;
 use crate::core::tool::EndMill;
 use crate::core::tool::ToolType;
 use crate::service::error::{ApiError, Validator};
@@ -78,7 +78,7 @@ pub async fn resolve(
         (true, Some(f), ..) => Some(Some(f)),
         (true, None, Some(c), Some(model)) => {
             let end_mill: EndMill = tool.into();
-            let cut = faults.take(standard_cut(&end_mill, c.data.conditions(), Some(&model.model)))?;
+            let cut = faults.take(standard_cut_off_runtime(end_mill, c.data.conditions(), Some(model.model)).await)?;
             cut.map(|cut| cut.force_n)
         }
         // Without a model the strategy is refused; without standard conditions, the target.

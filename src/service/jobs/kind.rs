@@ -5,8 +5,12 @@
 
 use super::model::JobKind;
 use crate::core::analysis::kept::KeptStock;
+use crate::core::conditions::CuttingConditions;
 use crate::core::drawing::scene::Scene;
+use crate::core::force_model::ForceModel;
 use crate::core::progress::Progress;
+use crate::core::standard_cut::{standard_cut, StandardCut};
+use crate::core::tool::EndMill;
 use crate::core::CoreError;
 use crate::service::auth::Caller;
 use crate::service::error::{ApiError, Validator};
@@ -61,6 +65,19 @@ impl<R> Produced<R> {
     pub fn programmed(result: R, program: String, scene: Scene) -> Self {
         Produced { program: Some(program), ..Produced::drawn(result, scene) }
     }
+}
+
+/// A tool's standard cut ([`standard_cut`]), worked out on a blocking thread: a radius or
+/// ball end mill's is a simulation of that cut.
+pub async fn standard_cut_off_runtime(
+    tool: EndMill,
+    conditions: CuttingConditions,
+    model: Option<ForceModel>,
+) -> Result<StandardCut, ApiError> {
+    tokio::task::spawn_blocking(move || standard_cut(&tool, conditions, model.as_ref()))
+        .await
+        .map_err(|e| ApiError::Internal(format!("a blocking task failed: {e}")))?
+        .map_err(ApiError::from)
 }
 
 /// Runs `work` on a blocking thread (parsing a program or a pocket is CPU work), adding its

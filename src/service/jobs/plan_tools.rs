@@ -1,11 +1,11 @@
 //! The candidate tools of a plan: which tools the request names (by diameter, by id, or
 //! the default range) and what each needs from the database.
 
+use super::kind::standard_cut_off_runtime;
 use super::plans::{CandidatePrepared, PlanRequest, CANDIDATE_DIAMETER_RANGE_MM};
 use super::setup::{resolve as resolve_path_job, PathJobRefs, PathSetup, Resolved, MAX_FEED_PER_STANDARD};
 use crate::core::conditions::feed_mm_min;
 use crate::core::operation::Operation;
-use crate::core::standard_cut::standard_cut;
 use crate::core::tool::{EndMill, ToolType};
 use crate::service::error::{ApiError, Validator};
 use crate::service::lookup;
@@ -124,7 +124,7 @@ pub async fn resolve(
     };
     let tool: EndMill = base.tool.geometry.into();
     let s = standard.data;
-    let cut = standard_cut(&tool, s.conditions(), Some(&model.model))?;
+    let cut = standard_cut_off_runtime(tool, s.conditions(), Some(model.model)).await?;
     let (arc_mm, standard_force_n) = (cut.arc_length_mm, cut.force_n.unwrap_or_default());
     let standard_feed = feed_mm_min(s.fz_mm, tool.flutes, s.spindle_rpm);
     let price = sqlx::query_scalar::<_, Option<f64>>("SELECT price FROM tools WHERE id = $1")

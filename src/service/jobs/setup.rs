@@ -10,13 +10,13 @@ use crate::core::costing::estimate::CostModel;
 use crate::core::force_model::ForceModel;
 use crate::core::kinematics::MachineLimits;
 use crate::core::operation::Operation;
-use crate::core::standard_cut::standard_cut;
 use crate::core::tool::{EndMill, ToolType};
 use crate::core::tool_life::ToolLifeModel;
 use crate::core::toolpath::Toolpath;
 use crate::service::error::{ApiError, Validator};
 use crate::service::jobs::inputs::{read_stock, Stock, StockInput};
 use crate::service::jobs::kept_stock::{CarriedStock, FIELD as STOCK_FROM_JOB};
+use crate::service::jobs::kind::standard_cut_off_runtime;
 use crate::service::jobs::program_input::{read_program, ProgramContext, ProgramInput, ReadProgram};
 use crate::service::lookup;
 use crate::service::resources::force_models::ForceModelRecord;
@@ -415,9 +415,7 @@ pub async fn resolve_cost(
     };
     let model = base.force_model.as_ref().map(|m| m.model);
     let tool: EndMill = base.tool.geometry.into();
-    let Some(cut) =
-        faults.take(standard_cut(&tool, standard.data.conditions(), model.as_ref()).map_err(ApiError::from))?
-    else {
+    let Some(cut) = faults.take(standard_cut_off_runtime(tool, standard.data.conditions(), model).await)? else {
         return Ok(None);
     };
     let (arc_mm, standard_force_n) = (cut.arc_length_mm, cut.force_n);
