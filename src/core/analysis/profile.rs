@@ -63,6 +63,20 @@ impl Profile {
         self.radius_mm - rc + (h_mm * (2.0 * rc - h_mm)).max(0.0).sqrt()
     }
 
+    /// The height of the tool's end above its tip at `rho_mm` from its axis, mm: 0 across
+    /// the flat end, the corner's arc beyond it; `None` outside the tool's radius.
+    pub fn height_at(&self, rho_mm: f64) -> Option<f64> {
+        if rho_mm > self.radius_mm {
+            return None;
+        }
+        let rc = self.corner_mm;
+        let into_corner = rho_mm - (self.radius_mm - rc);
+        if into_corner <= 0.0 {
+            return Some(0.0);
+        }
+        Some(rc - (rc * rc - into_corner * into_corner).max(0.0).sqrt())
+    }
+
     /// `∫₀^h ρ(t) dt`: half the area of the tool's axial section up to `h_mm` above the
     /// tip, mm² (0 below the tip).
     pub fn half_section_mm2(&self, h_mm: f64) -> f64 {

@@ -7,9 +7,10 @@ use super::feeds::force_at_feed;
 use super::layer::{moved_down, LayerPlan, Step};
 use super::parallel::{self, Shares};
 use super::spec::{ProcessOptions, ToolCandidate};
+use crate::core::analysis::geometry::PathGeometry;
 use crate::core::costing::cost::{cost, Cost, Rates};
 use crate::core::feed::blocks::BlockOptions;
-use crate::core::feed::plan::FeedSpec;
+use crate::core::feed::plan::{FeedPlan, FeedSpec};
 use crate::core::feed::rule::{FeedRule, FeedStrategy};
 use crate::core::insertion::{append_over, labelled_program};
 use crate::core::kinematics::{machining_time, MachiningTime, TimeOptions};
@@ -45,7 +46,8 @@ pub struct Figures {
 }
 
 impl Figures {
-    fn add(&mut self, o: &Figures) {
+    /// Adds `o`'s lengths, times and consumption.
+    pub fn add(&mut self, o: &Figures) {
         self.feed_length_mm += o.feed_length_mm;
         self.cutting_length_mm += o.cutting_length_mm;
         self.rapid_length_mm += o.rapid_length_mm;
@@ -162,34 +164,7 @@ fn optimise_layer(
             entry[i] = true;
         }
     }
-    let n = plan.path.moves.len();
-    let (mut wear_mm, mut cutting_mm, mut surface_mm) = (vec![0.0; n], vec![0.0; n], 0.0);
-    let model = &candidate.life;
-    let flutes = f64::from(candidate.tool.flutes);
-    super::feeds::for_each_sample_in_plan(&layer.toolpath, geometry, &plan, |g, i| {
-        let alpha_deg = f64::from(g.alpha_rad).to_degrees();
-        let rpm = g.spindle().unwrap_or(0.0);
-        if alpha_deg <= 0.0 || rpm <= 0.0 || g.rapid() {
-            return;
-        }
-        let feed_mm_min = plan.path.moves[i].feed_mm_min.unwrap_or(0.0);
-        let fz_c_mm = feed_mm_min / (flutes * rpm);
-        let arc_length_mm = g.arc_length_mm();
-        let cut = if entry[i] {
-            WearCut { alpha_deg, arc_length_mm, fz_p_mm: fz_c_mm, force_n: None }
-        } else {
-            WearCut {
-                alpha_deg,
-                arc_length_mm,
-                fz_p_mm: fz_c_mm * f64::from(g.cutting_point_ratio),
-                force_n: force_at_feed(candidate.force_model, g, candidate.tool.flutes, feed_mm_min),
-            }
-        };
-        let step_mm = f64::from(g.step_mm);
-        wear_mm[i] += model.wear_mm(step_mm, &cut);
-        cutting_mm[i] += step_mm;
-        surface_mm += machined_surface_mm(step_mm, f64::from(g.cutting_point_ratio));
-    });
+    let Worn { wear_mm, cutting_mm, surface_mm } = wear_along(&layer.toolpath, geometry, &plan, candidate, &entry);
     progress.report(1.0);
     let mut warnings = Vec::new();
     if !plan.shortfalls.is_empty() {
@@ -210,6 +185,56 @@ fn optimise_layer(
         removed_mm3: geometry.removed_volume_mm3,
         warnings,
     })
+}
+
+/// What a path's cuts take of the tool: per move of the optimised path, the edge arc worn
+/// and the cutting length (mm), and the cutting length along the machined surface (mm).
+pub(super) struct Worn {
+    pub wear_mm: Vec<f64>,
+    pub cutting_mm: Vec<f64>,
+    pub surface_mm: f64,
+}
+
+/// The wear of `candidate` along `plan` (the feeds optimised for `path`, whose samples are
+/// `geometry`), MODEL.md §9: every sample's edge arc at its feed per tooth at the cutting
+/// point and its force. Moves marked in `programmed` keep their programmed feed and count
+/// their engagement (γ) at the centre feed per tooth, with no force factor.
+pub(super) fn wear_along(
+    path: &Toolpath,
+    geometry: &PathGeometry,
+    plan: &FeedPlan,
+    candidate: &ToolCandidate,
+    programmed: &[bool],
+) -> Worn {
+    let n = plan.path.moves.len();
+    let (mut wear_mm, mut cutting_mm, mut surface_mm) = (vec![0.0; n], vec![0.0; n], 0.0);
+    let model = &candidate.life;
+    let flutes = f64::from(candidate.tool.flutes);
+    super::feeds::for_each_sample_in_plan(path, geometry, plan, |g, i| {
+        let alpha_deg = f64::from(g.alpha_rad).to_degrees();
+        let rpm = g.spindle().unwrap_or(0.0);
+        if alpha_deg <= 0.0 || rpm <= 0.0 || g.rapid() {
+            return;
+        }
+        let feed_mm_min = plan.path.moves[i].feed_mm_min.unwrap_or(0.0);
+        let fz_c_mm = feed_mm_min / (flutes * rpm);
+        let arc_length_mm = g.arc_length_mm();
+        let cut = if programmed.get(i).copied().unwrap_or(false) {
+            WearCut { alpha_deg, arc_length_mm, fz_p_mm: fz_c_mm, force_n: None }
+        } else {
+            WearCut {
+                alpha_deg,
+                arc_length_mm,
+                fz_p_mm: fz_c_mm * f64::from(g.cutting_point_ratio),
+                force_n: force_at_feed(candidate.force_model, g, candidate.tool.flutes, feed_mm_min),
+            }
+        };
+        let step_mm = f64::from(g.step_mm);
+        wear_mm[i] += model.wear_mm(step_mm, &cut);
+        cutting_mm[i] += step_mm;
+        surface_mm += machined_surface_mm(step_mm, f64::from(g.cutting_point_ratio));
+    });
+    Worn { wear_mm, cutting_mm, surface_mm }
 }
 
 /// Evaluates `candidate`'s planned `layers` at `force_factor` × F*.

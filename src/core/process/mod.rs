@@ -15,7 +15,11 @@
 //! 4. **Choice**: the complete candidate of the lowest cost.
 //! 5. **Tuning** ([`tune`]): the chosen tool's force target is raised until the job uses about
 //!    90 % of one tool.
-//! 6. **Baseline** ([`baseline`]): the conventional ball-end roughing, for the comparison.
+//! 6. **Stair steps** ([`stair_step`]): where the layers' sections slope, a ball or radius end
+//!    mill takes the steps the roughing leaves off in thin levels, from the stock the roughing
+//!    left; its time and cost join the plan's, its program follows the roughing's after a
+//!    tool change.
+//! 7. **Baseline** ([`baseline`]): the conventional ball-end roughing, for the comparison.
 
 pub mod baseline;
 pub mod cavity;
@@ -28,12 +32,16 @@ mod parallel;
 mod report;
 pub mod screen;
 pub mod spec;
+pub mod stair_step;
+pub mod stairs;
 pub mod tune;
 
 #[cfg(test)]
 mod feeds_tests;
 #[cfg(test)]
 mod program_tests;
+#[cfg(test)]
+mod stair_step_tests;
 #[cfg(test)]
 mod tests;
 
@@ -45,9 +53,10 @@ pub use cavity::{
 pub use evaluate::{Evaluation, Figures, LayerFigures, StepFigures};
 pub use layer::{LayerPlan, Step};
 pub use overload_lines::overload_program_lines;
-pub use report::{CandidateReport, CandidateStatus, Comparison, LayerReport, ProcessPlan};
+pub use report::{CandidateReport, CandidateStatus, Comparison, LayerReport, ProcessPlan, Whole};
 pub use screen::{Estimate, SCREEN_MARGIN, SCREEN_SPACING_FACTOR};
 pub use spec::{ProcessOptions, ToolCandidate, DEFAULT_MAX_FORCE_FACTOR, DEFAULT_TARGET_CONSUMPTION};
+pub use stair_step::{plan_stair_step, StairStep, StairStepSpec};
 pub use tune::{Tuning, TuningOutcome};
 
 use crate::core::pocketing::unreachable_area_mm2;
@@ -66,6 +75,9 @@ const CANDIDATES_SHARE: f64 = 0.75;
 /// Share of the progress spent on the screening, when there is one.
 const SCREENING_SHARE: f64 = 0.35;
 const TUNING_SHARE: f64 = 0.15;
+/// Share of the progress spent on the stair-step roughing (the baseline is waited for in the
+/// rest).
+const STAIR_STEP_SHARE: f64 = 0.05;
 
 /// Checks what can be checked before planning.
 pub fn check_process(
@@ -114,8 +126,9 @@ fn unplannable_unless_cancelled<T>(step: Result<T, CoreError>) -> Result<Result<
     }
 }
 
-/// Plans `cavity` with each of `candidates`, chooses the cheapest complete one, tunes it, and
-/// (with `baseline`) plans the conventional baseline. The baseline depends on nothing else:
+/// Plans `cavity` with each of `candidates`, chooses the cheapest complete one, tunes it,
+/// (with `stair_step`) plans the stair-step roughing after it, and (with `baseline`) plans
+/// the conventional baseline. The baseline depends on nothing else:
 /// it is planned beside the candidates, on a thread of its own, and reports no progress of
 /// its own (the last tenth of the progress waits for it); it stops when the job is cancelled
 /// or the candidates' planning fails.
@@ -124,6 +137,7 @@ pub fn plan_process(
     candidates: &[ToolCandidate],
     options: &ProcessOptions,
     baseline: Option<&BaselineSpec>,
+    stair_step: Option<&StairStepSpec>,
     progress: &dyn Progress,
 ) -> Result<ProcessPlan, CoreError> {
     check_process(input, candidates, options)?;
@@ -134,19 +148,54 @@ pub fn plan_process(
             let beside = Beside { inner: progress, abandoned: &abandoned };
             scope.spawn(move || plan_baseline(cavity, spec, options, &beside))
         });
-        let chosen = choose_and_tune(input, cavity, candidates, options, progress);
+        let chosen = choose_and_tune(input, cavity, candidates, options, progress)
+            .and_then(|chosen| with_stair_step(chosen, cavity, stair_step, options, progress));
         if chosen.is_err() {
             abandoned.store(true, Ordering::Relaxed);
         }
         let baseline = side.map(|h| h.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)));
         (chosen, baseline)
     });
-    let Chosen { reports, chosen, layers, evaluation, tuning, warnings, stock } = chosen?;
+    let Chosen { reports, chosen, layers, evaluation, tuning, warnings, stock, stair_step } = chosen?;
     let baseline = baseline.transpose()?;
     progress.report(1.0);
-    let mut plan = report::assemble(cavity, reports, chosen, &layers, evaluation, tuning, baseline, warnings);
+    let parts = report::Parts { candidates: reports, chosen, evaluation, tuning, baseline, stair_step, warnings };
+    let mut plan = report::assemble(cavity, &layers, parts);
     plan.stock = stock;
     Ok(plan)
+}
+
+/// The chosen plan with its stair-step roughing (`spec`), planned from the stock the
+/// roughing leaves; unchanged when there is no spec or the layers leave no steps. A plan
+/// that keeps no stock cannot have the step simulated: a warning says so.
+fn with_stair_step(
+    mut chosen: Chosen,
+    cavity: &Cavity,
+    spec: Option<&StairStepSpec>,
+    options: &ProcessOptions,
+    progress: &dyn Progress,
+) -> Result<Chosen, CoreError> {
+    let Some(spec) = spec else {
+        return Ok(chosen);
+    };
+    let Some(stock) = chosen.stock.as_ref() else {
+        chosen.warnings.push("no stair-step roughing: the roughing keeps no stock to plan it on".to_string());
+        return Ok(chosen);
+    };
+    let stage = Stage { inner: progress, from: CANDIDATES_SHARE + TUNING_SHARE, span: STAIR_STEP_SHARE };
+    let Some((step, kept)) = plan_stair_step(cavity, &stock.stock, spec, options, &stage)? else {
+        return Ok(chosen);
+    };
+    match crate::core::analysis::rest::RestMaterial::of_kept(&kept) {
+        Ok(rest) => chosen.stock = Some(kept_layers::PlanStock { stock: kept, rest }),
+        Err(reason) => {
+            chosen.warnings.push(format!("the plan keeps no stock for another job to start from: {reason}"));
+            chosen.stock = None;
+        }
+    }
+    chosen.warnings.extend(step.warnings.iter().map(|w| format!("stair-step roughing: {w}")));
+    chosen.stair_step = Some(step);
+    Ok(chosen)
 }
 
 /// The candidates' plans, the one chosen, and its tuning.
@@ -159,6 +208,8 @@ struct Chosen {
     warnings: Vec<String>,
     /// The stock the chosen plan leaves (`None`: a warning says why).
     stock: Option<kept_layers::PlanStock>,
+    /// The stair-step roughing after the chosen tool's, if planned.
+    stair_step: Option<StairStep>,
 }
 
 /// Screens and plans the candidates, chooses the cheapest complete plan and tunes it.
@@ -313,5 +364,5 @@ fn choose_and_tune(
             tuning.tools_needed
         ));
     }
-    Ok(Chosen { reports, chosen, layers, evaluation, tuning, warnings, stock })
+    Ok(Chosen { reports, chosen, layers, evaluation, tuning, warnings, stock, stair_step: None })
 }

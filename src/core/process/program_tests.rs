@@ -18,7 +18,7 @@ use std::collections::BTreeSet;
 fn small_plan() -> ProcessPlan {
     let input = CavityInput::Depth { pocket: rounded_box(30.0, 20.0, 6.0), z_top_mm: 0.0, z_bottom_mm: -8.0 };
     let untuned = ProcessOptions { tune: false, ..options() };
-    plan_process(&input, &[ten_mm(10.0)], &untuned, None, &NoProgress).unwrap()
+    plan_process(&input, &[ten_mm(10.0)], &untuned, None, None, &NoProgress).unwrap()
 }
 
 #[test]

@@ -6,7 +6,9 @@ use super::cavity::{Cavity, LayerRole};
 use super::evaluate::{Evaluation, Figures, LayerFigures};
 use super::layer::LayerPlan;
 use super::spec::ToolCandidate;
+use super::stair_step::StairStep;
 use super::tune::Tuning;
+use crate::core::costing::cost::Cost;
 use crate::core::insertion::{Overload, TreatmentKind, Verification};
 use serde::Serialize;
 
@@ -185,19 +187,25 @@ pub struct ProcessPlan {
     /// The stock the chosen plan leaves in the cavity, and its rest material (`None`, with
     /// a warning, where it cannot be kept).
     pub stock: Option<super::kept_layers::PlanStock>,
+    /// The stair-step roughing after the chosen tool's (`None`: not asked for, or no steps).
+    pub stair_step: Option<StairStep>,
+    /// The whole job, the stair step included.
+    pub whole: Whole,
 }
 
-#[allow(clippy::too_many_arguments)]
-pub(super) fn assemble(
-    cavity: &Cavity,
-    candidates: Vec<CandidateReport>,
-    chosen: usize,
-    layers: &[LayerPlan],
-    evaluation: Evaluation,
-    tuning: Tuning,
-    baseline: Option<Baseline>,
-    mut warnings: Vec<String>,
-) -> ProcessPlan {
+/// What a plan is assembled from, besides its cavity and layers.
+pub(super) struct Parts {
+    pub candidates: Vec<CandidateReport>,
+    pub chosen: usize,
+    pub evaluation: Evaluation,
+    pub tuning: Tuning,
+    pub baseline: Option<Baseline>,
+    pub stair_step: Option<StairStep>,
+    pub warnings: Vec<String>,
+}
+
+pub(super) fn assemble(cavity: &Cavity, layers: &[LayerPlan], parts: Parts) -> ProcessPlan {
+    let Parts { candidates, chosen, evaluation, tuning, baseline, stair_step, mut warnings } = parts;
     let layer_reports = layers
         .iter()
         .zip(&evaluation.layers)
@@ -229,13 +237,14 @@ pub(super) fn assemble(
         warnings.extend(l.insertion.warnings.iter().map(|w| format!("layer {}: {w}", l.index)));
     }
     warnings.extend(evaluation.warnings.iter().cloned());
+    let whole = Whole::of(&evaluation, stair_step.as_ref());
     let comparison = baseline.as_ref().map(|b| {
         let ratio = |a: f64, b: f64| if b > 0.0 { a / b } else { 0.0 };
         Comparison {
-            kinematic_time_ratio: ratio(evaluation.total.kinematic_time_min, b.figures.kinematic_time_min),
-            cutting_length_ratio: ratio(evaluation.total.cutting_length_mm, b.figures.cutting_length_mm),
-            cost_ratio: ratio(evaluation.cost.total, b.cost.total),
-            time_saved_min: b.figures.kinematic_time_min - evaluation.total.kinematic_time_min,
+            kinematic_time_ratio: ratio(whole.figures.kinematic_time_min, b.figures.kinematic_time_min),
+            cutting_length_ratio: ratio(whole.figures.cutting_length_mm, b.figures.cutting_length_mm),
+            cost_ratio: ratio(whole.cost.total, b.cost.total),
+            time_saved_min: b.figures.kinematic_time_min - whole.figures.kinematic_time_min,
         }
     });
     ProcessPlan {
@@ -250,5 +259,43 @@ pub(super) fn assemble(
         min_concave_radius_mm: cavity.min_concave_radius_mm(),
         warnings,
         stock: None,
+        stair_step,
+        whole,
+    }
+}
+
+/// The whole job: the chosen tool's roughing and, after it, the stair-step roughing.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Whole {
+    /// Lengths and times of both; the consumption is the roughing tool's (the stair step's
+    /// own tool has its own, in [`StairStep`]).
+    pub figures: Figures,
+    pub cost: Cost,
+    pub removed_volume_mm3: f64,
+    /// Over the kinematic time, cm³/min.
+    pub removal_rate_cm3_min: f64,
+}
+
+impl Whole {
+    /// The whole of `evaluation` and, if planned, `stair_step`.
+    pub fn of(evaluation: &Evaluation, stair_step: Option<&StairStep>) -> Whole {
+        let mut figures = evaluation.total;
+        let mut cost = evaluation.cost.clone();
+        let mut removed_volume_mm3 = evaluation.removed_volume_mm3;
+        if let Some(s) = stair_step {
+            let consumption = figures.consumption;
+            figures.add(&s.figures);
+            figures.consumption = consumption;
+            cost.machine += s.cost.machine;
+            cost.tool += s.cost.tool;
+            cost.total += s.cost.total;
+            removed_volume_mm3 += s.removed_volume_mm3;
+        }
+        let removal_rate_cm3_min = if figures.kinematic_time_min > 0.0 {
+            removed_volume_mm3 / 1000.0 / figures.kinematic_time_min
+        } else {
+            0.0
+        };
+        Whole { figures, cost, removed_volume_mm3, removal_rate_cm3_min }
     }
 }

@@ -46,16 +46,20 @@ pub struct ToolCandidate {
 }
 
 impl ToolCandidate {
-    /// Checks every value; errors name the candidate.
+    /// Checks every value, and that the tool is a flat end mill; errors name the candidate.
     pub fn validate(&self) -> Result<(), CoreError> {
+        self.validate_in(&format!("candidates.{}", self.name), true)
+    }
+
+    /// Checks every value (with `flat`, also that the tool is a flat end mill); errors name
+    /// their field under `prefix`.
+    pub fn validate_in(&self, prefix: &str, flat: bool) -> Result<(), CoreError> {
         let named = |e: CoreError| match e {
-            CoreError::InvalidInput { field, reason } => {
-                CoreError::invalid(format!("candidates.{}.{field}", self.name), reason)
-            }
+            CoreError::InvalidInput { field, reason } => CoreError::invalid(format!("{prefix}.{field}"), reason),
             other => other,
         };
         (|| {
-            if matches!(self.tool.tool_type, ToolType::Ball) {
+            if flat && matches!(self.tool.tool_type, ToolType::Ball) {
                 return Err(CoreError::invalid("tool", "the proposed strategy needs a flat end mill, not a ball"));
             }
             require_positive("diameter_mm", self.tool.diameter_mm)?;

@@ -65,7 +65,7 @@ fn a_small_box_cavity_is_planned_with_the_tool_that_reaches_its_corners_and_comp
     let input = CavityInput::Depth { pocket: rounded_box(40.0, 30.0, 6.0), z_top_mm: 0.0, z_bottom_mm: -12.0 };
     let cavity = input.whole();
     let candidates = [ten_mm(10.0), ten_mm(16.0)];
-    let plan = plan_process(&input, &candidates, &options(), Some(&ball()), &NoProgress).unwrap();
+    let plan = plan_process(&input, &candidates, &options(), Some(&ball()), None, &NoProgress).unwrap();
 
     // The 16 mm tool cannot reach the R6 corners; the 10 mm one is chosen.
     assert_eq!(plan.candidates[1].status, CandidateStatus::CannotReach);
@@ -129,7 +129,7 @@ fn a_cavity_no_candidate_can_reach_is_refused_with_every_reason() {
     ]);
     let cavity =
         CavityInput::Layers(layers_by_depth(&Pocket::new(slot, vec![]).unwrap(), 0.0, -5.0, 10.0, 5.0).unwrap());
-    let e = plan_process(&cavity, &[ten_mm(16.0)], &options(), None, &NoProgress);
+    let e = plan_process(&cavity, &[ten_mm(16.0)], &options(), None, None, &NoProgress);
     // Alone, it is the smallest candidate: it is planned, and its plan cannot cut the slot.
     let message = e.map(|p| p.candidates.len()).unwrap_err().to_string();
     assert!(message.starts_with("diameters_mm") && message.contains("square D16: "), "{message}");
@@ -164,7 +164,7 @@ fn a_plan_keeps_the_stock_its_layers_leave_with_the_corners_the_tool_cannot_reac
     // 10 mm tool cannot reach, 25 (1 − π/4) mm² each.
     let sharp = Pocket::new(Loop::rectangle(0.0, 0.0, 40.0, 30.0), vec![]).unwrap();
     let input = CavityInput::Depth { pocket: sharp, z_top_mm: 0.0, z_bottom_mm: -24.0 };
-    let plan = plan_process(&input, &[ten_mm(10.0)], &options(), None, &NoProgress).unwrap();
+    let plan = plan_process(&input, &[ten_mm(10.0)], &options(), None, None, &NoProgress).unwrap();
     assert!(plan.layers.iter().any(|l| l.copy_of.is_some()), "{:?}", plan.layers);
     let kept = plan.stock.as_ref().expect("the plan keeps its stock");
     let stock = &kept.stock;
@@ -208,7 +208,8 @@ fn a_plan_of_layers_with_different_contours_keeps_what_the_upper_layer_leaves_ou
     .unwrap();
     let layer = |pocket: Pocket, z_top_mm: f64, z_bottom_mm: f64| CavityLayer { pocket, z_top_mm, z_bottom_mm };
     let cavity = Cavity { layers: vec![layer(rectangle, 0.0, -6.0), layer(l_shape, -6.0, -11.0)] };
-    let plan = plan_process(&CavityInput::Layers(cavity), &[ten_mm(10.0)], &options(), None, &NoProgress).unwrap();
+    let plan =
+        plan_process(&CavityInput::Layers(cavity), &[ten_mm(10.0)], &options(), None, None, &NoProgress).unwrap();
     let kept = plan.stock.as_ref().expect("the plan keeps its stock");
     kept.stock.validate().unwrap();
     let corners_mm2 = 4.0 * 25.0 * (1.0 - std::f64::consts::FRAC_PI_4);
@@ -227,7 +228,8 @@ fn a_stepped_cavity_keeps_its_stock_on_the_grid_covering_every_layer() {
     let small = Pocket::new(Loop::rectangle(5.0, 5.0, 35.0, 25.0), vec![]).unwrap();
     let layer = |pocket: Pocket, z_top_mm: f64, z_bottom_mm: f64| CavityLayer { pocket, z_top_mm, z_bottom_mm };
     let cavity = Cavity { layers: vec![layer(big, 0.0, -6.0), layer(small, -6.0, -11.0)] };
-    let plan = plan_process(&CavityInput::Layers(cavity), &[ten_mm(10.0)], &options(), None, &NoProgress).unwrap();
+    let plan =
+        plan_process(&CavityInput::Layers(cavity), &[ten_mm(10.0)], &options(), None, None, &NoProgress).unwrap();
     let kept = plan.stock.as_ref().unwrap_or_else(|| panic!("no stock: {:?}", plan.warnings));
     kept.stock.validate().unwrap();
     let g = kept.stock.grid;

@@ -25,6 +25,10 @@ pub enum Step {
     /// The conventional strategy the papers compare with: a ball end mill in thin
     /// contour-parallel levels (seed 004 §3.3).
     ConventionalBallRoughing,
+    /// Intermediate roughing of the stair steps the layers' roughing leaves on a sloped
+    /// wall or floor, with a ball or radius end mill in thin z levels (issue 32, seed 004
+    /// case II's slanted bottom).
+    StairStepRoughing,
 }
 
 impl Step {
@@ -38,6 +42,7 @@ impl Step {
             Step::RoughSideCutting => "rough side cutting",
             Step::IntermediateRoughSideCutting => "intermediate-rough side cutting",
             Step::ConventionalBallRoughing => "conventional ball-end roughing",
+            Step::StairStepRoughing => "stair-step intermediate roughing",
         }
     }
 }

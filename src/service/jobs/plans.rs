@@ -383,7 +383,7 @@ pub fn run(
             })
         })
         .transpose()?;
-    let plan = plan_process(&cavity, &candidates, &options, baseline.as_ref(), progress)?;
+    let plan = plan_process(&cavity, &candidates, &options, baseline.as_ref(), None, progress)?;
     let chosen = &prepared.candidates[plan.chosen];
     let mut writer_base = prepared.writer_base.clone();
     writer_base.tool.id = chosen.tool_id;
