@@ -34,6 +34,7 @@ mod replicas;
 mod restarts;
 mod retention;
 mod schemathesis;
+mod stair_step;
 mod stock_budget;
 mod stock_carry;
 mod stock_view;

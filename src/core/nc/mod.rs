@@ -75,7 +75,7 @@ pub use parse::{interpret, parse_gcode, Interpreted};
 pub use report::MAX_QUOTED_WORD_CHARS;
 pub use writer::{
     write_program, write_program_mapped, Dialect, LineNumbers, WriterOptions, WrittenProgram, DEFAULT_DECIMALS,
-    DEFAULT_FEED_DECIMALS, MAX_DECIMALS, MAX_SEQUENCE_NUMBER,
+    DEFAULT_FEED_DECIMALS, DEFAULT_TOOL_NUMBER, MAX_DECIMALS, MAX_SEQUENCE_NUMBER,
 };
 
 use crate::core::toolpath::P3;

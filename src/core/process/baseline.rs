@@ -18,9 +18,9 @@
 //! corner loops). They bring the case study's path from 98.5 m to 150.4 m of feed moves
 //! (seed 004 Table 4: 153.9 m) and its time from 31.2 to 45.8 min on the machine (42'47").
 //!
-//! The stock model is 2.5-D, so the ball is simulated as its cylinder: that overstates its
-//! engagement arc (at 0.6 mm deep a ball of R5 cuts with a radius of 2.4 mm), hence its wear;
-//! the comparison figures of the papers, time and cutting length, do not depend on it.
+//! The ball is simulated with its real profile (the analysis slices it, see
+//! [`crate::core::analysis::profile`]): at 0.6 mm deep a ball of R5 cuts with a radius of
+//! 2.4 mm, not its cylinder's 5.
 
 use super::cavity::{Cavity, CavityLayer};
 use super::evaluate::Figures;

@@ -56,7 +56,7 @@ pub use overload_lines::overload_program_lines;
 pub use report::{CandidateReport, CandidateStatus, Comparison, LayerReport, ProcessPlan, Whole};
 pub use screen::{Estimate, SCREEN_MARGIN, SCREEN_SPACING_FACTOR};
 pub use spec::{ProcessOptions, ToolCandidate, DEFAULT_MAX_FORCE_FACTOR, DEFAULT_TARGET_CONSUMPTION};
-pub use stair_step::{plan_stair_step, StairStep, StairStepSpec};
+pub use stair_step::{joined_program, plan_stair_step, StairStep, StairStepSpec, STAIR_STEP_FIELD};
 pub use tune::{Tuning, TuningOutcome};
 
 use crate::core::pocketing::unreachable_area_mm2;
@@ -165,6 +165,9 @@ pub fn plan_process(
     Ok(plan)
 }
 
+/// What a plan of layers of different contours says when no stair-step roughing was asked for.
+pub const STEPS_NOT_PLANNED: &str = "the layers' contours differ: where they are sections of a sloped wall or floor, the roughing leaves steps over it; ask for the stair-step roughing (\"stair_step\": {}) to have a ball take them off";
+
 /// The chosen plan with its stair-step roughing (`spec`), planned from the stock the
 /// roughing leaves; unchanged when there is no spec or the layers leave no steps. A plan
 /// that keeps no stock cannot have the step simulated: a warning says so.
@@ -176,6 +179,9 @@ fn with_stair_step(
     progress: &dyn Progress,
 ) -> Result<Chosen, CoreError> {
     let Some(spec) = spec else {
+        if cavity.layers.windows(2).any(|w| w[0].pocket != w[1].pocket) {
+            chosen.warnings.push(STEPS_NOT_PLANNED.to_string());
+        }
         return Ok(chosen);
     };
     let Some(stock) = chosen.stock.as_ref() else {

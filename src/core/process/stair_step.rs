@@ -15,11 +15,12 @@ use crate::core::analysis::geometry::{PathGeometry, SampleGeometry};
 use crate::core::analysis::kept::{keep, Floor, KeptStock};
 use crate::core::analysis::{analyze_from, AnalysisSpec, StockRegion};
 use crate::core::costing::cost::{cost, Cost, Rates};
+use crate::core::insertion::append_over;
 use crate::core::kinematics::{machining_time, MachiningTime, TimeOptions};
 use crate::core::progress::{Progress, Stage};
 use crate::core::tool::ToolType;
 use crate::core::tool_life::{Consumption, CutLength};
-use crate::core::toolpath::{move_length, Motion, Toolpath};
+use crate::core::toolpath::{move_length, Event, EventKind, Motion, Toolpath};
 use crate::core::CoreError;
 use serde::Serialize;
 
@@ -75,6 +76,24 @@ pub struct StairStep {
     pub program: Toolpath,
     #[serde(skip)]
     pub time: MachiningTime,
+}
+
+/// The program of the whole job: `roughing`, then `step` (which calls its own tool),
+/// joined over `safe_z_mm`; `step`'s events move with its moves.
+pub fn joined_program(roughing: &Toolpath, step: &Toolpath, safe_z_mm: f64) -> Toolpath {
+    let mut moves = roughing.moves.clone();
+    let mut events = roughing.events.clone();
+    // The roughing's end (if any) is no longer the program's.
+    events.retain(|e| e.kind != EventKind::End);
+    append_over(&mut moves, &step.moves, safe_z_mm);
+    let offset = moves.len() - step.moves.len();
+    events.extend(step.events.iter().map(|e| Event { before_move: e.before_move + offset, ..*e }));
+    for (i, m) in moves.iter_mut().enumerate() {
+        m.line = u32::try_from(i + 1).unwrap_or(u32::MAX);
+    }
+    let mut warnings = roughing.warnings.clone();
+    warnings.extend(step.warnings.iter().cloned());
+    Toolpath { moves, events, source_units: roughing.source_units, warnings }
 }
 
 /// Plans and estimates the stair-step roughing of `cavity` from the stock `start` the

@@ -3,6 +3,7 @@ use super::*;
 use crate::core::conditions::CuttingConditions;
 use crate::core::fixtures::ten_mm_life;
 use crate::core::geometry::{Loop, Pocket};
+use crate::core::nc::{parse_gcode, write_program, ParseOptions, WriterOptions};
 use crate::core::progress::NoProgress;
 use crate::core::tool::{EndMill, ToolType};
 use crate::core::toolpath::{EventKind, Step};
@@ -106,6 +107,27 @@ fn a_slanted_floor_gets_its_steps_taken_off_by_a_ball_after_the_roughing() {
     assert!(matches!(p.events[0].kind, EventKind::ToolChange { tool: 2 }));
     assert!(p.events.iter().any(|e| matches!(e.kind, EventKind::Section(s) if s.step == Step::StairStepRoughing)));
     assert!(p.moves.iter().filter_map(|m| m.feed_mm_min).all(|f| (100.0..=12000.0 + 1e-9).contains(&f)));
+    // The whole program: the roughing, the tool change, the step; written and read back, it
+    // has the same motion.
+    let whole = joined_program(&plan.evaluation.program, p, options().safe_z_mm);
+    let written = write_program(&whole, &WriterOptions::default());
+    assert!(written.contains("T1 M6") && written.contains("T2 M6") && written.contains("G43 H2"), "{written:.400}");
+    assert!(written.contains("STAIR-STEP INTERMEDIATE ROUGHING"));
+    let back = parse_gcode(&written, &ParseOptions::default()).unwrap();
+    // The step's feed moves come back as they were, with the ball in the spindle.
+    let step_feeds = |t: &crate::core::toolpath::Toolpath| -> Vec<(f64, f64, f64)> {
+        t.moves
+            .iter()
+            .filter(|m| m.tool == Some(2) && !matches!(m.motion, crate::core::toolpath::Motion::Rapid))
+            .map(|m| (m.end.x, m.end.y, m.end.z))
+            .collect()
+    };
+    let (sent, read) = (step_feeds(p), step_feeds(&back));
+    assert_eq!(sent.len(), read.len());
+    assert!(sent
+        .iter()
+        .zip(&read)
+        .all(|(a, b)| (a.0 - b.0).abs() < 1e-3 && (a.1 - b.1).abs() < 1e-3 && (a.2 - b.2).abs() < 1e-3));
 }
 
 #[test]

@@ -24,6 +24,7 @@ pub mod notify;
 pub mod output;
 pub mod path_trace;
 pub mod plan_rows;
+pub mod plan_stair_step;
 pub mod plan_tools;
 pub mod plans;
 pub mod plans_result;

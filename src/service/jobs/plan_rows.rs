@@ -41,7 +41,14 @@ pub async fn resolve(
     };
     let (mut candidates, mut skipped, mut writer_base) = (Vec::new(), Vec::new(), None);
     for pick in &picks {
-        let resolved = plan_tools::resolve(pool, pick.tool_id, material.id, machine.id, rates.data.default_tool_price);
+        let resolved = plan_tools::resolve(
+            pool,
+            pick.tool_id,
+            material.id,
+            machine.id,
+            rates.data.default_tool_price,
+            plan_tools::ConditionsFrom::Plan,
+        );
         match faults.take(resolved.await)? {
             Some(Ok((c, base))) => {
                 writer_base.get_or_insert(base);
@@ -73,6 +80,15 @@ pub async fn resolve(
             faults.take(found)?.map(Some)
         }
     };
+    let stair_step = super::plan_stair_step::resolve(
+        pool,
+        request.stair_step.as_ref(),
+        material.id,
+        machine.id,
+        rates.data.default_tool_price,
+        faults,
+    )
+    .await?;
     let (Some(writer_base), Some(limits), Some(baseline)) = (writer_base, limits, baseline) else {
         return Ok(None);
     };
@@ -86,6 +102,7 @@ pub async fn resolve(
         candidates,
         skipped,
         baseline,
+        stair_step,
         writer_base,
     }))
 }

@@ -2,6 +2,7 @@
 //! the default range) and what each needs from the database.
 
 use super::kind::standard_cut_off_runtime;
+use super::plan_stair_step::StairDepths;
 use super::plans::{CandidatePrepared, PlanRequest, CANDIDATE_DIAMETER_RANGE_MM};
 use super::setup::{resolve as resolve_path_job, PathJobRefs, PathSetup, Resolved, MAX_FEED_PER_STANDARD};
 use crate::core::conditions::feed_mm_min;
@@ -81,13 +82,23 @@ pub async fn pick(
     Ok(Some(picks))
 }
 
-/// Resolves one candidate tool; `Err(reason)` when the database lacks what it needs.
+/// Where a tool's cutting conditions come from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ConditionsFrom {
+    /// A candidate of the plan: its rough, intermediate-rough and trochoidal-grooving rows.
+    Plan,
+    /// The stair-step roughing: the tool's standard side cut's S and fz, at these depths.
+    StairStep(StairDepths),
+}
+
+/// Resolves one tool; `Err(reason)` when the database lacks what it needs.
 pub async fn resolve(
     pool: &Pool,
     tool_id: i64,
     material_id: i64,
     machine_id: i64,
     default_tool_price: f64,
+    from: ConditionsFrom,
 ) -> Result<Result<(CandidatePrepared, PathSetup), String>, ApiError> {
     let refs = PathJobRefs {
         tool_id: Some(tool_id),
@@ -109,21 +120,30 @@ pub async fn resolve(
     let (Some(standard), Some(model)) = (standard, base.force_model.as_ref()) else {
         return Ok(Err(format!("{name}: no standard side-cutting conditions or force model")));
     };
-    let (Some(rough), Some(inter), Some(groove)) = (
-        row(Operation::RoughSideCutting).await?,
-        row(Operation::IntermediateRoughSideCutting).await?,
-        row(Operation::TrochoidalGrooving).await?,
-    ) else {
-        return Ok(Err(format!(
-            "{name}: needs rough, intermediate-rough and trochoidal-grooving conditions in {}",
-            base.material.name
-        )));
+    let tool: EndMill = base.tool.geometry.into();
+    let s = standard.data;
+    let (roughing, intermediate, grooving) = match from {
+        ConditionsFrom::Plan => {
+            let (Some(rough), Some(inter), Some(groove)) = (
+                row(Operation::RoughSideCutting).await?,
+                row(Operation::IntermediateRoughSideCutting).await?,
+                row(Operation::TrochoidalGrooving).await?,
+            ) else {
+                return Ok(Err(format!(
+                    "{name}: needs rough, intermediate-rough and trochoidal-grooving conditions in {}",
+                    base.material.name
+                )));
+            };
+            (rough.data.conditions(), inter.data.conditions(), groove.data.conditions())
+        }
+        ConditionsFrom::StairStep(depths) => {
+            let c = depths.conditions(&tool, s.conditions());
+            (c, c, c)
+        }
     };
     let Some(life) = lookup::tool_life(pool, tool_id, material_id).await? else {
         return Ok(Err(format!("{name}: no tool-life data in {}", base.material.name)));
     };
-    let tool: EndMill = base.tool.geometry.into();
-    let s = standard.data;
     let cut = standard_cut_off_runtime(tool, s.conditions(), Some(model.model)).await?;
     let (arc_mm, standard_force_n) = (cut.arc_length_mm, cut.force_n.unwrap_or_default());
     let standard_feed = feed_mm_min(s.fz_mm, tool.flutes, s.spindle_rpm);
@@ -135,9 +155,9 @@ pub async fn resolve(
         tool_id,
         name,
         tool,
-        roughing: rough.data.conditions(),
-        intermediate: inter.data.conditions(),
-        grooving: groove.data.conditions(),
+        roughing,
+        intermediate,
+        grooving,
         force_model: model.model,
         standard_force_n,
         life_m: life.data.life_m,

@@ -7,6 +7,7 @@ use super::inputs::{read_contour, read_dxf, ContourInput};
 use super::kind::off_runtime_with;
 use super::output::{OutputOptions, DEFAULT_SAFE_HEIGHT_ABOVE_TOP_MM};
 use super::plan_rows;
+use super::plan_stair_step::StairStepInput;
 use super::plans_result::PlanResult;
 use super::setup::NamedRef;
 use crate::core::analysis::kept::KeptStock;
@@ -16,10 +17,10 @@ use crate::core::drawing::process_scene::{process_scene, WrittenLines};
 use crate::core::drawing::scene::Scene;
 use crate::core::insertion::DEFAULT_INSERTION_ALPHA_LIMIT_DEG;
 use crate::core::kinematics::MachineLimits;
-use crate::core::nc::write_program_mapped;
+use crate::core::nc::{write_program_mapped, DEFAULT_TOOL_NUMBER};
 use crate::core::process::{
-    check_process, plan_process, BaselineSpec, Cavity, CavityInput, CavityLayer, ProcessOptions, ToolCandidate,
-    DEFAULT_MAX_FORCE_FACTOR, DEFAULT_TARGET_CONSUMPTION, MAX_CAVITY_LAYERS,
+    check_process, joined_program, plan_process, BaselineSpec, Cavity, CavityInput, CavityLayer, ProcessOptions,
+    StairStepSpec, ToolCandidate, DEFAULT_MAX_FORCE_FACTOR, DEFAULT_TARGET_CONSUMPTION, MAX_CAVITY_LAYERS,
 };
 use crate::core::progress::Progress;
 use crate::core::standard_cut::standard_cut;
@@ -93,6 +94,9 @@ pub struct PlanRequest {
     pub max_force_factor: Option<f64>,
     /// Plan the conventional baseline (R5 ball, Ad 0.6) for the comparison (default true).
     pub baseline: Option<bool>,
+    /// The stair-step roughing after the chosen tool's, where the layers are sections of a
+    /// sloped wall or floor (`{}`: the R5 ball at its standard side cut; default none).
+    pub stair_step: Option<StairStepInput>,
     #[serde(default)]
     pub output: OutputOptions,
 }
@@ -156,6 +160,10 @@ pub struct PlanPrepared {
     /// Tools of the type in the range the database cannot plan with, and why.
     pub skipped: Vec<String>,
     pub baseline: Option<BaselinePrepared>,
+    /// The stair-step roughing's tool with its data (absent when the request asks for none,
+    /// and in jobs stored before it was planned).
+    #[serde(default)]
+    pub stair_step: Option<CandidatePrepared>,
     /// For the program writer (the chosen tool is set at run time).
     pub writer_base: super::setup::PathSetup,
 }
@@ -239,6 +247,9 @@ pub fn check_request(r: &PlanRequest, v: &mut Validator) {
     if let Some(k) = r.max_force_factor {
         v.within("max_force_factor", k, 1.0, 4.0);
     }
+    if let Some(step) = &r.stair_step {
+        super::plan_stair_step::check(step, v);
+    }
     r.output.validate(v);
 }
 
@@ -301,6 +312,30 @@ pub async fn prepare(
 
 type Built = (Vec<ToolCandidate>, ProcessOptions);
 
+/// A tool as the core plans with it.
+fn candidate(c: &CandidatePrepared) -> ToolCandidate {
+    ToolCandidate {
+        name: c.name.clone(),
+        tool: c.tool,
+        roughing: c.roughing,
+        intermediate: c.intermediate,
+        grooving: c.grooving,
+        force_model: c.force_model,
+        standard_force_n: c.standard_force_n,
+        life: life_model(
+            c.life_m,
+            &c.gamma_table,
+            c.force_exponent,
+            c.standard_arc_length_mm,
+            c.standard_fz_mm,
+            Some(c.standard_force_n),
+        ),
+        min_feed_mm_min: c.min_feed_mm_min,
+        max_feed_mm_min: c.max_feed_mm_min,
+        tool_price: c.tool_price,
+    }
+}
+
 fn life_model(life_m: f64, gamma: &[(f64, f64)], k: f64, arc_mm: f64, fz_mm: f64, force: Option<f64>) -> ToolLifeModel {
     ToolLifeModel {
         life_m,
@@ -315,30 +350,7 @@ fn life_model(life_m: f64, gamma: &[(f64, f64)], k: f64, arc_mm: f64, fz_mm: f64
 /// The candidates and options of a plan of `cavity`, its simulations each within
 /// `stock_memory_bytes`.
 fn build(r: &PlanRequest, p: &PlanPrepared, cavity: &CavityInput, stock_memory_bytes: usize) -> Built {
-    let candidates = p
-        .candidates
-        .iter()
-        .map(|c| ToolCandidate {
-            name: c.name.clone(),
-            tool: c.tool,
-            roughing: c.roughing,
-            intermediate: c.intermediate,
-            grooving: c.grooving,
-            force_model: c.force_model,
-            standard_force_n: c.standard_force_n,
-            life: life_model(
-                c.life_m,
-                &c.gamma_table,
-                c.force_exponent,
-                c.standard_arc_length_mm,
-                c.standard_fz_mm,
-                Some(c.standard_force_n),
-            ),
-            min_feed_mm_min: c.min_feed_mm_min,
-            max_feed_mm_min: c.max_feed_mm_min,
-            tool_price: c.tool_price,
-        })
-        .collect();
+    let candidates = p.candidates.iter().map(candidate).collect();
     let options = ProcessOptions {
         alpha_limit_deg: r.alpha_limit_deg.unwrap_or(DEFAULT_INSERTION_ALPHA_LIMIT_DEG),
         allowance_mm: r.allowance_mm.unwrap_or(0.0),
@@ -383,13 +395,23 @@ pub fn run(
             })
         })
         .transpose()?;
-    let plan = plan_process(&cavity, &candidates, &options, baseline.as_ref(), None, progress)?;
+    // The stair step's tool follows the roughing tool's number.
+    let rough_tool = request.output.tool_number.unwrap_or(DEFAULT_TOOL_NUMBER);
+    let stair_step = prepared
+        .stair_step
+        .as_ref()
+        .map(|c| StairStepSpec { candidate: candidate(c), tool_number: rough_tool.saturating_add(1) });
+    let plan = plan_process(&cavity, &candidates, &options, baseline.as_ref(), stair_step.as_ref(), progress)?;
     let chosen = &prepared.candidates[plan.chosen];
     let mut writer_base = prepared.writer_base.clone();
     writer_base.tool.id = chosen.tool_id;
     writer_base.tool.name = chosen.name.clone();
     writer_base.tool.geometry = chosen.tool.into();
-    let written = write_program_mapped(&plan.evaluation.program, &request.output.to_writer(&writer_base));
+    let whole = match &plan.stair_step {
+        Some(step) => joined_program(&plan.evaluation.program, &step.program, options.safe_z_mm),
+        None => plan.evaluation.program.clone(),
+    };
+    let written = write_program_mapped(&whole, &request.output.to_writer(&writer_base));
     // The baseline's program: the same output options, with the ball, its name and its speed.
     let baseline = plan.baseline.as_ref().zip(prepared.baseline.as_ref()).map(|(b, p)| {
         let mut writer_base = prepared.writer_base.clone();

@@ -10,7 +10,7 @@ use super::trochoids_result::OverloadReport;
 use crate::core::analysis::rest::RestMaterial;
 use crate::core::nc::WrittenProgram;
 use crate::core::process::{
-    overload_program_lines, Baseline, CandidateReport, Comparison, Figures, LayerReport, ProcessPlan, Tuning,
+    overload_program_lines, Baseline, CandidateReport, Comparison, Figures, LayerReport, ProcessPlan, StairStep, Tuning,
 };
 use crate::core::tool_life::CutLength;
 use serde::Serialize;
@@ -35,7 +35,9 @@ pub struct PlanLayer {
     pub overloads: Vec<OverloadReport>,
 }
 
-/// The chosen plan's totals.
+/// The chosen plan's totals: its roughing and its stair-step roughing (lengths, times, cost
+/// and removed volume); the consumption and the equivalent life are the roughing tool's (the
+/// stair step's tool has its own, in `stair_step`).
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct PlanTotals {
     #[serde(flatten)]
@@ -103,6 +105,16 @@ impl PlanBaseline {
     }
 }
 
+/// The stair-step roughing after the chosen tool's: its program is the plan's program's
+/// last part, after the tool change to it.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct PlanStairStep {
+    /// The tool's id in the database.
+    pub tool_id: i64,
+    #[serde(flatten)]
+    pub step: StairStep,
+}
+
 /// The result of a plan job.
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct PlanResult {
@@ -120,6 +132,9 @@ pub struct PlanResult {
     pub layers: Vec<PlanLayer>,
     pub tuning: Tuning,
     pub totals: PlanTotals,
+    /// The stair-step roughing (null: the layers leave no steps, or it was turned off; a
+    /// warning says when its tool cannot be planned with).
+    pub stair_step: Option<PlanStairStep>,
     pub baseline: Option<PlanBaseline>,
     /// The proposed plan over the baseline.
     pub comparison: Option<Comparison>,
@@ -146,7 +161,7 @@ impl PlanResult {
     /// The result of `plan`, whose program is `program` (with the line of each of its
     /// moves) and its baseline's `baseline_program` (empty without a baseline).
     pub fn new(prepared: &PlanPrepared, plan: &ProcessPlan, program: &WrittenProgram, baseline_program: &str) -> Self {
-        let e = &plan.evaluation;
+        let (e, w) = (&plan.evaluation, &plan.whole);
         let overload_lines = overload_program_lines(plan, &program.move_lines);
         PlanResult {
             material: prepared.material.clone(),
@@ -165,22 +180,27 @@ impl PlanResult {
             layers: plan.layers.iter().zip(&overload_lines).map(|(l, lines)| layer(l, lines)).collect(),
             tuning: plan.tuning,
             totals: PlanTotals {
-                figures: e.total,
-                cost: e.cost.total,
-                machine_cost: e.cost.machine,
-                tool_cost: e.cost.tool,
-                currency: e.cost.currency.clone(),
-                removed_volume_mm3: e.removed_volume_mm3,
-                removal_rate_cm3_min: e.removal_rate_cm3_min,
+                figures: w.figures,
+                cost: w.cost.total,
+                machine_cost: w.cost.machine,
+                tool_cost: w.cost.tool,
+                currency: w.cost.currency.clone(),
+                removed_volume_mm3: w.removed_volume_mm3,
+                removal_rate_cm3_min: w.removal_rate_cm3_min,
                 equivalent_life: e.consumption.equivalent_life,
             },
+            stair_step: plan
+                .stair_step
+                .as_ref()
+                .zip(prepared.stair_step.as_ref())
+                .map(|(step, p)| PlanStairStep { tool_id: p.tool_id, step: step.clone() }),
             baseline: plan
                 .baseline
                 .as_ref()
                 .zip(prepared.baseline.as_ref())
                 .map(|(b, p)| PlanBaseline::new(b, p, baseline_program)),
             comparison: plan.comparison,
-            program: ProgramInfo::new(e.program.moves.len(), e.program.moves.len(), &program.text),
+            program: ProgramInfo::new(program.move_lines.len(), program.move_lines.len(), &program.text),
             rest_material: plan.stock.as_ref().map(|s| s.rest.clone()),
             warnings: plan.warnings.clone(),
         }
