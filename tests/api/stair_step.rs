@@ -6,7 +6,7 @@ use serde_json::{json, Value};
 
 /// A 60 × 40 mm cavity whose floor slopes 1 in 3 along x, from z −5 at x 60 to −20 at x 15,
 /// sliced as a CAM system slices it at Ad 5 (each layer's contour is its bottom section).
-fn slanted_floor(stair_step: Option<Value>) -> Value {
+pub fn slanted_floor(stair_step: Option<Value>) -> Value {
     let layer = |x: f64, top: f64, bottom: f64| json!({"contour": {"outer": [[0, 0], [x, 0], [x, 40], [0, 40]]}, "z_top": top, "z_bottom": bottom});
     let mut body = json!({
         "layers": [layer(60.0, 0.0, -5.0), layer(45.0, -5.0, -10.0), layer(30.0, -10.0, -15.0), layer(15.0, -15.0, -20.0)],

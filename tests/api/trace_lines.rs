@@ -162,3 +162,19 @@ async fn a_plan_names_the_lines_of_its_program_in_every_layer_and_of_its_baselin
     check_path(&app, &id, "baseline", &text(&app, &format!("/v1/jobs/{id}/program?part=baseline")).await).await;
     app.stop().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_plans_stair_step_is_drawn_and_names_its_lines_in_the_plans_program() {
+    let app = TestApp::start().await;
+    let body = crate::stair_step::slanted_floor(Some(serde_json::json!({})));
+    let job = app.send(reqwest::Method::POST, "/v1/plans", Some(body), &[("prefer", "wait=300")]).await;
+    assert_eq!(job.body["status"], "succeeded", "{}", &job.text[..job.text.len().min(2000)]);
+    let id = job.body["id"].as_str().unwrap().to_string();
+    let views = app.get(&format!("/v1/jobs/{id}/views")).await.body;
+    let paths: Vec<&str> = views["paths"].as_array().unwrap().iter().map(|p| p["name"].as_str().unwrap()).collect();
+    assert_eq!(paths, ["program", "stair_step"], "{views}");
+    let program = text(&app, &format!("/v1/jobs/{id}/program")).await;
+    check_path(&app, &id, "stair_step", &program).await;
+    check_path(&app, &id, "program", &program).await;
+    app.stop().await;
+}

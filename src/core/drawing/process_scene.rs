@@ -12,10 +12,13 @@ use crate::core::process::{CandidateStatus, Cavity, ProcessPlan, Step};
 pub const PROGRAM_PATH: &str = "program";
 /// The conventional ball-end baseline's program.
 pub const BASELINE_PATH: &str = "baseline";
+/// The stair-step roughing, the plan's program's last part.
+pub const STAIR_STEP_PATH: &str = "stair_step";
 
 /// The lines of the written programs, per move (1-based): the plan's program and its
 /// baseline's ([`crate::core::nc::WrittenProgram::move_lines`]), so that the drawing's
-/// vertices name the lines of the programs served.
+/// vertices name the lines of the programs served. The plan's program holds the roughing's
+/// moves first and the stair step's last.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct WrittenLines<'a> {
     pub program: &'a [u32],
@@ -156,6 +159,12 @@ pub fn process_scene(cavity: &Cavity, plan: &ProcessPlan, lines: WrittenLines) -
         let program = with_lines(&b.program, lines.baseline.unwrap_or_default());
         traced(BASELINE_PATH, &program, None, vec![(Quantity::Feed, move_feeds(&program))], &layers)
     });
+    // The step's moves are the written program's last.
+    let stair_step = plan.stair_step.as_ref().map(|s| {
+        let first = lines.program.len().saturating_sub(s.program.moves.len());
+        let program = with_lines(&s.program, &lines.program[first..]);
+        traced(STAIR_STEP_PATH, &program, None, vec![(Quantity::Feed, move_feeds(&program))], &layers)
+    });
     let mut outlines = Vec::new();
     for (k, layer) in cavity.layers.iter().enumerate() {
         if k == 0 || cavity.layers[k - 1].pocket != layer.pocket {
@@ -172,14 +181,14 @@ pub fn process_scene(cavity: &Cavity, plan: &ProcessPlan, lines: WrittenLines) -
             "Process plan: {} chosen, {} layers, {:.1} min, {:.2} {currency}",
             chosen.name,
             plan.layers.len(),
-            plan.evaluation.total.kinematic_time_min,
-            plan.evaluation.cost.total
+            plan.whole.figures.kinematic_time_min,
+            plan.whole.cost.total
         ),
         tool_diameter_mm: Some(chosen.diameter_mm),
         alpha_limit_deg: None,
         outlines,
         layers,
-        paths: baseline.into_iter().chain([path]).collect(),
+        paths: baseline.into_iter().chain([path]).chain(stair_step).collect(),
         medial: Vec::new(),
         regions: Vec::new(),
         trochoids: Vec::new(),

@@ -11,7 +11,7 @@ const QUANTITIES = {
   feed: 'Feed (mm/min)',
   wear: 'Tool wear (% of a tool per m)',
 };
-const PATHS = { input: 'Input path', base: 'Base path (before trochoids)', planned: 'Planned path', optimised: 'Optimised path', program: 'Planned program', baseline: 'Ball-end baseline' };
+const PATHS = { input: 'Input path', base: 'Base path (before trochoids)', planned: 'Planned path', optimised: 'Optimised path', program: 'Planned program', baseline: 'Ball-end baseline', stair_step: 'Stair-step roughing' };
 const pathLabel = (name) => PATHS[name] || name.charAt(0).toUpperCase() + name.slice(1).replace(/_/g, ' ');
 /** Layers of detail: query parameter, label, shown at first, the job kinds that have them. */
 const TOGGLES = [

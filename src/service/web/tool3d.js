@@ -14,18 +14,25 @@ const AROUND_SEGMENTS = 32;
 const CORNER_SEGMENTS = 12;
 /** The path a plan's ball-end baseline is drawn as. */
 const BASELINE_PATH = 'baseline';
+/** The path a plan's stair-step roughing is drawn as. */
+const STAIR_STEP_PATH = 'stair_step';
 /** A corner radius within this of 0 or of R is that end, mm. */
 const RADIUS_EPS_MM = 1e-9;
 
 /**
  * The end mill the job's result names for `path`: `{ shape, diameter_mm, corner_radius_mm }`
- * (`shape` square, radius or ball); a plan's baseline path its ball; a plan's program the
+ * (`shape` square, radius or ball); a plan's baseline path its ball; its stair-step path
+ * the step's ball or radius end mill; a plan's program the
  * chosen candidate's end mill; null when the result names no tool.
  */
 export function toolOf(job, path) {
   const r = job.result || {};
   if (path === BASELINE_PATH && r.baseline?.diameter_mm) {
     return { shape: 'ball', diameter_mm: r.baseline.diameter_mm, corner_radius_mm: r.baseline.diameter_mm / 2 };
+  }
+  if (path === STAIR_STEP_PATH && r.stair_step?.diameter_mm) {
+    const s = r.stair_step;
+    return { shape: s.tool_type ?? null, diameter_mm: s.diameter_mm, corner_radius_mm: s.corner_radius_mm ?? 0 };
   }
   if (r.tool?.diameter_mm) {
     return { shape: r.tool.tool_type ?? null, diameter_mm: r.tool.diameter_mm, corner_radius_mm: r.tool.corner_radius_mm ?? 0 };
