@@ -23,12 +23,12 @@
 //! 2.4 mm, not its cylinder's 5.
 
 use super::cavity::{Cavity, CavityLayer};
-use super::evaluate::Figures;
+use super::evaluate::{feed_and_rapid_mm, rates, Figures};
 use super::layer::moved_down;
 use super::spec::ProcessOptions;
 use crate::core::analysis::{analyze_with, AnalysisSpec, StockRegion};
 use crate::core::conditions::{feed_mm_min, CuttingConditions};
-use crate::core::costing::cost::{cost, Cost, Rates};
+use crate::core::costing::cost::{cost, Cost};
 use crate::core::cycles::setup::DEFAULT_PLUNGE_FEED_RATIO;
 use crate::core::cycles::z_levels;
 use crate::core::insertion::{append_over, labelled_program};
@@ -38,8 +38,7 @@ use crate::core::progress::{Progress, Stage};
 use crate::core::tolerance::LENGTH_EPS_MM;
 use crate::core::tool::EndMill;
 use crate::core::tool_life::{machined_surface_mm, Consumption, ToolLifeModel, WearCut};
-use crate::core::toolpath::move_length;
-use crate::core::toolpath::{Motion, Section, Step, Toolpath};
+use crate::core::toolpath::{Section, Step, Toolpath};
 use crate::core::CoreError;
 use serde::Serialize;
 
@@ -172,20 +171,9 @@ pub fn plan_baseline(
     }
     let program = labelled_program(moves, labels);
     let time = machining_time(&program, &options.machine, &TimeOptions::default())?;
-    let (feed_len, rapid_len) = program.moves.iter().fold((0.0, 0.0), |(f, r), m| {
-        if matches!(m.motion, Motion::Rapid) {
-            (f, r + move_length(m))
-        } else {
-            (f + move_length(m), r)
-        }
-    });
+    let (feed_len, rapid_len) = feed_and_rapid_mm(&program);
     let consumption = Consumption::new(worn, spec.life.life_edge_arc_mm(), cutting, surface);
-    let rates = Rates {
-        machine_rate_per_hour: options.machine_rate_per_hour,
-        tool_price: spec.tool_price,
-        currency: options.currency.clone(),
-    };
-    let cost = cost(time.kinematic_min, consumption.ratio, &rates)?;
+    let cost = cost(time.kinematic_min, consumption.ratio, &rates(options, spec.tool_price))?;
     progress.report(1.0);
     Ok(Baseline {
         tool: spec.name.clone(),

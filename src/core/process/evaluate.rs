@@ -114,6 +114,22 @@ struct Optimised {
     warnings: Vec<String>,
 }
 
+/// The length of `program`'s feed moves and of its rapids, mm.
+pub(super) fn feed_and_rapid_mm(program: &Toolpath) -> (f64, f64) {
+    program.moves.iter().fold((0.0, 0.0), |(f, r), m| {
+        if matches!(m.motion, Motion::Rapid) {
+            (f, r + move_length(m))
+        } else {
+            (f + move_length(m), r)
+        }
+    })
+}
+
+/// The cost rates of `options` for a tool of `tool_price`.
+pub(super) fn rates(options: &ProcessOptions, tool_price: f64) -> Rates {
+    Rates { machine_rate_per_hour: options.machine_rate_per_hour, tool_price, currency: options.currency.clone() }
+}
+
 /// The feed rule of `candidate` at `force_factor` × F*.
 pub fn feed_spec(candidate: &ToolCandidate, options: &ProcessOptions, force_factor: f64) -> FeedSpec {
     FeedSpec {
@@ -345,12 +361,7 @@ pub fn evaluate(
     let cutting: f64 = cut_of.iter().sum();
     let consumption = Consumption::new(worn, life_arc, cutting, surface);
     total.consumption = consumption.ratio;
-    let rates = Rates {
-        machine_rate_per_hour: options.machine_rate_per_hour,
-        tool_price: candidate.tool_price,
-        currency: options.currency.clone(),
-    };
-    let cost = cost(time.kinematic_min, consumption.ratio, &rates)?;
+    let cost = cost(time.kinematic_min, consumption.ratio, &rates(options, candidate.tool_price))?;
     let removed_volume_mm3: f64 = removed.iter().sum();
     let removal_rate_cm3_min =
         if time.kinematic_min > 0.0 { removed_volume_mm3 / 1000.0 / time.kinematic_min } else { 0.0 };

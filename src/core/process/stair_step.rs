@@ -6,7 +6,7 @@
 //! same models as the roughing's (MODEL.md §9–10), and the stock it leaves is what the plan
 //! keeps.
 
-use super::evaluate::{feed_spec, wear_along, Figures, Worn};
+use super::evaluate::{feed_and_rapid_mm, feed_spec, rates, wear_along, Figures, Worn};
 use super::spec::{ProcessOptions, ToolCandidate};
 use super::stairs::stock::with_steps;
 use super::stairs::{plan_stairs, StairLevel, StairSpec};
@@ -14,13 +14,13 @@ use super::Cavity;
 use crate::core::analysis::geometry::{PathGeometry, SampleGeometry};
 use crate::core::analysis::kept::{keep, Floor, KeptStock};
 use crate::core::analysis::{analyze_from, AnalysisSpec, StockRegion};
-use crate::core::costing::cost::{cost, Cost, Rates};
+use crate::core::costing::cost::{cost, Cost};
 use crate::core::insertion::append_over;
 use crate::core::kinematics::{machining_time, MachiningTime, TimeOptions};
 use crate::core::progress::{Progress, Stage};
 use crate::core::tool::ToolType;
 use crate::core::tool_life::{Consumption, CutLength};
-use crate::core::toolpath::{move_length, Event, EventKind, Motion, Toolpath};
+use crate::core::toolpath::{Event, EventKind, Toolpath};
 use crate::core::CoreError;
 use serde::Serialize;
 
@@ -148,22 +148,11 @@ pub fn plan_stair_step(
     let Worn { wear_mm, cutting_mm, surface_mm } = wear_along(&path.toolpath, &geometry, &plan, c, &[]);
     let program = plan.path;
     let time = machining_time(&program, &options.machine, &TimeOptions::default())?;
-    let (feed_length_mm, rapid_length_mm) = program.moves.iter().fold((0.0, 0.0), |(f, r), m| {
-        if matches!(m.motion, Motion::Rapid) {
-            (f, r + move_length(m))
-        } else {
-            (f + move_length(m), r)
-        }
-    });
+    let (feed_length_mm, rapid_length_mm) = feed_and_rapid_mm(&program);
     let worn: f64 = wear_mm.iter().sum();
     let cutting: f64 = cutting_mm.iter().sum();
     let consumption = Consumption::new(worn, c.life.life_edge_arc_mm(), cutting, surface_mm);
-    let rates = Rates {
-        machine_rate_per_hour: options.machine_rate_per_hour,
-        tool_price: c.tool_price,
-        currency: options.currency.clone(),
-    };
-    let cost = cost(time.kinematic_min, consumption.ratio, &rates)?;
+    let cost = cost(time.kinematic_min, consumption.ratio, &rates(options, c.tool_price))?;
     let mut warnings = Vec::new();
     if !plan.shortfalls.is_empty() {
         let length: f64 = plan.shortfalls.iter().map(|s| s.length_mm).sum();
