@@ -13,7 +13,9 @@
 //!   sample spacing 0.1 mm);
 //! - `slot box`: the README's trochoid example (an 80 × 60 mm box with a 12 mm slot, 10 mm
 //!   deep, the 10 mm end mill);
-//! - `cavity layer`: trochoids for the case-study cavity in one 10 mm layer, 10 mm end mill.
+//! - `cavity layer`: trochoids for the case-study cavity in one 10 mm layer, 10 mm end mill;
+//! - `stair step`: a slanted floor in four layers, roughed with the 10 mm end mill, its steps
+//!   taken off by the R5 ball (`"stair_step": {}`).
 //!
 //! Arguments: words that pick the cases whose label contains one (the yardstick always
 //! runs), `--runs N` to time each case N times and keep the fastest, and `--alone` to
@@ -59,6 +61,7 @@ fn cases() -> Vec<Case> {
             input: json!({"contour": cavity_contour(), "z_top": 0, "z_bottom": -35, "diameters_mm": [10],
                           "sample_spacing_mm": 0.1}),
         },
+        Case { label: "stair step, slanted floor (D10, R5 ball)", kind: JobKind::Plan, input: slanted_floor() },
         Case {
             label: "trochoids, slot box",
             kind: JobKind::Trochoids,
@@ -72,6 +75,17 @@ fn cases() -> Vec<Case> {
                           "diameter_mm": 10}),
         },
     ]
+}
+
+/// A 60 × 40 mm cavity whose floor slopes 1 in 3 from z −5 to −20, in four layers of Ad 5
+/// (each the section at its bottom), roughed with the 10 mm tool and its steps taken off by
+/// the R5 ball (`tests/api/stair_step.rs`), at the default sample spacing.
+fn slanted_floor() -> Value {
+    let layer = |x: f64, top: f64, bottom: f64| json!({"contour": {"outer": [[0, 0], [x, 0], [x, 40], [0, 40]]}, "z_top": top, "z_bottom": bottom});
+    json!({
+        "layers": [layer(60.0, 0.0, -5.0), layer(45.0, -5.0, -10.0), layer(30.0, -10.0, -15.0), layer(15.0, -15.0, -20.0)],
+        "diameters_mm": [10], "baseline": false, "stair_step": {}
+    })
 }
 
 fn yardstick() -> Case {
@@ -202,6 +216,18 @@ fn figures(kind: JobKind, r: &Value) -> String {
                 })
                 .unwrap_or_default();
             let t = &r["totals"];
+            let step = &r["stair_step"];
+            let step = if step.is_null() {
+                String::new()
+            } else {
+                format!(
+                    "; stair step {} levels, removed {:.1} of {:.1} cm³, {:.1} min",
+                    step["levels"].as_array().map_or(0, Vec::len),
+                    step["removed_volume_mm3"].as_f64().unwrap_or(0.0) / 1000.0,
+                    step["step_volume_mm3"].as_f64().unwrap_or(0.0) / 1000.0,
+                    step["kinematic_time_min"].as_f64().unwrap_or(0.0)
+                )
+            };
             format!(
                 "chosen {chosen}; {} layers; removed {:.1} cm³; cut {:.1} m; {:.1} min kinematic; cost {:.2}; tuning {} × F*; [{}]",
                 r["layers"].as_array().map_or(0, Vec::len),
@@ -211,7 +237,7 @@ fn figures(kind: JobKind, r: &Value) -> String {
                 t["cost"].as_f64().unwrap_or(0.0),
                 r["tuning"]["force_factor"],
                 fates.join(", ")
-            )
+            ) + &step
         }
         JobKind::Trochoids => format!(
             "{} treatments, α max {} → {}, verification passed {}",

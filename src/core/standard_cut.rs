@@ -8,7 +8,8 @@
 //! [`crate::core::analysis::profile`]): where its corner cuts, each slice engages at the
 //! tool's radius there (a ball at Ad 0.6 and Rd 0.4 D is 2.4 mm across at the surface, not
 //! 5, and engages about 62°, not 78.5°). So its standard cut is a straight pass at Rd and Ad
-//! along a wall, simulated, and read in the middle.
+//! along a wall, simulated, and read in the middle; [`contour_parallel_cut`] is the same
+//! pass beside a previous one, as contour-parallel roughing in thin layers takes it.
 
 use crate::core::analysis::profile::Profile;
 use crate::core::analysis::{analyze_with, AnalysisSpec, StockRegion};
@@ -22,8 +23,11 @@ use crate::core::CoreError;
 
 /// The simulated pass is this many tool diameters long; it is read in its middle.
 const PASS_DIAMETERS: f64 = 6.0;
-/// The wall's material reaches this many tool diameters away from it.
+/// The block's material reaches this many tool diameters below the last pass.
 const WALL_DEPTH_DIAMETERS: f64 = 2.0;
+/// Passes cut before the one read, each Rd beside the one before (the first a groove): by
+/// the second, what a pass meets repeats.
+const PASSES_BEFORE: usize = 2;
 
 /// A tool's standard straight cut.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -54,38 +58,81 @@ pub fn standard_cut(
     }
     // Conditions whose corner never reaches the wall at their Ad (a shop's own, far from
     // the seeded ones) keep the flank's figures, as before the profile was simulated.
-    Ok(simulated(tool, conditions, model)?.unwrap_or_else(flank))
+    Ok(simulated(tool, conditions, model, 0)?.unwrap_or_else(flank))
 }
 
-/// The standard cut of a radius or ball end mill, simulated: a pass along x with the tool's
-/// flank reaching Rd into the material below y = 0, its tip Ad deep, read at the sample
-/// nearest the middle; `None` when the tool does not reach the material there.
+/// The same cut taken as contour-parallel roughing in thin layers takes it, which the ball's
+/// standard row describes (seed 004 case II, Table 7): a pass Rd beside the pass before it,
+/// which left not a wall but its groove's rounded side (a ball engages it far more: the R5
+/// at Rd 4, Ad 0.6 about 90° at its most engaged slice, against 62° along a wall). A square
+/// end mill's is its [`standard_cut`], which a previous pass leaves as a wall.
+pub fn contour_parallel_cut(
+    tool: &EndMill,
+    conditions: CuttingConditions,
+    model: Option<&ForceModel>,
+) -> Result<StandardCut, CoreError> {
+    if Profile::of(tool).is_cylinder() {
+        return standard_cut(tool, conditions, model);
+    }
+    match simulated(tool, conditions, model, PASSES_BEFORE)? {
+        Some(cut) => Ok(cut),
+        None => standard_cut(tool, conditions, model),
+    }
+}
+
+/// The standard cut of a radius or ball end mill, simulated: passes along x at depth Ad,
+/// the one read (at its sample nearest the middle) with the tool's flank reaching Rd below
+/// y = 0. With `before` passes before it, each Rd beside the last (the first a groove), into
+/// a block of material; with none, along the wall of material below y = 0. `None` when the
+/// tool does not reach the material there.
 fn simulated(
     tool: &EndMill,
     c: CuttingConditions,
     model: Option<&ForceModel>,
+    before: usize,
 ) -> Result<Option<StandardCut>, CoreError> {
     let d = tool.diameter_mm;
     let length = PASS_DIAMETERS * d;
-    let wall = Rect { x_min: 0.0, y_min: -WALL_DEPTH_DIAMETERS * d, x_max: length, y_max: 0.0 };
     let y = tool.radius_mm() - c.rd_mm;
-    let pass = Move {
-        motion: Motion::Linear,
-        start: P3::new(-d, y, -c.ad_mm),
-        end: P3::new(length + d, y, -c.ad_mm),
-        feed_mm_min: Some(feed_mm_min(c.fz_mm, tool.flutes, c.spindle_rpm)),
-        spindle_rpm: Some(c.spindle_rpm),
-        tool: None,
-        line: 1,
+    let first = y + before as f64 * c.rd_mm;
+    let top = if before == 0 { 0.0 } else { first + d };
+    let block = Rect { x_min: 0.0, y_min: -WALL_DEPTH_DIAMETERS * d, x_max: length, y_max: top };
+    let feed = Some(feed_mm_min(c.fz_mm, tool.flutes, c.spindle_rpm));
+    let pass = |k: usize, line: u32| {
+        let at = first - k as f64 * c.rd_mm;
+        // Every other pass runs back, as a contour-parallel path turns at its ends.
+        let (from, to) = if k.is_multiple_of(2) { (-d, length + d) } else { (length + d, -d) };
+        Move {
+            motion: Motion::Linear,
+            start: P3::new(from, at, -c.ad_mm),
+            end: P3::new(to, at, -c.ad_mm),
+            feed_mm_min: feed,
+            spindle_rpm: Some(c.spindle_rpm),
+            tool: None,
+            line,
+        }
     };
-    let path = Toolpath { moves: vec![pass], events: vec![], source_units: Units::Mm, warnings: vec![] };
+    let mut moves: Vec<Move> = Vec::new();
+    for k in 0..=before {
+        let m = pass(k, u32::try_from(k + 1).unwrap_or(u32::MAX));
+        if let Some(last) = moves.last().copied() {
+            // Over to the next pass's start at the depth, outside the block.
+            moves.push(Move { start: last.end, end: m.start, ..m });
+        }
+        moves.push(m);
+    }
+    let read = u32::try_from(before + 1).unwrap_or(u32::MAX);
+    let path = Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] };
     let spec = AnalysisSpec {
         force_model: model.copied(),
-        ..AnalysisSpec::new(*tool, vec![StockRegion::Rect(wall)], 0.0, -c.ad_mm - d)
+        ..AnalysisSpec::new(*tool, vec![StockRegion::Rect(block)], 0.0, -c.ad_mm - d)
     };
     let middle = length / 2.0;
     let mut nearest: Option<(f64, StandardCut)> = None;
     analyze_with(&path, &spec, &NoProgress, |r| {
+        if r.sample.line != read {
+            return;
+        }
         let off = (r.sample.p.x - middle).abs();
         if nearest.is_none_or(|(o, _)| off < o) {
             let cut = StandardCut { t_m_um: r.t_m_um, arc_length_mm: r.arc_length_mm, force_n: r.force_n };
@@ -126,6 +173,21 @@ mod tests {
         assert!(alpha.to_degrees() > 55.0 && alpha.to_degrees() < 65.2, "α {}", alpha.to_degrees());
         let rho = cut.arc_length_mm / alpha;
         assert!(rho > 1.0 && rho < 2.375, "ρ {rho}");
+    }
+
+    #[test]
+    fn a_ball_beside_its_previous_pass_engages_more_than_along_a_wall_and_a_square_end_mill_alike() {
+        let ball = EndMill { tool_type: ToolType::Ball, diameter_mm: 10.0, flutes: 2, corner_radius_mm: 5.0 };
+        let model = seed_001_ten_mm();
+        let wall = standard_cut(&ball, conditions(4.0, 0.6), Some(&model)).expect("cuts");
+        let beside = contour_parallel_cut(&ball, conditions(4.0, 0.6), Some(&model)).expect("cuts");
+        let alpha = |c: &StandardCut| (c.t_m_um / 1000.0 / 0.1).min(1.0).asin().to_degrees();
+        // The groove's rounded side reaches the ball's tip: its most engaged slice takes 90°.
+        assert!(alpha(&beside) > 85.0 && alpha(&wall) < 65.2, "{} against {}", alpha(&beside), alpha(&wall));
+        assert!(beside.arc_length_mm > wall.arc_length_mm && beside.force_n > wall.force_n, "{beside:?} {wall:?}");
+        let square = EndMill { tool_type: ToolType::Square, diameter_mm: 10.0, flutes: 6, corner_radius_mm: 0.0 };
+        let c = conditions(0.5, 10.0);
+        assert_eq!(contour_parallel_cut(&square, c, Some(&model)).ok(), standard_cut(&square, c, Some(&model)).ok());
     }
 
     #[test]

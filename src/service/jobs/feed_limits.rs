@@ -78,7 +78,8 @@ pub async fn resolve(
         (true, Some(f), ..) => Some(Some(f)),
         (true, None, Some(c), Some(model)) => {
             let end_mill: EndMill = tool.into();
-            let cut = faults.take(standard_cut_off_runtime(end_mill, c.data.conditions(), Some(model.model)).await)?;
+            let cut =
+                faults.take(standard_cut_off_runtime(end_mill, c.data.conditions(), Some(model.model), false).await)?;
             cut.map(|cut| cut.force_n)
         }
         // Without a model the strategy is refused; without standard conditions, the target.

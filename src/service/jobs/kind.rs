@@ -9,7 +9,7 @@ use crate::core::conditions::CuttingConditions;
 use crate::core::drawing::scene::Scene;
 use crate::core::force_model::ForceModel;
 use crate::core::progress::Progress;
-use crate::core::standard_cut::{standard_cut, StandardCut};
+use crate::core::standard_cut::{contour_parallel_cut, standard_cut, StandardCut};
 use crate::core::tool::EndMill;
 use crate::core::CoreError;
 use crate::service::auth::Caller;
@@ -67,17 +67,22 @@ impl<R> Produced<R> {
     }
 }
 
-/// A tool's standard cut ([`standard_cut`]), worked out on a blocking thread: a radius or
-/// ball end mill's is a simulation of that cut.
+/// A tool's standard cut ([`standard_cut`], or with `contour_parallel` the same cut beside a
+/// previous pass, [`contour_parallel_cut`]), worked out on a blocking thread: a radius or
+/// ball end mill's is simulated.
 pub async fn standard_cut_off_runtime(
     tool: EndMill,
     conditions: CuttingConditions,
     model: Option<ForceModel>,
+    contour_parallel: bool,
 ) -> Result<StandardCut, ApiError> {
-    tokio::task::spawn_blocking(move || standard_cut(&tool, conditions, model.as_ref()))
-        .await
-        .map_err(|e| ApiError::Internal(format!("a blocking task failed: {e}")))?
-        .map_err(ApiError::from)
+    tokio::task::spawn_blocking(move || match contour_parallel {
+        true => contour_parallel_cut(&tool, conditions, model.as_ref()),
+        false => standard_cut(&tool, conditions, model.as_ref()),
+    })
+    .await
+    .map_err(|e| ApiError::Internal(format!("a blocking task failed: {e}")))?
+    .map_err(ApiError::from)
 }
 
 /// Runs `work` on a blocking thread (parsing a program or a pocket is CPU work), adding its

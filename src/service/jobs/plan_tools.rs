@@ -144,7 +144,10 @@ pub async fn resolve(
     let Some(life) = lookup::tool_life(pool, tool_id, material_id).await? else {
         return Ok(Err(format!("{name}: no tool-life data in {}", base.material.name)));
     };
-    let cut = standard_cut_off_runtime(tool, s.conditions(), Some(model.model)).await?;
+    // The stair step's rings are contour-parallel roughing in thin layers, which is what a
+    // ball's standard row describes: its F* and the cut its life refers to are that cut's.
+    let contour_parallel = matches!(from, ConditionsFrom::StairStep(_));
+    let cut = standard_cut_off_runtime(tool, s.conditions(), Some(model.model), contour_parallel).await?;
     let (arc_mm, standard_force_n) = (cut.arc_length_mm, cut.force_n.unwrap_or_default());
     let standard_feed = feed_mm_min(s.fz_mm, tool.flutes, s.spindle_rpm);
     let price = sqlx::query_scalar::<_, Option<f64>>("SELECT price FROM tools WHERE id = $1")

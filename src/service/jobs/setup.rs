@@ -415,7 +415,7 @@ pub async fn resolve_cost(
     };
     let model = base.force_model.as_ref().map(|m| m.model);
     let tool: EndMill = base.tool.geometry.into();
-    let Some(cut) = faults.take(standard_cut_off_runtime(tool, standard.data.conditions(), model).await)? else {
+    let Some(cut) = faults.take(standard_cut_off_runtime(tool, standard.data.conditions(), model, false).await)? else {
         return Ok(None);
     };
     let (arc_mm, standard_force_n) = (cut.arc_length_mm, cut.force_n);
