@@ -92,6 +92,14 @@ async fn a_stair_step_request_with_faults_is_refused_naming_each_and_changes_not
     {
         assert_problem(&a, 422, Some(field));
     }
+    let tiny =
+        app.post("/v1/plans", slanted_floor(Some(json!({"axial_depth_mm": 0.001, "radial_depth_mm": 1e6})))).await;
+    for field in ["stair_step.axial_depth_mm", "stair_step.radial_depth_mm"] {
+        assert_problem(&tiny, 422, Some(field));
+    }
+    let mut last_tool = slanted_floor(Some(json!({})));
+    last_tool["output"] = json!({"tool_number": 9999});
+    assert_problem(&app.post("/v1/plans", last_tool).await, 422, Some("output.tool_number"));
     let unknown = app.post("/v1/plans", slanted_floor(Some(json!({"tool_id": 987654})))).await;
     assert_problem(&unknown, 422, Some("stair_step.tool_id"));
     let tools = app.get("/v1/tools?tool_type=square").await;

@@ -1,4 +1,4 @@
-//! The plan's stair-step intermediate roughing (issue 32 item 4, [`crate::core::stairs`]):
+//! The plan's stair-step intermediate roughing (issue 32 item 4, [`super::stairs`]):
 //! after the chosen tool has roughed the layers, a ball or radius end mill takes off the
 //! steps they leave over a sloped wall or floor. Its path is simulated on the stock the
 //! roughing really left (the plan's kept stock), its feeds set for a constant cutting force

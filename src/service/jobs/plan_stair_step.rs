@@ -2,10 +2,9 @@
 //! ball or radius end mill that takes off the steps a sloped wall or floor leaves between the
 //! layers' sections, and the database rows it is resolved to.
 
-use super::plan_tools::{self, ConditionsFrom};
+use super::plan_tools::{self, ConditionsFrom, StairDepths};
 use super::plans::CandidatePrepared;
-use crate::core::conditions::CuttingConditions;
-use crate::core::tool::{EndMill, ToolType};
+use crate::core::tool::ToolType;
 use crate::service::error::{ApiError, Validator};
 use crate::service::lookup;
 use crate::service::store::Pool;
@@ -14,12 +13,12 @@ use utoipa::ToSchema;
 
 /// The default tool: the R5 ball of seed 004 (its conventional and case-II cuts).
 pub const DEFAULT_STAIR_BALL_DIAMETER_MM: f64 = 10.0;
-/// A radius end mill's default depth between levels, × its diameter (**assumed**: the ratio
-/// of the R5 ball's side cut of seed 004 Table 7, Ad 0.6 on D10).
-pub const RADIUS_STAIR_AD_PER_DIAMETER: f64 = 0.06;
-/// A radius end mill's default depth between rings, × its diameter (**assumed**: as the R5
-/// ball's Rd 4 on D10, seed 004 Table 7).
-pub const RADIUS_STAIR_RD_PER_DIAMETER: f64 = 0.4;
+/// The least depth between levels or rings a request may give, mm (a stair step at a
+/// hundredth of that would take hours to plan and run; the step itself also refuses rings
+/// closer than its surface's cell).
+pub const MIN_STAIR_DEPTH_MM: f64 = 0.05;
+/// The largest, mm (the largest end mills are 16 mm across).
+pub const MAX_STAIR_DEPTH_MM: f64 = 50.0;
 
 /// The stair-step roughing of a plan, for layers that are sections of a sloped wall or floor
 /// (each layer's contour the section at its bottom): a ball or radius end mill takes off the
@@ -44,29 +43,6 @@ pub struct StairStepInput {
     pub radial_depth_mm: Option<f64>,
 }
 
-/// The depths a request gives the step, the rest from the tool's standard side cut.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct StairDepths {
-    pub axial_depth_mm: Option<f64>,
-    pub radial_depth_mm: Option<f64>,
-}
-
-impl StairDepths {
-    /// The step's conditions for `tool`, whose standard side cut is `standard`: its S and
-    /// fz, the depths given, else a ball's own and a radius end mill's share of its diameter.
-    pub fn conditions(&self, tool: &EndMill, standard: CuttingConditions) -> CuttingConditions {
-        let (ad, rd) = match tool.tool_type {
-            ToolType::Ball => (standard.ad_mm, standard.rd_mm),
-            _ => (RADIUS_STAIR_AD_PER_DIAMETER * tool.diameter_mm, RADIUS_STAIR_RD_PER_DIAMETER * tool.diameter_mm),
-        };
-        CuttingConditions {
-            ad_mm: self.axial_depth_mm.unwrap_or(ad),
-            rd_mm: self.radial_depth_mm.unwrap_or(rd),
-            ..standard
-        }
-    }
-}
-
 /// Checks the values of `input` that need no database.
 pub fn check(input: &StairStepInput, v: &mut Validator) {
     let by_id = input.tool_id.is_some();
@@ -84,10 +60,10 @@ pub fn check(input: &StairStepInput, v: &mut Validator) {
         v.positive("stair_step.diameter_mm", d);
     }
     if let Some(ad) = input.axial_depth_mm {
-        v.positive("stair_step.axial_depth_mm", ad);
+        v.within("stair_step.axial_depth_mm", ad, MIN_STAIR_DEPTH_MM, MAX_STAIR_DEPTH_MM);
     }
     if let Some(rd) = input.radial_depth_mm {
-        v.positive("stair_step.radial_depth_mm", rd);
+        v.within("stair_step.radial_depth_mm", rd, MIN_STAIR_DEPTH_MM, MAX_STAIR_DEPTH_MM);
     }
 }
 

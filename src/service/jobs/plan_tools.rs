@@ -2,10 +2,9 @@
 //! the default range) and what each needs from the database.
 
 use super::kind::standard_cut_off_runtime;
-use super::plan_stair_step::StairDepths;
 use super::plans::{CandidatePrepared, PlanRequest, CANDIDATE_DIAMETER_RANGE_MM};
 use super::setup::{resolve as resolve_path_job, PathJobRefs, PathSetup, Resolved, MAX_FEED_PER_STANDARD};
-use crate::core::conditions::feed_mm_min;
+use crate::core::conditions::{feed_mm_min, CuttingConditions};
 use crate::core::operation::Operation;
 use crate::core::tool::{EndMill, ToolType};
 use crate::service::error::{ApiError, Validator};
@@ -80,6 +79,36 @@ pub async fn pick(
         }
     }
     Ok(Some(picks))
+}
+
+/// A radius end mill's default depth between levels, × its diameter (**assumed**: the ratio
+/// of the R5 ball's side cut of seed 004 Table 7, Ad 0.6 on D10).
+pub const RADIUS_STAIR_AD_PER_DIAMETER: f64 = 0.06;
+/// A radius end mill's default depth between rings, × its diameter (**assumed**: as the R5
+/// ball's Rd 4 on D10, seed 004 Table 7).
+pub const RADIUS_STAIR_RD_PER_DIAMETER: f64 = 0.4;
+
+/// The depths a request gives the step, the rest from the tool's standard side cut.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StairDepths {
+    pub axial_depth_mm: Option<f64>,
+    pub radial_depth_mm: Option<f64>,
+}
+
+impl StairDepths {
+    /// The step's conditions for `tool`, whose standard side cut is `standard`: its S and
+    /// fz, the depths given, else a ball's own and a radius end mill's share of its diameter.
+    pub fn conditions(&self, tool: &EndMill, standard: CuttingConditions) -> CuttingConditions {
+        let (ad, rd) = match tool.tool_type {
+            ToolType::Ball => (standard.ad_mm, standard.rd_mm),
+            _ => (RADIUS_STAIR_AD_PER_DIAMETER * tool.diameter_mm, RADIUS_STAIR_RD_PER_DIAMETER * tool.diameter_mm),
+        };
+        CuttingConditions {
+            ad_mm: self.axial_depth_mm.unwrap_or(ad),
+            rd_mm: self.radial_depth_mm.unwrap_or(rd),
+            ..standard
+        }
+    }
 }
 
 /// Where a tool's cutting conditions come from.

@@ -249,6 +249,17 @@ pub fn check_request(r: &PlanRequest, v: &mut Validator) {
     }
     if let Some(step) = &r.stair_step {
         super::plan_stair_step::check(step, v);
+        // The step's tool is called as the roughing tool's number + 1.
+        if step.enabled != Some(false) {
+            v.check(
+                r.output.tool_number.is_none_or(|t| t < super::output::MAX_TOOL_NUMBER),
+                "output.tool_number",
+                format!(
+                    "below {} with a stair step, whose tool is called as the next number",
+                    super::output::MAX_TOOL_NUMBER
+                ),
+            );
+        }
     }
     r.output.validate(v);
 }

@@ -53,14 +53,23 @@ impl<'a> Level<'a> {
         let to_material = distance_to_mm(g, &material);
         let outside: Vec<bool> = self.room_mm.iter().map(|&r| r < 0.0).collect();
         let depth = distance_to_mm(g, &outside);
+        let half_cell = g.cell_mm / 2.0;
         // No ring deeper than the deepest point within reach of the material is kept.
         let deepest = (0..g.cells())
-            .filter(|&c| to_material[c] <= radius_mm && depth[c].is_finite())
+            .filter(|&c| to_material[c] <= radius_mm + half_cell && depth[c].is_finite())
             .map(|c| depth[c])
             .fold(0.0, f64::max);
-        let half_cell = g.cell_mm / 2.0;
+        // Along every segment (a straight stretch keeps only its ends), at half a cell.
+        let near = |x: f64, y: f64| s.cell_at(x, y).is_some_and(|c| to_material[c] <= radius_mm + half_cell);
         let within_reach = |ring: &Ring| {
-            ring.iter().any(|p| s.cell_at(p.x, p.y).is_some_and(|c| to_material[c] <= radius_mm + half_cell))
+            (0..ring.len()).any(|k| {
+                let (a, b) = (ring[k], ring[(k + 1) % ring.len()]);
+                let n = (a.distance_mm(b) / half_cell).ceil().max(1.0) as usize;
+                (0..n).any(|i| {
+                    let t = i as f64 / n as f64;
+                    near(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t)
+                })
+            })
         };
         let mut out = Vec::new();
         for offset in 0..MAX_RINGS_PER_LEVEL {

@@ -18,7 +18,7 @@
 //! 5. **Program** ([`writer`]): per level the rings from the innermost out (each with the
 //!    material outside it, climb milling), linked by a straight feed move where the tip may
 //!    stand all along it, otherwise over the safe height and plunged from a clearance over
-//!    the material. The program calls its own tool (`T.. M6`, `G43 H..`) and labels every
+//!    the stock the roughing may have left there. The program calls its own tool (`T.. M6`, `G43 H..`) and labels every
 //!    level (`(LAYER 3 Z-24.6 STAIR-STEP INTERMEDIATE ROUGHING)`).
 //!
 //! The rings follow the height field to its cell (a sixteenth of the tool's radius, see
@@ -67,6 +67,14 @@ pub const MAX_SURFACE_CELLS: usize = 4_000_000;
 /// Steps lower than this are none, mm (**assumed**: below any allowance).
 pub const MIN_STEP_MM: f64 = 0.01;
 
+/// Most levels one stair-step roughing may cut (a guard against an axial depth far below
+/// the steps' height: 0.6 mm over 1.2 m of depth).
+pub const MAX_STAIR_LEVELS: usize = 2000;
+
+/// The request fields the step's depths come from, for its errors.
+const AXIAL_FIELD: &str = "stair_step.axial_depth_mm";
+const RADIAL_FIELD: &str = "stair_step.radial_depth_mm";
+
 /// The stair-step roughing's tool, conditions and heights.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StairSpec {
@@ -88,7 +96,8 @@ pub struct StairLevel {
     pub z_mm: f64,
     /// Rings cut at it.
     pub rings: usize,
-    /// Length of its cutting rings, mm.
+    /// Length of its feed moves at the level (the rings and the straight links between
+    /// them), mm.
     pub ring_length_mm: f64,
 }
 
@@ -118,6 +127,20 @@ pub fn plan_stairs(cavity: &Cavity, spec: &StairSpec, progress: &dyn Progress) -
     let profile = Profile::of(&spec.tool);
     let radius = profile.radius_mm;
     let cell_mm = surface_cell_mm(cavity, radius, spec.allowance_mm);
+    // Rings farther apart than the tool is wide leave ridges between them.
+    if spec.conditions.rd_mm > spec.tool.diameter_mm {
+        return Err(CoreError::invalid(
+            RADIAL_FIELD,
+            format!("at most the tool's diameter, {} mm, got {} mm", spec.tool.diameter_mm, spec.conditions.rd_mm),
+        ));
+    }
+    // Rings closer than the surface's cell would follow the same cells.
+    if spec.conditions.rd_mm < cell_mm {
+        return Err(CoreError::invalid(
+            RADIAL_FIELD,
+            format!("must be at least the surface's cell, {cell_mm:.3} mm, got {} mm", spec.conditions.rd_mm),
+        ));
+    }
     let surface = Surface::of(cavity, cell_mm, radius + spec.allowance_mm + 2.0 * cell_mm);
     let cell_area = cell_mm * cell_mm;
     let steps: Vec<usize> = (0..surface.grid.cells()).filter(|&c| surface.stair_mm(c) > MIN_STEP_MM).collect();
@@ -142,6 +165,16 @@ pub fn plan_stairs(cavity: &Cavity, spec: &StairSpec, progress: &dyn Progress) -
         tool: spec.tool_number,
     });
     let zs = z_levels(highest, lowest, c.ad_mm)?;
+    if zs.len() > MAX_STAIR_LEVELS {
+        return Err(CoreError::invalid(
+            AXIAL_FIELD,
+            format!(
+                "the steps from z {highest:.3} to {lowest:.3} would take {} levels at {} mm, more than {MAX_STAIR_LEVELS}",
+                zs.len(),
+                c.ad_mm
+            ),
+        ));
+    }
     let mut levels = Vec::with_capacity(zs.len());
     for (k, &z) in zs.iter().enumerate() {
         progress.checkpoint()?;
@@ -190,7 +223,8 @@ fn surface_cell_mm(cavity: &Cavity, radius_mm: f64, allowance_mm: f64) -> f64 {
     cell.max((area / MAX_SURFACE_CELLS as f64).sqrt())
 }
 
-/// The cavity's layer a level at `z_mm` lies in (the last whose bottom is at or below it).
+/// The cavity's layer a level at `z_mm` lies in: the first, from the top, whose bottom is at
+/// or below it.
 fn layer_at(cavity: &Cavity, z_mm: f64) -> u32 {
     let k = cavity.layers.iter().position(|l| l.z_bottom_mm <= z_mm + LENGTH_EPS_MM);
     u32::try_from(k.unwrap_or(cavity.layers.len().saturating_sub(1))).unwrap_or(u32::MAX)

@@ -12,8 +12,8 @@
 use super::distance::distance_to_mm;
 use super::surface::Surface;
 use crate::core::analysis::kept::{KeptSlice, KeptStock};
+use crate::core::analysis::slices::Z_CONTACT_EPS_MM;
 use crate::core::stock::Raster;
-use crate::core::tolerance::LENGTH_EPS_MM;
 
 /// What the painting reads off the surface's grid: far outside the steps, mm (the grid
 /// reaches past the cavity, so no step lies near its edge).
@@ -24,7 +24,7 @@ pub fn with_steps(kept: &KeptStock, surface: &Surface, levels_mm: &[f64]) -> Res
     let mut cuts: Vec<f64> = kept.slices.iter().flat_map(|s| [s.z_top, s.z_bottom]).collect();
     cuts.extend(levels_mm.iter().copied().filter(|&z| z < kept.z_top() && z > kept.z_bottom()));
     cuts.sort_by(|a, b| b.total_cmp(a));
-    cuts.dedup_by(|a, b| (*a - *b).abs() <= LENGTH_EPS_MM);
+    cuts.dedup_by(|a, b| (*a - *b).abs() <= Z_CONTACT_EPS_MM);
     let mut slices = Vec::with_capacity(cuts.len());
     let mut rasters: Vec<Vec<i8>> = Vec::with_capacity(cuts.len());
     for pair in cuts.windows(2) {

@@ -28,6 +28,9 @@ pub struct Surface {
     /// How deep the roughing cut, mm: the bottom of the deepest layer whose section holds
     /// the cell (the top outside the cavity).
     pub roughed_mm: Vec<f64>,
+    /// The highest the roughing may have left material there, mm: the top of that layer
+    /// (its tool leaves rest material up to it in corners and necks it cannot reach).
+    pub rest_top_mm: Vec<f64>,
     /// The top of the cavity, mm.
     pub top_mm: f64,
 }
@@ -52,6 +55,7 @@ impl Surface {
         let n = grid.cells();
         let mut height_mm = vec![top_mm; n];
         let mut roughed_mm = vec![top_mm; n];
+        let mut rest_top_mm = vec![top_mm; n];
         // The deepest section of every cell (sections nest, so it is the count of those that
         // hold it).
         let deepest: Vec<Option<usize>> =
@@ -62,6 +66,7 @@ impl Surface {
                 for c in (0..n).filter(|&c| deepest[c] == Some(k)) {
                     height_mm[c] = s.z_mm;
                     roughed_mm[c] = s.z_mm;
+                    rest_top_mm[c] = s.top_mm;
                 }
                 continue;
             };
@@ -78,9 +83,10 @@ impl Surface {
                 let t = if a + b > 0.0 && a.is_finite() && b.is_finite() { a / (a + b) } else { 0.0 };
                 height_mm[c] = s.z_mm + (next.z_mm - s.z_mm) * t;
                 roughed_mm[c] = s.z_mm;
+                rest_top_mm[c] = s.top_mm;
             }
         }
-        Surface { grid, height_mm, roughed_mm, top_mm }
+        Surface { grid, height_mm, roughed_mm, rest_top_mm, top_mm }
     }
 
     /// The index of the cell that holds `(x, y)`, `None` off the grid.
@@ -137,10 +143,12 @@ fn distance_to_edge(grid: &Grid, inside: &[bool], c: usize, from: usize) -> f64 
     steps as f64 / RAY_STEPS_PER_CELL * grid.cell_mm
 }
 
-/// One section of the cavity: the cells it holds (within the section above) and its height.
+/// One section of the cavity: the cells it holds (within the section above), its height and
+/// the top of its layer.
 struct Section {
     inside: Vec<bool>,
     z_mm: f64,
+    top_mm: f64,
 }
 
 /// The sections at the layers' bottoms, top first, each within the one above.
@@ -167,7 +175,7 @@ fn sections(cavity: &Cavity, grid: &Grid) -> Vec<Section> {
         if let Some(above) = out.last() {
             inside.iter_mut().zip(&above.inside).for_each(|(i, a)| *i &= *a);
         }
-        out.push(Section { inside, z_mm: layer.z_bottom_mm });
+        out.push(Section { inside, z_mm: layer.z_bottom_mm, top_mm: layer.z_top_mm });
     }
     out
 }

@@ -172,3 +172,15 @@ fn a_negative_allowance_is_refused_by_name() {
     let e = plan_stairs(&cone(), &spec(r5_ball(), -0.1), &NoProgress).unwrap_err();
     assert!(e.to_string().contains("allowance_mm"), "{e}");
 }
+
+#[test]
+fn rings_closer_than_the_surfaces_cell_and_levels_beyond_the_guard_are_refused_by_name() {
+    let mut close = spec(r5_ball(), 0.0);
+    close.conditions.rd_mm = 0.05;
+    let e = plan_stairs(&cone(), &close, &NoProgress).unwrap_err();
+    assert!(e.to_string().contains("stair_step.radial_depth_mm"), "{e}");
+    let mut thin = spec(r5_ball(), 0.0);
+    thin.conditions.ad_mm = 0.001;
+    let e = plan_stairs(&cone(), &thin, &NoProgress).unwrap_err();
+    assert!(e.to_string().contains("stair_step.axial_depth_mm"), "{e}");
+}

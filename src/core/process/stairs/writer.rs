@@ -1,6 +1,7 @@
 //! Writes the stair-step program move by move: each ring at its level, reached by a
 //! straight feed move where the tip may stand all along it, otherwise over the safe height
-//! and down to a clearance above the material there, then plunged at the plunge feed.
+//! and down to a clearance above the stock the roughing may have left there (the top of the
+//! layer over it), then plunged at the plunge feed.
 
 use super::levels::Level;
 use super::rings::Ring;
@@ -8,8 +9,8 @@ use crate::core::geometry::Point;
 use crate::core::tolerance::LENGTH_EPS_MM;
 use crate::core::toolpath::{Motion, Move, Section, P3};
 
-/// A plunge starts this far above the highest material within the tool's reach, mm
-/// (**assumed**: a common shop clearance, as the trochoids' ramps start).
+/// A plunge starts this far above the highest stock the roughing may have left within the
+/// tool's reach, mm (**assumed**: a common shop clearance, as the trochoids' ramps start).
 pub const PLUNGE_CLEARANCE_MM: f64 = 1.0;
 
 /// Points along a link are checked this many times per cell.
@@ -131,9 +132,10 @@ fn straight_link_allowed(level: &Level<'_>, a: Point, b: Point) -> bool {
     })
 }
 
-/// The highest the roughing left the stock in the cavity within `reach_mm` of `p`, mm (the
-/// die's own material outside the cavity is not stock: where the tip may stand the tool
-/// clears it on the way down). `NEG_INFINITY` where no stock lies within reach.
+/// The highest the roughing may have left stock in the cavity within `reach_mm` of `p`, mm:
+/// the top of the layer over each cell, since its tool leaves rest material up to there in
+/// corners and necks (the die's own material outside the cavity is not stock: where the tip
+/// may stand the tool clears it on the way down). `NEG_INFINITY` where none lies within reach.
 fn highest_material_mm(level: &Level<'_>, p: Point, reach_mm: f64) -> f64 {
     let s = level.surface;
     let g = &s.grid;
@@ -151,7 +153,7 @@ fn highest_material_mm(level: &Level<'_>, p: Point, reach_mm: f64) -> f64 {
             }
             let c = (y * g.nx as isize + x) as usize;
             if s.height_mm[c] < s.top_mm {
-                highest = highest.max(s.roughed_mm[c]);
+                highest = highest.max(s.rest_top_mm[c]);
             }
         }
     }
