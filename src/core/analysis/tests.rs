@@ -24,22 +24,27 @@ fn block_spec(tool: EndMill, block: Rect) -> AnalysisSpec {
     AnalysisSpec::new(tool, vec![StockRegion::Rect(block)], 0.0, -5.0)
 }
 
+/// One feed move from `start` to `end` at F1000, S9600.
+fn straight(start: P3, end: P3) -> Toolpath {
+    let line = Move {
+        motion: Motion::Linear,
+        start,
+        end,
+        feed_mm_min: Some(1000.0),
+        spindle_rpm: Some(9600.0),
+        tool: None,
+        line: 1,
+    };
+    Toolpath { moves: vec![line], events: vec![], source_units: Units::Mm, warnings: vec![] }
+}
+
 #[test]
 fn painting_a_large_stock_moves_the_progress_before_the_simulation_does() {
     // A 200 mm square block (4 M cells of 0.1 mm) and 10 mm of path (200 samples):
     // painting is nearly all of the work.
     let block = Rect { x_min: 0.0, y_min: 0.0, x_max: 200.0, y_max: 200.0 };
     let tool = EndMill { tool_type: ToolType::Square, diameter_mm: 10.0, flutes: 6, corner_radius_mm: 0.0 };
-    let line = Move {
-        motion: Motion::Linear,
-        start: P3::new(0.0, 100.0, -1.0),
-        end: P3::new(10.0, 100.0, -1.0),
-        feed_mm_min: Some(1000.0),
-        spindle_rpm: Some(9600.0),
-        tool: None,
-        line: 1,
-    };
-    let path = Toolpath { moves: vec![line], events: vec![], source_units: Units::Mm, warnings: vec![] };
+    let path = straight(P3::new(0.0, 100.0, -1.0), P3::new(10.0, 100.0, -1.0));
     let spec = block_spec(tool, block);
     let recorded = Recorded::default();
     analyze(&path, &spec, &recorded).expect("analyses");
@@ -53,16 +58,7 @@ fn painting_a_large_stock_moves_the_progress_before_the_simulation_does() {
 #[test]
 fn ball_and_radius_end_mills_are_told_that_the_force_where_their_corner_cuts_is_extrapolated() {
     let block = Rect { x_min: 0.0, y_min: 0.0, x_max: 30.0, y_max: 30.0 };
-    let line = Move {
-        motion: Motion::Linear,
-        start: P3::new(-10.0, 15.0, -1.0),
-        end: P3::new(40.0, 15.0, -1.0),
-        feed_mm_min: Some(1000.0),
-        spindle_rpm: Some(9600.0),
-        tool: None,
-        line: 1,
-    };
-    let path = Toolpath { moves: vec![line], events: vec![], source_units: Units::Mm, warnings: vec![] };
+    let path = straight(P3::new(-10.0, 15.0, -1.0), P3::new(40.0, 15.0, -1.0));
     let warned = |tool_type: ToolType, corner_radius_mm: f64| {
         let spec = AnalysisSpec {
             force_model: Some(crate::core::fixtures::seed_001_ten_mm()),

@@ -38,6 +38,7 @@ pub mod prune;
 mod refine;
 mod sampling;
 mod simplify;
+pub(crate) use simplify::douglas_peucker;
 mod triangulation;
 
 #[cfg(test)]

@@ -5,6 +5,7 @@
 //! [`crate::core::pocketing`] cuts), with the points a straight line would add dropped.
 
 use crate::core::geometry::Point;
+use crate::core::medial::douglas_peucker;
 use crate::core::stock::Grid;
 use contour::ContourBuilder;
 
@@ -61,9 +62,9 @@ pub fn signed_area_mm2(ring: &[Point]) -> f64 {
     (0..n).map(|i| ring[i].x * ring[(i + 1) % n].y - ring[(i + 1) % n].x * ring[i].y).sum::<f64>() / 2.0
 }
 
-/// The closed ring `points` with every point that lies within `tolerance_mm` of the line
-/// between the points kept around it dropped (Douglas–Peucker, closed at its first point and
-/// the point farthest from it).
+/// The closed ring `points` with every point that lies within `tolerance_mm` of the chord
+/// between the points kept around it dropped (Douglas–Peucker on its two halves, from its
+/// first point to the point farthest from it and back).
 fn simplified(points: &[Point], tolerance_mm: f64) -> Ring {
     if points.len() < 4 {
         return points.to_vec();
@@ -71,45 +72,14 @@ fn simplified(points: &[Point], tolerance_mm: f64) -> Ring {
     let far = (1..points.len())
         .max_by(|&a, &b| points[0].distance_mm(points[a]).total_cmp(&points[0].distance_mm(points[b])))
         .unwrap_or(1);
-    let mut keep = vec![false; points.len()];
-    keep[0] = true;
-    keep[far] = true;
     let closed: Vec<Point> = points.iter().copied().chain(std::iter::once(points[0])).collect();
-    mark(&closed, 0, far, tolerance_mm, &mut keep);
-    let mut tail = vec![false; closed.len()];
-    mark(&closed, far, closed.len() - 1, tolerance_mm, &mut tail);
-    keep.iter_mut().zip(&tail).for_each(|(k, t)| *k |= *t);
-    points.iter().zip(&keep).filter(|(_, k)| **k).map(|(p, _)| *p).collect()
-}
-
-/// Marks the points of `points[from..=to]` Douglas–Peucker keeps (without recursion, so a
-/// long ring cannot overflow the stack).
-fn mark(points: &[Point], from: usize, to: usize, tolerance_mm: f64, keep: &mut [bool]) {
-    let mut spans = vec![(from, to)];
-    while let Some((a, b)) = spans.pop() {
-        if b <= a + 1 {
-            continue;
-        }
-        let (p, q) = (points[a], points[b]);
-        let (dx, dy) = (q.x - p.x, q.y - p.y);
-        let len = dx.hypot(dy);
-        let off = |r: Point| {
-            if len > 0.0 {
-                ((r.x - p.x) * dy - (r.y - p.y) * dx).abs() / len
-            } else {
-                r.distance_mm(p)
-            }
-        };
-        let (worst, dist) =
-            (a + 1..b).map(|i| (i, off(points[i]))).fold((a, -1.0), |acc, x| if x.1 > acc.1 { x } else { acc });
-        if dist > tolerance_mm {
-            if worst < keep.len() {
-                keep[worst] = true;
-            }
-            spans.push((a, worst));
-            spans.push((worst, b));
-        }
-    }
+    // Positions alone: no clearance along the ring.
+    let flat = vec![0.0; closed.len()];
+    let head = douglas_peucker(&closed[..=far], &flat[..=far], tolerance_mm);
+    let tail = douglas_peucker(&closed[far..], &flat[far..], tolerance_mm);
+    // The tail's first index is `far` (kept by the head) and its last the ring's first again.
+    let kept = head.into_iter().chain(tail.into_iter().skip(1).map(|i| i + far)).filter(|&i| i < points.len());
+    kept.map(|i| points[i]).collect()
 }
 
 #[cfg(test)]
