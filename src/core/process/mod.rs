@@ -56,7 +56,7 @@ pub use overload_lines::overload_program_lines;
 pub use report::{CandidateReport, CandidateStatus, Comparison, LayerReport, ProcessPlan, Whole};
 pub use screen::{Estimate, SCREEN_MARGIN, SCREEN_SPACING_FACTOR};
 pub use spec::{ProcessOptions, ToolCandidate, DEFAULT_MAX_FORCE_FACTOR, DEFAULT_TARGET_CONSUMPTION};
-pub use stair_step::{joined_program, plan_stair_step, StairStep, StairStepSpec, STAIR_STEP_FIELD};
+pub use stair_step::{joined_program, plan_stair_step, stair_conditions, StairStep, StairStepSpec, STAIR_STEP_FIELD};
 pub use tune::{Tuning, TuningOutcome};
 
 use crate::core::pocketing::unreachable_area_mm2;

@@ -14,11 +14,12 @@ use super::Cavity;
 use crate::core::analysis::geometry::{PathGeometry, SampleGeometry};
 use crate::core::analysis::kept::{keep, Floor, KeptStock};
 use crate::core::analysis::{analyze_from, AnalysisSpec, StockRegion};
+use crate::core::conditions::CuttingConditions;
 use crate::core::costing::cost::{cost, Cost};
 use crate::core::insertion::append_over;
 use crate::core::kinematics::{machining_time, MachiningTime, TimeOptions};
 use crate::core::progress::{Progress, Stage};
-use crate::core::tool::ToolType;
+use crate::core::tool::{EndMill, ToolType};
 use crate::core::tool_life::{Consumption, CutLength};
 use crate::core::toolpath::{Event, EventKind, Toolpath};
 use crate::core::CoreError;
@@ -29,6 +30,29 @@ pub const STAIR_STEP_FIELD: &str = "stair_step";
 
 /// Share of the step's progress taken by planning its path (the rest is its simulation).
 const PATH_SHARE: f64 = 0.3;
+
+/// A radius end mill's default depth between levels, × its diameter (**assumed**: the ratio
+/// of the R5 ball's side cut of seed 004 Table 7, Ad 0.6 on D10).
+pub const RADIUS_STAIR_AD_PER_DIAMETER: f64 = 0.06;
+/// A radius end mill's default depth between rings, × its diameter (**assumed**: as the R5
+/// ball's Rd 4 on D10, seed 004 Table 7).
+pub const RADIUS_STAIR_RD_PER_DIAMETER: f64 = 0.4;
+
+/// The stair step's conditions for `tool`, whose standard side cut is `standard`: its S and
+/// fz; `axial_depth_mm` and `radial_depth_mm` where given, else a ball's own standard Ad and
+/// Rd and a radius end mill's shares of its diameter.
+pub fn stair_conditions(
+    tool: &EndMill,
+    standard: CuttingConditions,
+    axial_depth_mm: Option<f64>,
+    radial_depth_mm: Option<f64>,
+) -> CuttingConditions {
+    let (ad, rd) = match tool.tool_type {
+        ToolType::Ball => (standard.ad_mm, standard.rd_mm),
+        _ => (RADIUS_STAIR_AD_PER_DIAMETER * tool.diameter_mm, RADIUS_STAIR_RD_PER_DIAMETER * tool.diameter_mm),
+    };
+    CuttingConditions { ad_mm: axial_depth_mm.unwrap_or(ad), rd_mm: radial_depth_mm.unwrap_or(rd), ..standard }
+}
 
 /// The stair-step roughing's tool, as the plan's candidates are given (its conditions are
 /// the step's: S, fz, Rd between rings, Ad between levels), and its number in the program.

@@ -6,6 +6,7 @@ use super::plans::{CandidatePrepared, PlanRequest, CANDIDATE_DIAMETER_RANGE_MM};
 use super::setup::{resolve as resolve_path_job, PathJobRefs, PathSetup, Resolved, MAX_FEED_PER_STANDARD};
 use crate::core::conditions::{feed_mm_min, CuttingConditions};
 use crate::core::operation::Operation;
+use crate::core::process::stair_conditions;
 use crate::core::tool::{EndMill, ToolType};
 use crate::service::error::{ApiError, Validator};
 use crate::service::lookup;
@@ -81,13 +82,6 @@ pub async fn pick(
     Ok(Some(picks))
 }
 
-/// A radius end mill's default depth between levels, × its diameter (**assumed**: the ratio
-/// of the R5 ball's side cut of seed 004 Table 7, Ad 0.6 on D10).
-pub const RADIUS_STAIR_AD_PER_DIAMETER: f64 = 0.06;
-/// A radius end mill's default depth between rings, × its diameter (**assumed**: as the R5
-/// ball's Rd 4 on D10, seed 004 Table 7).
-pub const RADIUS_STAIR_RD_PER_DIAMETER: f64 = 0.4;
-
 /// The depths a request gives the step, the rest from the tool's standard side cut.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct StairDepths {
@@ -96,18 +90,10 @@ pub struct StairDepths {
 }
 
 impl StairDepths {
-    /// The step's conditions for `tool`, whose standard side cut is `standard`: its S and
-    /// fz, the depths given, else a ball's own and a radius end mill's share of its diameter.
+    /// The step's conditions for `tool`, whose standard side cut is `standard` (see
+    /// [`stair_conditions`]).
     pub fn conditions(&self, tool: &EndMill, standard: CuttingConditions) -> CuttingConditions {
-        let (ad, rd) = match tool.tool_type {
-            ToolType::Ball => (standard.ad_mm, standard.rd_mm),
-            _ => (RADIUS_STAIR_AD_PER_DIAMETER * tool.diameter_mm, RADIUS_STAIR_RD_PER_DIAMETER * tool.diameter_mm),
-        };
-        CuttingConditions {
-            ad_mm: self.axial_depth_mm.unwrap_or(ad),
-            rd_mm: self.radial_depth_mm.unwrap_or(rd),
-            ..standard
-        }
+        stair_conditions(tool, standard, self.axial_depth_mm, self.radial_depth_mm)
     }
 }
 
