@@ -115,12 +115,43 @@ fn cutting_point_ratio(sample: &Sample, contact: &Contact, radius: f64) -> (f64,
     }
 }
 
+/// The samples (by their index along the path) a simulation measures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SampleRange {
+    /// Samples before this one only update the stock (see [`simulate_range`]).
+    pub measure_from: usize,
+    /// The simulation stops before this sample.
+    pub stop_at: usize,
+}
+
+impl SampleRange {
+    /// Every sample.
+    pub const ALL: SampleRange = SampleRange { measure_from: 0, stop_at: usize::MAX };
+}
+
 /// Runs the simulation, handing every sample's result to `sink`.
 pub fn simulate(
     path: &Toolpath,
     cutter: Cutter,
     slices: &mut Stack,
     progress: &dyn Progress,
+    sink: impl FnMut(&SampleResult),
+) -> Result<(), CoreError> {
+    simulate_range(path, cutter, slices, progress, SampleRange::ALL, sink)
+}
+
+/// Runs the simulation over the samples of `range`, handing each one's result to `sink`.
+/// The samples before `range.measure_from` update the stock as they would in a whole
+/// simulation, and are neither measured nor handed on: what the rasters hold, and the
+/// chunk being swept, never depend on what the probes find, so the samples from there on
+/// are those of the whole simulation. (The probes' memories start empty there: they only
+/// spare work, and find what a fresh probe finds.)
+pub fn simulate_range(
+    path: &Toolpath,
+    cutter: Cutter,
+    slices: &mut Stack,
+    progress: &dyn Progress,
+    range: SampleRange,
     mut sink: impl FnMut(&SampleResult),
 ) -> Result<(), CoreError> {
     let Cutter { spacing_mm, force_model, total_samples, .. } = cutter;
@@ -139,6 +170,10 @@ pub fn simulate(
     let mut failure: Option<CoreError> = None;
 
     for_each_sample(path, &curvatures, spacing_mm, |sample| {
+        if n >= range.stop_at {
+            return false;
+        }
+        let measured = n >= range.measure_from;
         n += 1;
         if n.is_multiple_of(PROGRESS_EVERY) {
             progress.report(n as f64 / total_samples.max(1) as f64);
@@ -158,6 +193,10 @@ pub fn simulate(
             radii.adopt(|k| probes.memories[k].forget());
         }
         chunk.follow(slices, radii.current(), arcs[sample.move_index].as_ref());
+        if !measured {
+            chunk.push(slices, radii.current(), (sample.p.x, sample.p.y), sample.heading, sample.step_mm);
+            return true;
+        }
         let plunge = !has_heading(sample.heading);
         let mut result = SampleResult {
             sample: *sample,
@@ -302,45 +341,8 @@ fn evaluate(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::core::analysis::region::{paint, StockRegion};
-    use crate::core::analysis::slices::slice_levels;
+    use crate::core::analysis::test_paths::{relief_program, relief_slices};
     use crate::core::progress::NoProgress;
-    use crate::core::stock::Rect;
-    use crate::core::toolpath::{Motion, Move, Units, P3};
-
-    const RELIEF: Rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 30.0, y_max: 30.0 };
-
-    /// Zig-zag passes along x over [`RELIEF`] that step down and across, ramping in z: a
-    /// relief program in miniature.
-    fn relief_program() -> Toolpath {
-        let mut moves = Vec::new();
-        let mut at = P3::new(-3.0, 2.0, -0.5);
-        for pass in 0..14 {
-            let y = 2.0 + 2.0 * f64::from(pass);
-            let depth = -0.5 - 0.7 * f64::from(pass % 7);
-            let x_end = if pass % 2 == 0 { 33.0 } else { -3.0 };
-            for end in [P3::new(at.x, y, at.z), P3::new((at.x + x_end) / 2.0, y, depth), P3::new(x_end, y, -0.5)] {
-                moves.push(Move {
-                    motion: Motion::Linear,
-                    start: at,
-                    end,
-                    feed_mm_min: Some(600.0),
-                    spindle_rpm: Some(9600.0),
-                    tool: None,
-                    line: moves.len() as u32 + 1,
-                });
-                at = end;
-            }
-        }
-        Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] }
-    }
-
-    /// The slices of [`RELIEF`] for `path`, painted.
-    fn relief_slices(path: &Toolpath) -> Stack {
-        let levels = slice_levels(path, -6.0, 0.0);
-        Stack::build(&levels, RELIEF, 0.1, |raster| paint(raster, &[StockRegion::Rect(RELIEF)], &[], &NoProgress))
-            .expect("nothing cancels the painting")
-    }
 
     fn relief_cutter(force_model: Option<ForceModel>) -> Cutter {
         Cutter {

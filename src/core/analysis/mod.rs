@@ -10,6 +10,7 @@ pub mod engages;
 pub mod engine;
 pub mod feed_cap;
 pub mod geometry;
+pub mod handoff;
 pub mod height_map;
 pub mod kept;
 pub mod levels;
@@ -28,7 +29,10 @@ pub mod scan_memory;
 pub mod slice_probes;
 pub mod slice_radii;
 pub mod slices;
+pub mod split;
 pub mod stack;
+#[cfg(test)]
+pub mod test_paths;
 
 use crate::core::error::require_positive;
 use crate::core::force_model::ForceModel;
@@ -280,6 +284,37 @@ pub fn analyze_from(
     spec: &AnalysisSpec,
     start: Option<&KeptStock>,
     progress: &dyn Progress,
+    sink: impl FnMut(&engine::SampleResult),
+) -> Result<(Analysis, Stack), CoreError> {
+    analyze_on(path, spec, start, Cores::One, progress, sink)
+}
+
+/// How many cores one simulation runs on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Cores {
+    One,
+    /// Split over two threads ([`split`]), when the path is long enough.
+    Two,
+}
+
+/// [`analyze_from`] without a kept stock, simulating on both cores (see [`split`]): the
+/// same analysis, samples and stock.
+pub fn analyze_split(
+    path: &Toolpath,
+    spec: &AnalysisSpec,
+    progress: &dyn Progress,
+    sink: impl FnMut(&engine::SampleResult),
+) -> Result<(Analysis, Stack), CoreError> {
+    analyze_on(path, spec, None, Cores::Two, progress, sink)
+}
+
+/// [`analyze_from`], simulating on `cores`.
+fn analyze_on(
+    path: &Toolpath,
+    spec: &AnalysisSpec,
+    start: Option<&KeptStock>,
+    cores: Cores,
+    progress: &dyn Progress,
     mut sink: impl FnMut(&engine::SampleResult),
 ) -> Result<(Analysis, Stack), CoreError> {
     check(path, spec)?;
@@ -322,7 +357,7 @@ pub fn analyze_from(
         }
     };
     let cell = slices.raster(0).cell_mm();
-    let initial: Vec<f64> = (0..slices.len()).map(|k| slices.raster(k).material_area_fine_mm2()).collect();
+    let initial = slices.material_areas_fine_mm2();
 
     let total_length: f64 = path.moves.iter().map(crate::core::toolpath::move_length).sum();
     let cutter = Cutter {
@@ -341,24 +376,31 @@ pub fn analyze_from(
         spec.force_model,
     );
     let simulation_stage = Stage { inner: progress, from: paint_share, span: 1.0 - paint_share };
-    simulate(path, cutter, &mut slices, &simulation_stage, |r| {
+    let take = |r: &engine::SampleResult| {
         builder.add(r);
         sink(r);
-    })?;
+    };
+    match cores {
+        Cores::One => simulate(path, cutter, &mut slices, &simulation_stage, take)?,
+        Cores::Two => split::simulate_split(path, cutter, &mut slices, &simulation_stage, take)?,
+    }
     progress.report(1.0);
     let report = builder.finish();
-    let mut analysis = assemble(path, spec, report, &slices, &initial, spacing, cell);
-    analysis.summary.rest_material = cavity.then(|| RestMaterial::of(&slices));
+    let remaining = slices.material_areas_fine_mm2();
+    let mut analysis = assemble(path, spec, report, &slices, (&initial, &remaining), spacing, cell);
+    analysis.summary.rest_material = cavity.then(|| RestMaterial::of(&slices, &remaining));
     analysis.summary.warnings.extend(budget::warning(spec, (wanted_slices, wanted_cell), (kept_slices, cell)));
     Ok((analysis, slices))
 }
 
+/// The analysis of `path` from the report of its samples and the slices it left, whose
+/// areas of material were `initial` before and are `remaining` now (mm², per slice).
 fn assemble(
     path: &Toolpath,
     spec: &AnalysisSpec,
     report: FinishedReport,
     slices: &Stack,
-    initial: &[f64],
+    (initial, remaining): (&[f64], &[f64]),
     spacing: f64,
     cell: f64,
 ) -> Analysis {
@@ -397,13 +439,8 @@ fn assemble(
     let slice_summaries: Vec<SliceSummary> = slices
         .slices()
         .iter()
-        .zip(initial)
-        .enumerate()
-        .map(|(k, (s, a0))| SliceSummary {
-            z_top: s.z_top,
-            z_bottom: s.z_bottom,
-            removed_area_mm2: a0 - slices.raster(k).material_area_fine_mm2(),
-        })
+        .zip(initial.iter().zip(remaining))
+        .map(|(s, (a0, a1))| SliceSummary { z_top: s.z_top, z_bottom: s.z_bottom, removed_area_mm2: a0 - a1 })
         .collect();
     let removed_volume_mm3 = slice_summaries.iter().map(|s| s.removed_area_mm2 * (s.z_top - s.z_bottom)).sum();
     let (mut rapid_length, mut minutes) = (0.0, 0.0);

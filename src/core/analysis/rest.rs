@@ -29,9 +29,15 @@ pub struct RestMaterial {
 }
 
 impl RestMaterial {
-    /// The rest material of the slices of `stack`.
-    pub fn of(stack: &Stack) -> RestMaterial {
-        let levels = stack.slices().iter().enumerate().map(|(k, s)| level(s.z_top, s.z_bottom, stack.raster(k)));
+    /// The rest material of the slices of `stack`, whose areas of material are `areas_mm2`
+    /// ([`Stack::material_areas_fine_mm2`]).
+    pub fn of(stack: &Stack, areas_mm2: &[f64]) -> RestMaterial {
+        let levels = stack.slices().iter().zip(areas_mm2).enumerate().map(|(k, (s, &area_mm2))| RestLevel {
+            z_top: s.z_top,
+            z_bottom: s.z_bottom,
+            area_mm2,
+            point: deepest_point(stack.raster(k)),
+        });
         RestMaterial::of_levels(levels.collect())
     }
 
@@ -59,12 +65,12 @@ impl RestMaterial {
 
 /// The rest material of the slice from `z_top` down to `z_bottom` holding `raster`.
 fn level(z_top: f64, z_bottom: f64, raster: &Raster) -> RestLevel {
-    RestLevel {
-        z_top,
-        z_bottom,
-        area_mm2: raster.material_area_fine_mm2(),
-        point: raster.deepest_material_point().map(|(x, y)| [x, y]),
-    }
+    RestLevel { z_top, z_bottom, area_mm2: raster.material_area_fine_mm2(), point: deepest_point(raster) }
+}
+
+/// A point of the material of `raster` as deep in it as any, `[x, y]` mm.
+fn deepest_point(raster: &Raster) -> Option<[f64; 2]> {
+    raster.deepest_material_point().map(|(x, y)| [x, y])
 }
 
 /// The volume of material the slices of `stack` hold, mm³.

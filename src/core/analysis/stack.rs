@@ -17,6 +17,7 @@ use crate::core::stock::{Raster, Rect};
 use crate::core::CoreError;
 
 /// One z slice of the stock.
+#[derive(Clone)]
 pub struct Slice {
     pub z_bottom: f64,
     pub z_top: f64,
@@ -25,6 +26,7 @@ pub struct Slice {
 }
 
 /// The slices of a layer, top first; the last always has its own stock.
+#[derive(Clone)]
 pub struct Stack {
     slices: Vec<Slice>,
 }
@@ -112,6 +114,20 @@ impl Stack {
     /// The raster of slice `k`.
     pub fn raster(&self, k: usize) -> &Raster {
         &self.stock(k).raster
+    }
+
+    /// The area of material of each slice, mm² ([`Raster::material_area_fine_mm2`]), read
+    /// once for slices that share one stock.
+    pub fn material_areas_fine_mm2(&self) -> Vec<f64> {
+        let mut areas = vec![0.0; self.slices.len()];
+        for k in (0..self.slices.len()).rev() {
+            areas[k] = match self.slices[k].own.as_ref() {
+                Some(own) => own.raster.material_area_fine_mm2(),
+                // Alike with the slice below: its stock, whose area is found already.
+                None => areas.get(k + 1).copied().unwrap_or_else(|| self.raster(k).material_area_fine_mm2()),
+            };
+        }
+        areas
     }
 
     /// Gives slice `k` its own copy of the stock it shares, if it shares one.

@@ -34,7 +34,7 @@ pub use spec::{
 pub use verify::{EngagementCheck, Overload, Spot, Verification, MAX_LISTED_OVERLOADS};
 
 use crate::core::analysis::geometry::{PathGeometry, SampleGeometry};
-use crate::core::analysis::{AnalysisSpec, Stack, StockRegion};
+use crate::core::analysis::{AnalysisSpec, Cores, Stack, StockRegion};
 use crate::core::conditions::feed_mm_min;
 use crate::core::cycles::setup::DEFAULT_PLUNGE_FEED_RATIO;
 use crate::core::cycles::z_levels;
@@ -44,11 +44,12 @@ use crate::core::medial::{
     classify, critical_branches, medial_axis, Boundary, CriticalInterval, MedialOptions, NodeKind,
 };
 use crate::core::pocketing::{contour_parallel, PocketingSpec};
+use crate::core::process::parallel;
 use crate::core::progress::Progress;
 use crate::core::toolpath::{section_events, Event, EventKind, Section, Toolpath, Units};
 use crate::core::CoreError;
 use cleared::ClearedZone as Zone;
-use std::collections::hash_map::{Entry, HashMap};
+use std::collections::HashMap;
 use treatments::Stretch;
 
 /// How much longer than its base path a plan may be, for the size check at submission (the
@@ -295,7 +296,11 @@ fn plan_rounds(
     let r = spec.r_mm();
     let empty = Zone::new(r);
     let base_roles = verify::MoveRoles { entry: &[], zcut: &[], zcut_zone: &empty };
-    let mut before = verify::check_engagement(&base, &analysis, &base_roles, progress, |s| {
+    // A plan keeping its samples runs as one of a job's layers or candidates, side by side
+    // on every core: its simulations take one each. Otherwise the plan is the job, and each
+    // simulation takes both.
+    let cores = if sampled.is_some() { Cores::One } else { Cores::Two };
+    let mut before = verify::check_engagement(&base, &analysis, &base_roles, cores, progress, |s| {
         if let Some(o) = observer.as_deref_mut() {
             o.base(s);
         }
@@ -332,20 +337,29 @@ fn plan_rounds(
     let mut rounds = 0;
     loop {
         rounds += 1;
+        let keyed: Vec<(TreatedKey, &CriticalInterval)> = intervals
+            .iter()
+            .map(|c| {
+                let overlaps = |u: &CriticalInterval| {
+                    u.branch == c.branch && u.s_start_mm <= c.s_end_mm && c.s_start_mm <= u.s_end_mm
+                };
+                ((c.branch, c.s_start_mm.to_bits(), c.s_end_mm.to_bits(), uncapped.iter().any(overlaps)), c)
+            })
+            .collect();
+        // The intervals not treated yet are treated side by side: each treatment depends on
+        // its interval alone.
+        let untreated: Vec<&(TreatedKey, &CriticalInterval)> =
+            keyed.iter().filter(|(key, _)| !treated.contains_key(key)).collect();
+        let treatments = parallel::map(&untreated, |_, (key, c)| {
+            let spec_here = if key.3 { &wide } else { spec };
+            treatments::treat_interval(&axis.branches[c.branch], c, &boundary, pocket, spec_here)
+        });
+        for ((key, _), treatment) in untreated.iter().zip(treatments) {
+            treated.insert(*key, treatment?);
+        }
         let mut stretches = openings.clone();
-        for c in &intervals {
-            let overlaps =
-                |u: &CriticalInterval| u.branch == c.branch && u.s_start_mm <= c.s_end_mm && c.s_start_mm <= u.s_end_mm;
-            let widened = uncapped.iter().any(overlaps);
-            let key = (c.branch, c.s_start_mm.to_bits(), c.s_end_mm.to_bits(), widened);
-            let found = match treated.entry(key) {
-                Entry::Occupied(kept) => kept.into_mut(),
-                Entry::Vacant(slot) => {
-                    let spec_here = if widened { &wide } else { spec };
-                    slot.insert(treatments::treat_interval(&axis.branches[c.branch], c, &boundary, pocket, spec_here)?)
-                }
-            };
-            stretches.extend(found.iter().cloned());
+        for (key, _) in &keyed {
+            stretches.extend(treated.get(key).into_iter().flatten().cloned());
         }
         let (air, zcut) = zones(&stretches, r);
         let composed = compose::compose(&base.moves, &stretches, &air, spec)?;
@@ -366,7 +380,7 @@ fn plan_rounds(
             let checks = scope.spawn(|| {
                 path_checks::check_path(pocket, &boundary, spec, stretches.len(), &per_level, &levels, &path)
             });
-            let after = verify::check_engagement(&path, &verifying, &roles, progress, |s| {
+            let after = verify::check_engagement(&path, &verifying, &roles, cores, progress, |s| {
                 if let Some(g) = geometry.as_mut() {
                     g.samples.push(SampleGeometry::of(s, default_rpm));
                 }

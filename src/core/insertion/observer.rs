@@ -7,8 +7,10 @@ use crate::core::analysis::engine::SampleResult;
 
 /// Receives the samples of the base path's check and of the verifications. Each round of
 /// treatment verifies its program again: only the last verification's samples describe the
-/// finished program, so a new one starts with [`SampleObserver::restart`].
-pub trait SampleObserver {
+/// finished program, so a new one starts with [`SampleObserver::restart`]. The samples are
+/// handed over on another thread than the caller's (see
+/// [`crate::core::analysis::handoff`]): an observer is `Send`.
+pub trait SampleObserver: Send {
     /// A sample of the base path, as its check simulated it.
     fn base(&mut self, sample: &SampleResult);
     /// A round's verification begins: the samples seen since the last restart no longer count.

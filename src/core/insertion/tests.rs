@@ -1,6 +1,7 @@
 //! The planner on real contours: border.dxf and a box cavity with a narrow slot.
 
 use super::*;
+use crate::core::analysis::test_paths::sample_bits;
 use crate::core::conditions::CuttingConditions;
 use crate::core::geometry::{Loop, Vertex};
 use crate::core::progress::NoProgress;
@@ -325,4 +326,43 @@ fn an_observer_sees_the_samples_an_analysis_of_the_base_path_and_of_the_finished
         assert!(close(air_cut_mm, alone.summary.air_cut_length_mm), "{air_cut_mm}");
     }
     assert!(tally.verified.1 > 0.0 && plan.air_cut_length_mm > 0.0 && tally.base.0 > 0);
+}
+
+/// Every sample the base check and the last verification hand an observer, bit for bit.
+#[derive(Default)]
+struct Recorder {
+    base: Vec<[u64; 9]>,
+    verified: Vec<[u64; 9]>,
+}
+
+impl SampleObserver for Recorder {
+    fn base(&mut self, sample: &crate::core::analysis::engine::SampleResult) {
+        self.base.push(sample_bits(sample));
+    }
+
+    fn restart(&mut self) {
+        self.verified.clear();
+    }
+
+    fn verified(&mut self, sample: &crate::core::analysis::engine::SampleResult) {
+        self.verified.push(sample_bits(sample));
+    }
+}
+
+#[test]
+fn the_plans_checks_on_two_cores_give_every_sample_an_analysis_on_one_core_gives() {
+    for pocket in [box_with_slot(12.0), border_dxf()] {
+        let spec = spec(-10.0);
+        let mut seen = Recorder::default();
+        let plan = plan_insertion_observed(&pocket, &spec, None, &mut seen, &NoProgress).expect("plans");
+        let analysis = analysis_spec(&pocket, &spec);
+        for (path, samples) in [(&plan.drawing.base_path, &seen.base), (&plan.toolpath, &seen.verified)] {
+            let mut alone = Vec::new();
+            crate::core::analysis::analyze_with(path, &analysis, &NoProgress, |r| alone.push(sample_bits(r)))
+                .expect("analyses");
+            // Long enough to be split over two threads.
+            assert!(samples.len() > crate::core::analysis::split::MIN_SPLIT_SAMPLES, "{} samples", samples.len());
+            assert!(*samples == alone, "the plan's samples differ from one core's analysis");
+        }
+    }
 }

@@ -4,9 +4,10 @@
 
 use super::cleared::ClearedZone;
 use crate::core::analysis::engine::SampleResult;
+use crate::core::analysis::handoff::analyze_handing_off;
 use crate::core::analysis::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE_BINS};
 use crate::core::analysis::sampling::point_on;
-use crate::core::analysis::{analyze_from, AnalysisSpec, Stack};
+use crate::core::analysis::{AnalysisSpec, Cores, Stack};
 use crate::core::geometry::{Pocket, Point};
 use crate::core::medial::Boundary;
 use crate::core::progress::Progress;
@@ -167,13 +168,15 @@ pub struct MoveRoles<'a> {
 /// Simulates `path` and sorts its samples into the z-cut passes, ramps, the full-depth moves
 /// crossing the z-cut regions and the rest (which must stay under the limit), listing the
 /// stretches of the last two above it with their lines and handing every sample to `sink`
-/// too.
+/// too. The simulation runs on `cores`; the sorting and `sink` run beside it, on a thread
+/// of their own (see [`analyze_handing_off`]).
 pub fn check_engagement(
     path: &Toolpath,
     analysis: &AnalysisSpec,
     roles: &MoveRoles,
+    cores: Cores,
     progress: &dyn Progress,
-    mut sink: impl FnMut(&SampleResult),
+    mut sink: impl FnMut(&SampleResult) + Send,
 ) -> Result<EngagementOutcome, CoreError> {
     let limit = analysis.alpha_limit_deg;
     let mut out = EngagementOutcome {
@@ -195,7 +198,7 @@ pub fn check_engagement(
     let mut open: Option<Overload> = None;
     let total_length_mm: f64 = path.moves.iter().map(move_length).sum();
     let mut collector = SampleCollector::new(total_length_mm, DRAWING_SAMPLE_BINS);
-    let (simulated, stack) = analyze_from(path, analysis, None, progress, |r| {
+    let (simulated, stack) = analyze_handing_off(path, analysis, cores, progress, |r| {
         sink(r);
         if r.sample.rapid {
             collector.add(r);

@@ -28,7 +28,7 @@ pub mod feeds;
 pub mod kept_layers;
 pub mod layer;
 mod overload_lines;
-mod parallel;
+pub(crate) mod parallel;
 mod report;
 pub mod screen;
 pub mod spec;

@@ -1,0 +1,153 @@
+//! One simulation on two cores (issue 29, "Plans in seconds"). What the rasters hold as the
+//! tool moves along a path never depends on what the probes find: the updates follow from
+//! the samples' positions alone (see [`super::chunk`]). So a second thread that replays the
+//! updates of a path's first part without measuring any sample (about a quarter of the work
+//! of simulating it) holds exactly the stock the simulation holds where the first part
+//! ends, and simulates the rest from there, while the calling thread simulates the first
+//! part. The samples are handed on in the order of the path, the second part's once the
+//! first part's are; the stock left is the second thread's, the whole path's.
+
+use super::engine::{simulate, simulate_range, Cutter, SampleRange, SampleResult};
+use super::stack::Stack;
+use crate::core::process::parallel::{threads, Shares};
+use crate::core::progress::{Progress, Stage};
+use crate::core::toolpath::Toolpath;
+use crate::core::CoreError;
+
+/// Replaying a sample's update of the stock costs about this share of simulating it (the
+/// probes are the rest): measured on the trochoid programs' verifications.
+pub const REPLAY_COST_SHARE: f64 = 0.25;
+
+/// Paths of fewer samples are simulated on one core: the copy of the stock and the thread
+/// would cost more than they spare.
+pub const MIN_SPLIT_SAMPLES: usize = 20_000;
+
+/// Most memory the second part's samples may take while they wait for the first part's,
+/// bytes (**assumed**: a few times a pocket's stock; the trochoid programs' second parts
+/// take about 40 MB). A longer path is simulated on one core.
+pub const MAX_SPLIT_BUFFER_BYTES: usize = 256 << 20;
+
+/// The sample where the second part starts, of `total`: each thread then has about as much
+/// work, the first simulating `s` samples and the second replaying those and simulating the
+/// other `total − s` (`s = (total − s) + share·s`).
+pub fn split_sample(total: usize) -> usize {
+    (total as f64 / (2.0 - REPLAY_COST_SHARE)).round() as usize
+}
+
+/// [`simulate`] on two threads, as the module says, when the machine has two cores, the
+/// path at least [`MIN_SPLIT_SAMPLES`] and its second part's samples fit in
+/// [`MAX_SPLIT_BUFFER_BYTES`]; `sink` sees every sample in the order of the path,
+/// on the calling thread. Progress is the mean of the two threads' shares of their work;
+/// either stops when `progress` is cancelled.
+pub fn simulate_split(
+    path: &Toolpath,
+    cutter: Cutter,
+    slices: &mut Stack,
+    progress: &dyn Progress,
+    sink: impl FnMut(&SampleResult),
+) -> Result<(), CoreError> {
+    let total = cutter.total_samples;
+    let at = split_sample(total);
+    let buffered_bytes = total.saturating_sub(at).saturating_mul(std::mem::size_of::<SampleResult>());
+    if total < MIN_SPLIT_SAMPLES || threads() < 2 || buffered_bytes > MAX_SPLIT_BUFFER_BYTES {
+        return simulate(path, cutter, slices, progress, sink);
+    }
+    simulate_split_at(path, cutter, slices, at, progress, sink)
+}
+
+/// [`simulate`] on two threads, the second measuring from sample `at` on (see the module).
+fn simulate_split_at(
+    path: &Toolpath,
+    cutter: Cutter,
+    slices: &mut Stack,
+    at: usize,
+    progress: &dyn Progress,
+    mut sink: impl FnMut(&SampleResult),
+) -> Result<(), CoreError> {
+    let total = cutter.total_samples.max(at);
+    let mut rest = slices.clone();
+    let shares = Shares::new(progress, 0.0, 1.0, 2);
+    let (first_share, second_share) = (shares.part(0), shares.part(1));
+    // The first thread reports its samples against the whole path's: scaled to its part.
+    let first_progress = Stage { inner: &first_share, from: 0.0, span: total as f64 / at.max(1) as f64 };
+    let later = SampleRange { measure_from: at, stop_at: usize::MAX };
+    let second = std::thread::scope(|scope| {
+        let second = scope.spawn(|| {
+            let mut results = Vec::with_capacity(total.saturating_sub(at));
+            simulate_range(path, cutter, &mut rest, &second_share, later, |r| results.push(*r)).map(|()| results)
+        });
+        let first = SampleRange { measure_from: 0, stop_at: at };
+        let simulated = simulate_range(path, cutter, slices, &first_progress, first, &mut sink);
+        let second = second.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        simulated.and(second)
+    })?;
+    second.iter().for_each(sink);
+    *slices = rest;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::analysis::profile::Profile;
+    use crate::core::analysis::test_paths::{feed_move, relief_program, relief_slices, sample_bits};
+    use crate::core::progress::NoProgress;
+    use crate::core::toolpath::{Motion, Move, Plane, P3};
+
+    /// The relief program, then loops (full circles) along a line across what it cut: ramps,
+    /// straight stretches, corners, arcs and several slices.
+    fn program() -> Toolpath {
+        let mut path = relief_program();
+        let moves = &mut path.moves;
+        let mut at = moves[moves.len() - 1].end;
+        for k in 0..24 {
+            let centre = P3::new(4.0 + f64::from(k), 15.0, -3.0);
+            let start = P3::new(centre.x + 2.0, centre.y, centre.z);
+            moves.push(feed_move(at, start, moves.len()));
+            let arc = Motion::Arc { center: centre, clockwise: false, plane: Plane::Xy, turns: 0 };
+            moves.push(Move { motion: arc, ..feed_move(start, start, moves.len()) });
+            at = start;
+        }
+        path
+    }
+
+    #[test]
+    fn a_simulation_split_over_two_threads_gives_every_sample_and_cell_of_the_whole_one() {
+        let path = program();
+        for model in [None, Some(crate::core::fixtures::seed_001_ten_mm())] {
+            let cutter = |total_samples| Cutter {
+                profile: Profile::cylinder(2.0),
+                flutes: 2,
+                default_spindle_rpm: Some(9600.0),
+                force_model: model,
+                spacing_mm: 0.05,
+                total_samples,
+            };
+            let mut whole = relief_slices(&path);
+            let mut expected = Vec::new();
+            simulate(&path, cutter(0), &mut whole, &NoProgress, |r| expected.push(sample_bits(r))).expect("simulates");
+            let n = expected.len();
+            assert!(expected.iter().filter(|b| b[1] > 0).count() > n / 2, "too little engagement");
+            // Split at points along the passes and the loops, and where either part is empty.
+            for at in [split_sample(n), n / 7, n / 3 + 1, 9 * n / 10, 0, n, 2 * n] {
+                let mut split = relief_slices(&path);
+                let mut found = Vec::new();
+                simulate_split_at(&path, cutter(n), &mut split, at, &NoProgress, |r| found.push(sample_bits(r)))
+                    .expect("simulates");
+                assert!(found == expected, "the samples differ, split at {at} of {n}");
+                for k in 0..whole.len() {
+                    assert!(split.raster(k).cells() == whole.raster(k).cells(), "slice {k} differs");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_split_leaves_each_thread_about_as_much_work() {
+        let total = 700_000;
+        let s = split_sample(total) as f64;
+        let first = s;
+        let second = (total as f64 - s) + REPLAY_COST_SHARE * s;
+        assert!((first - second).abs() <= 1.0, "{first} against {second}");
+    }
+}
