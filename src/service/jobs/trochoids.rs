@@ -419,9 +419,6 @@ pub fn run(
             (plan, None, stack)
         }
     };
-    // The stock the finished program leaves, as its verification simulated it: a pocket's
-    // cavity, which runs on down in its outline.
-    let kept = keep(&stack, &simulation, None, Floor::Unbounded, true)?;
     let options = request.output.to_writer(&prepared.base);
     let written = write_program_mapped(&plan.toolpath, &options);
     let base = base_program(&request, &mut plan, &options);
@@ -432,7 +429,14 @@ pub fn run(
     // of the result are found by move number).
     let lines = with_lines(&plan.toolpath, &written.move_lines);
     let numbered = std::mem::replace(&mut plan.toolpath, lines);
-    let scene = insertion_scene(&pocket, &spec, &plan);
+    // The drawing is made beside the stock the finished program leaves, as its
+    // verification simulated it: a pocket's cavity, which runs on down in its outline.
+    let (scene, kept) = std::thread::scope(|scope| {
+        let scene = scope.spawn(|| insertion_scene(&pocket, &spec, &plan));
+        let kept = keep(&stack, &simulation, None, Floor::Unbounded, true);
+        (scene.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)), kept)
+    });
+    let kept = kept?;
     plan.toolpath = numbered;
     let figures = match prepared.limits.as_ref() {
         Some(limits) => Some(ChangeFigures::of(&plan, limits, counted)?),
