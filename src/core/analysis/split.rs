@@ -1,8 +1,8 @@
 //! One simulation on two cores (issue 29, "Plans in seconds"). What the rasters hold as the
 //! tool moves along a path never depends on what the probes find: the updates follow from
 //! the samples' positions alone (see [`super::chunk`]). So a second thread that replays the
-//! updates of a path's first part without measuring any sample (about a quarter of the work
-//! of simulating it) holds exactly the stock the simulation holds where the first part
+//! updates of a path's first part without measuring any sample (a third of the work of
+//! simulating it, or less) holds exactly the stock the simulation holds where the first part
 //! ends, and simulates the rest from there, while the calling thread simulates the first
 //! part. The samples are handed on in the order of the path, the second part's once the
 //! first part's are; the stock left is the second thread's, the whole path's.
@@ -14,9 +14,13 @@ use crate::core::progress::{Progress, Stage};
 use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 
-/// Replaying a sample's update of the stock costs about this share of simulating it (the
-/// probes are the rest): measured on the trochoid programs' verifications.
-pub const REPLAY_COST_SHARE: f64 = 0.25;
+/// The share of the samples the calling thread simulates; the second thread replays their
+/// updates and simulates the rest. A trochoid program's first samples (its trochoids) cost
+/// the most, and replaying one costs about a third of simulating it: half of the samples
+/// balanced the two threads' instructions on the slot box and the case-study cavity layer
+/// (callgrind), where the share of equal samples and a replay at a quarter (0.57) left the
+/// calling thread with 5–10 % more than the other's.
+pub const FIRST_PART_SHARE: f64 = 0.5;
 
 /// Paths of fewer samples are simulated on one core: the copy of the stock and the thread
 /// would cost more than they spare.
@@ -27,11 +31,9 @@ pub const MIN_SPLIT_SAMPLES: usize = 20_000;
 /// take about 40 MB). A longer path is simulated on one core.
 pub const MAX_SPLIT_BUFFER_BYTES: usize = 256 << 20;
 
-/// The sample where the second part starts, of `total`: each thread then has about as much
-/// work, the first simulating `s` samples and the second replaying those and simulating the
-/// other `total − s` (`s = (total − s) + share·s`).
+/// The sample where the second part starts, of `total` ([`FIRST_PART_SHARE`]).
 pub fn split_sample(total: usize) -> usize {
-    (total as f64 / (2.0 - REPLAY_COST_SHARE)).round() as usize
+    (total as f64 * FIRST_PART_SHARE).round() as usize
 }
 
 /// [`simulate`] on two threads, as the module says, when the machine has two cores, the
@@ -140,14 +142,5 @@ mod tests {
                 }
             }
         }
-    }
-
-    #[test]
-    fn the_split_leaves_each_thread_about_as_much_work() {
-        let total = 700_000;
-        let s = split_sample(total) as f64;
-        let first = s;
-        let second = (total as f64 - s) + REPLAY_COST_SHARE * s;
-        assert!((first - second).abs() <= 1.0, "{first} against {second}");
     }
 }
