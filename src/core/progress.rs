@@ -9,6 +9,14 @@ pub trait Progress: Sync {
     /// `true` once the caller wants the computation to stop.
     fn cancelled(&self) -> bool;
 
+    /// `true` when another core is free for this computation now: work that can be split
+    /// over two cores at some extra cost (see [`crate::core::analysis::split`]) is split
+    /// only then. A job's control says no while other jobs run beside it (they take the
+    /// other cores); with no one to ask (tests, benchmarks, the CLI), yes.
+    fn spare_core(&self) -> bool {
+        true
+    }
+
     /// Returns `Err(CoreError::Cancelled)` when cancelled: call it at safe points.
     fn checkpoint(&self) -> Result<(), CoreError> {
         if self.cancelled() {
@@ -41,6 +49,9 @@ impl Progress for Beside<'_> {
     fn cancelled(&self) -> bool {
         self.inner.cancelled() || self.abandoned.load(std::sync::atomic::Ordering::Relaxed)
     }
+    fn spare_core(&self) -> bool {
+        self.inner.spare_core()
+    }
 }
 
 /// A part of a longer computation: reports `from + fraction · span` of the whole to `inner`,
@@ -65,6 +76,9 @@ impl Progress for Stage<'_> {
     }
     fn cancelled(&self) -> bool {
         self.inner.cancelled()
+    }
+    fn spare_core(&self) -> bool {
+        self.inner.spare_core()
     }
 }
 

@@ -36,9 +36,11 @@ pub fn split_sample(total: usize) -> usize {
     (total as f64 * FIRST_PART_SHARE).round() as usize
 }
 
-/// [`simulate`] on two threads, as the module says, when the machine has two cores, the
-/// path at least [`MIN_SPLIT_SAMPLES`] and its second part's samples fit in
-/// [`MAX_SPLIT_BUFFER_BYTES`]; `sink` sees every sample in the order of the path,
+/// [`simulate`] on two threads, as the module says, when the machine has two cores and
+/// `progress` says one is free now ([`Progress::spare_core`]: the replay costs a fifth more
+/// work, which only pays where the other core would idle), the path has at least
+/// [`MIN_SPLIT_SAMPLES`] and its second part's samples fit in [`MAX_SPLIT_BUFFER_BYTES`];
+/// `sink` sees every sample in the order of the path,
 /// on the calling thread. Progress is the mean of the two threads' shares of their work;
 /// either stops when `progress` is cancelled.
 pub fn simulate_split(
@@ -51,7 +53,8 @@ pub fn simulate_split(
     let total = cutter.total_samples;
     let at = split_sample(total);
     let buffered_bytes = total.saturating_sub(at).saturating_mul(std::mem::size_of::<SampleResult>());
-    if total < MIN_SPLIT_SAMPLES || threads() < 2 || buffered_bytes > MAX_SPLIT_BUFFER_BYTES {
+    let one_core = threads() < 2 || !progress.spare_core();
+    if total < MIN_SPLIT_SAMPLES || one_core || buffered_bytes > MAX_SPLIT_BUFFER_BYTES {
         return simulate(path, cutter, slices, progress, sink);
     }
     simulate_split_at(path, cutter, slices, at, progress, sink)
@@ -142,5 +145,43 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Progress that records which threads asked whether to stop, with a spare core or not.
+    struct Threads {
+        spare: bool,
+        asked_from: std::sync::Mutex<std::collections::HashSet<std::thread::ThreadId>>,
+    }
+
+    impl Progress for Threads {
+        fn report(&self, _fraction: f64) {}
+        fn cancelled(&self) -> bool {
+            self.asked_from.lock().expect("not poisoned").insert(std::thread::current().id());
+            false
+        }
+        fn spare_core(&self) -> bool {
+            self.spare
+        }
+    }
+
+    #[test]
+    fn a_simulation_takes_the_second_core_only_when_it_is_spare() {
+        let path = program();
+        let cutter = Cutter {
+            profile: Profile::cylinder(2.0),
+            flutes: 2,
+            default_spindle_rpm: Some(9600.0),
+            force_model: None,
+            spacing_mm: 0.05,
+            total_samples: MIN_SPLIT_SAMPLES,
+        };
+        let threads_asking = |spare: bool| {
+            let progress = Threads { spare, asked_from: Default::default() };
+            simulate_split(&path, cutter, &mut relief_slices(&path), &progress, |_| {}).expect("simulates");
+            let asked = progress.asked_from.lock().expect("not poisoned").len();
+            asked
+        };
+        assert_eq!(threads_asking(false), 1, "no spare core: the calling thread alone");
+        assert_eq!(threads_asking(true), if threads() > 1 { 2 } else { 1 });
     }
 }

@@ -89,6 +89,10 @@ impl Progress for Part<'_> {
     fn cancelled(&self) -> bool {
         self.shares.inner.cancelled()
     }
+
+    fn spare_core(&self) -> bool {
+        self.shares.inner.spare_core()
+    }
 }
 
 #[cfg(test)]

@@ -3,8 +3,9 @@
 //! through [`Progress`] while the job's queue ([`super::queue`]) and its execution
 //! ([`super::execution`]) set and read them.
 
+use crate::core::process::parallel::threads;
 use crate::core::progress::Progress;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -18,6 +19,8 @@ pub struct JobControl {
     time_limit: Option<Duration>,
     /// When the job has run for as long as a job may (none: no limit).
     deadline: Option<Instant>,
+    /// How many jobs this replica runs now, this one among them (none: not counted).
+    running_jobs: Option<Arc<AtomicUsize>>,
 }
 
 impl Progress for JobControl {
@@ -27,6 +30,12 @@ impl Progress for JobControl {
 
     fn cancelled(&self) -> bool {
         self.cancel.load(Ordering::Relaxed) || self.shutdown.load(Ordering::Relaxed) || self.timed_out()
+    }
+
+    /// A core is spare while fewer jobs run than the machine has cores: each job takes one,
+    /// and one left over may take a second.
+    fn spare_core(&self) -> bool {
+        self.running_jobs.as_ref().is_none_or(|running| running.load(Ordering::Relaxed) < threads())
     }
 }
 
@@ -40,7 +49,14 @@ impl JobControl {
             progress_bits: AtomicU64::new(0f64.to_bits()),
             time_limit,
             deadline: time_limit.and_then(|limit| Instant::now().checked_add(limit)),
+            running_jobs: None,
         }
+    }
+
+    /// The control, knowing how many jobs run beside it from `running` (the count of
+    /// running jobs, this one among them), which it reads for [`Progress::spare_core`].
+    pub fn counted_in(self, running: Arc<AtomicUsize>) -> JobControl {
+        JobControl { running_jobs: Some(running), ..self }
     }
 
     /// Asks the job to stop: the core sees it cancelled at its next check.
@@ -110,5 +126,16 @@ mod tests {
         shutdown.store(true, Ordering::SeqCst);
         let stopping = JobControl::new(false, shutdown, Some(Duration::ZERO));
         assert_eq!(stopping.stop_reason(), StopReason::Shutdown);
+    }
+
+    #[test]
+    fn a_job_has_a_spare_core_only_while_fewer_jobs_run_than_the_machine_has_cores() {
+        let shutdown = Arc::new(AtomicBool::new(false));
+        assert!(JobControl::new(false, shutdown.clone(), None).spare_core(), "a job not counted may take any core");
+        let running = Arc::new(AtomicUsize::new(1));
+        let job = JobControl::new(false, shutdown, None).counted_in(running.clone());
+        assert_eq!(job.spare_core(), threads() > 1);
+        running.store(threads(), Ordering::Relaxed);
+        assert!(!job.spare_core(), "every core has a job");
     }
 }

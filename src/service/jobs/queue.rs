@@ -11,7 +11,7 @@ use super::lease::{self as store, Lease};
 use super::notify::{self, Event};
 use crate::service::store::Pool;
 use std::collections::HashMap;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use tokio::sync::{broadcast, watch, Notify};
@@ -34,6 +34,8 @@ struct Inner {
     stopping: watch::Sender<bool>,
     finished: broadcast::Sender<String>,
     running: Mutex<HashMap<String, Arc<JobControl>>>,
+    /// How many jobs run now (the jobs' controls read it, see [`JobControl::counted_in`]).
+    running_jobs: Arc<AtomicUsize>,
     shutdown: Arc<AtomicBool>,
     workers: Mutex<Vec<JoinHandle<()>>>,
     /// Longest a job may run (none: no limit).
@@ -78,6 +80,7 @@ impl JobQueue {
                 stopping: watch::channel(false).0,
                 finished,
                 running: Mutex::new(HashMap::new()),
+                running_jobs: Arc::new(AtomicUsize::new(0)),
                 shutdown: Arc::new(AtomicBool::new(false)),
                 workers: Mutex::new(Vec::new()),
                 time_limit,
@@ -257,8 +260,10 @@ async fn worker_loop(inner: Arc<Inner>, n: usize, interactive_only: bool) {
 
 async fn run_one(inner: &Arc<Inner>, row: store::Claimed) {
     let id = row.id.clone();
-    let control = Arc::new(JobControl::new(row.cancel_requested, inner.shutdown.clone(), inner.time_limit));
+    let control = JobControl::new(row.cancel_requested, inner.shutdown.clone(), inner.time_limit);
+    let control = Arc::new(control.counted_in(inner.running_jobs.clone()));
     inner.running.lock().unwrap_or_else(|p| p.into_inner()).insert(id.clone(), control.clone());
+    inner.running_jobs.fetch_add(1, Ordering::Relaxed);
     let recorded = match execution::execute(&inner.pool, &inner.lease, &row, control, inner.stock_memory_bytes).await {
         Ok(recorded) => recorded,
         Err(e) => {
@@ -266,6 +271,7 @@ async fn run_one(inner: &Arc<Inner>, row: store::Claimed) {
             false
         }
     };
+    inner.running_jobs.fetch_sub(1, Ordering::Relaxed);
     inner.running.lock().unwrap_or_else(|p| p.into_inner()).remove(&id);
     if recorded {
         notify::send(&inner.pool, Event::Finished, &id).await;
