@@ -37,7 +37,7 @@ pub fn split_sample(total: usize) -> usize {
 }
 
 /// [`simulate`] on two threads, as the module says, when the machine has two cores and
-/// `progress` says one is free now ([`Progress::spare_core`]: the replay costs a fifth more
+/// `progress` says one is free now ([`Progress::spare_core`]: the replay costs a third more
 /// work, which only pays where the other core would idle), the path has at least
 /// [`MIN_SPLIT_SAMPLES`] and its second part's samples fit in [`MAX_SPLIT_BUFFER_BYTES`];
 /// `sink` sees every sample in the order of the path,
