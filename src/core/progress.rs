@@ -9,13 +9,18 @@ pub trait Progress: Sync {
     /// `true` once the caller wants the computation to stop.
     fn cancelled(&self) -> bool;
 
-    /// `true` when another core is free for this computation now: work that can be split
-    /// over two cores at some extra cost (see [`crate::core::analysis::split`]) is split
-    /// only then. A job's control says no while other jobs run beside it (they take the
-    /// other cores); with no one to ask (tests, benchmarks, the CLI), yes.
-    fn spare_core(&self) -> bool {
+    /// Takes a second core for this computation when one is free now, `true` if it did:
+    /// work that can be split over two cores at some extra cost (see
+    /// [`crate::core::analysis::split`]) is split only then, and gives the core back with
+    /// [`Progress::release_core`]. A job's control takes one only while its replica's jobs
+    /// and the cores they took already are fewer than the machine's cores; with no one to
+    /// ask (tests, benchmarks, the CLI), there is always one.
+    fn claim_spare_core(&self) -> bool {
         true
     }
+
+    /// Gives back a core [`Progress::claim_spare_core`] took.
+    fn release_core(&self) {}
 
     /// Returns `Err(CoreError::Cancelled)` when cancelled: call it at safe points.
     fn checkpoint(&self) -> Result<(), CoreError> {
@@ -49,8 +54,11 @@ impl Progress for Beside<'_> {
     fn cancelled(&self) -> bool {
         self.inner.cancelled() || self.abandoned.load(std::sync::atomic::Ordering::Relaxed)
     }
-    fn spare_core(&self) -> bool {
-        self.inner.spare_core()
+    fn claim_spare_core(&self) -> bool {
+        self.inner.claim_spare_core()
+    }
+    fn release_core(&self) {
+        self.inner.release_core()
     }
 }
 
@@ -77,8 +85,11 @@ impl Progress for Stage<'_> {
     fn cancelled(&self) -> bool {
         self.inner.cancelled()
     }
-    fn spare_core(&self) -> bool {
-        self.inner.spare_core()
+    fn claim_spare_core(&self) -> bool {
+        self.inner.claim_spare_core()
+    }
+    fn release_core(&self) {
+        self.inner.release_core()
     }
 }
 

@@ -292,6 +292,7 @@ pub fn analyze_from(
 /// How many cores one simulation runs on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Cores {
+    /// On the calling thread.
     One,
     /// Split over two threads ([`split`]), when the path is long enough.
     Two,
@@ -382,7 +383,9 @@ fn analyze_on(
     };
     match cores {
         Cores::One => simulate(path, cutter, &mut slices, &simulation_stage, take)?,
-        Cores::Two => split::simulate_split(path, cutter, &mut slices, &simulation_stage, take)?,
+        Cores::Two => {
+            split::simulate_split(path, cutter, &mut slices, spec.stock_memory_bytes, &simulation_stage, take)?
+        }
     }
     progress.report(1.0);
     let report = builder.finish();

@@ -1,8 +1,9 @@
 //! One simulation on two cores (issue 29, "Plans in seconds"). What the rasters hold as the
 //! tool moves along a path never depends on what the probes find: the updates follow from
 //! the samples' positions alone (see [`super::chunk`]). So a second thread that replays the
-//! updates of a path's first part without measuring any sample (a third of the work of
-//! simulating it, or less) holds exactly the stock the simulation holds where the first part
+//! updates of a path's first part without measuring any sample (up to half the work of
+//! simulating it: along a trochoid's loops the updates cost as much as the probes) holds
+//! exactly the stock the simulation holds where the first part
 //! ends, and simulates the rest from there, while the calling thread simulates the first
 //! part. The samples are handed on in the order of the path, the second part's once the
 //! first part's are; the stock left is the second thread's, the whole path's.
@@ -16,14 +17,16 @@ use crate::core::CoreError;
 
 /// The share of the samples the calling thread simulates; the second thread replays their
 /// updates and simulates the rest. A trochoid program's first samples (its trochoids) cost
-/// the most, and replaying one costs about a third of simulating it: half of the samples
+/// the most, and replaying one costs up to half of simulating it: half of the samples
 /// balanced the two threads' instructions on the slot box and the case-study cavity layer
 /// (callgrind), where the share of equal samples and a replay at a quarter (0.57) left the
 /// calling thread with 5–10 % more than the other's.
 pub const FIRST_PART_SHARE: f64 = 0.5;
 
 /// Paths of fewer samples are simulated on one core: the copy of the stock and the thread
-/// would cost more than they spare.
+/// would cost more than they spare (**assumed**: a tenth of the slot box's base path; a
+/// split of the bench's pockets spares tens of milliseconds, the thread and the copy well
+/// under one).
 pub const MIN_SPLIT_SAMPLES: usize = 20_000;
 
 /// Most memory the second part's samples may take while they wait for the first part's,
@@ -36,28 +39,41 @@ pub fn split_sample(total: usize) -> usize {
     (total as f64 * FIRST_PART_SHARE).round() as usize
 }
 
-/// [`simulate`] on two threads, as the module says, when the machine has two cores and
-/// `progress` says one is free now ([`Progress::spare_core`]: the replay costs a third more
-/// work, which only pays where the other core would idle), the path has at least
-/// [`MIN_SPLIT_SAMPLES`] and its second part's samples fit in [`MAX_SPLIT_BUFFER_BYTES`];
-/// `sink` sees every sample in the order of the path,
-/// on the calling thread. Progress is the mean of the two threads' shares of their work;
-/// either stops when `progress` is cancelled.
+/// [`simulate`] on two threads, as the module says, when the path has at least
+/// [`MIN_SPLIT_SAMPLES`], its second part's samples fit in [`MAX_SPLIT_BUFFER_BYTES`], two
+/// copies of the slices' stock fit in `budget_bytes` (each may come to a raster per slice),
+/// and `progress` gives the computation a second core ([`Progress::claim_spare_core`]: the
+/// replay costs a third more work, which only pays where that core would idle); otherwise
+/// on the calling thread alone. `sink` sees every sample in the order of the path, on the
+/// calling thread. Progress is the mean of the two threads' shares of their work; either
+/// stops when `progress` is cancelled.
 pub fn simulate_split(
     path: &Toolpath,
     cutter: Cutter,
     slices: &mut Stack,
+    budget_bytes: usize,
     progress: &dyn Progress,
     sink: impl FnMut(&SampleResult),
 ) -> Result<(), CoreError> {
     let total = cutter.total_samples;
     let at = split_sample(total);
     let buffered_bytes = total.saturating_sub(at).saturating_mul(std::mem::size_of::<SampleResult>());
-    let one_core = threads() < 2 || !progress.spare_core();
-    if total < MIN_SPLIT_SAMPLES || one_core || buffered_bytes > MAX_SPLIT_BUFFER_BYTES {
+    let two_stocks = slices.most_memory_bytes().saturating_mul(2);
+    let fits = total >= MIN_SPLIT_SAMPLES && buffered_bytes <= MAX_SPLIT_BUFFER_BYTES && two_stocks <= budget_bytes;
+    if !fits || threads() < 2 || !progress.claim_spare_core() {
         return simulate(path, cutter, slices, progress, sink);
     }
+    let _second = SecondCore(progress);
     simulate_split_at(path, cutter, slices, at, progress, sink)
+}
+
+/// The second core a split simulation took, given back when it ends (or unwinds).
+struct SecondCore<'a>(&'a dyn Progress);
+
+impl Drop for SecondCore<'_> {
+    fn drop(&mut self) {
+        self.0.release_core();
+    }
 }
 
 /// [`simulate`] on two threads, the second measuring from sample `at` on (see the module).
@@ -119,9 +135,20 @@ mod tests {
     #[test]
     fn a_simulation_split_over_two_threads_gives_every_sample_and_cell_of_the_whole_one() {
         let path = program();
-        for model in [None, Some(crate::core::fixtures::seed_001_ten_mm())] {
+        let radius_end_mill = Profile::of(&crate::core::tool::EndMill {
+            tool_type: crate::core::tool::ToolType::Radius,
+            diameter_mm: 4.0,
+            flutes: 2,
+            corner_radius_mm: 0.8,
+        });
+        let model = Some(crate::core::fixtures::seed_001_ten_mm());
+        // A square end mill with and without forces, and a radius end mill, whose corner
+        // takes the slices it reaches at smaller radii.
+        for (profile, model) in
+            [(Profile::cylinder(2.0), None), (Profile::cylinder(2.0), model), (radius_end_mill, None)]
+        {
             let cutter = |total_samples| Cutter {
-                profile: Profile::cylinder(2.0),
+                profile,
                 flutes: 2,
                 default_spindle_rpm: Some(9600.0),
                 force_model: model,
@@ -147,10 +174,13 @@ mod tests {
         }
     }
 
-    /// Progress that records which threads asked whether to stop, with a spare core or not.
+    /// Progress that records which threads asked whether to stop, and the cores claimed and
+    /// given back, with a spare core or not.
     struct Threads {
         spare: bool,
         asked_from: std::sync::Mutex<std::collections::HashSet<std::thread::ThreadId>>,
+        claimed: std::sync::atomic::AtomicUsize,
+        released: std::sync::atomic::AtomicUsize,
     }
 
     impl Progress for Threads {
@@ -159,13 +189,17 @@ mod tests {
             self.asked_from.lock().expect("not poisoned").insert(std::thread::current().id());
             false
         }
-        fn spare_core(&self) -> bool {
+        fn claim_spare_core(&self) -> bool {
+            self.claimed.fetch_add(usize::from(self.spare), std::sync::atomic::Ordering::Relaxed);
             self.spare
+        }
+        fn release_core(&self) {
+            self.released.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         }
     }
 
     #[test]
-    fn a_simulation_takes_the_second_core_only_when_it_is_spare() {
+    fn a_simulation_takes_a_second_core_only_when_one_is_free_and_two_stocks_fit_the_budget() {
         let path = program();
         let cutter = Cutter {
             profile: Profile::cylinder(2.0),
@@ -175,13 +209,19 @@ mod tests {
             spacing_mm: 0.05,
             total_samples: MIN_SPLIT_SAMPLES,
         };
-        let threads_asking = |spare: bool| {
-            let progress = Threads { spare, asked_from: Default::default() };
-            simulate_split(&path, cutter, &mut relief_slices(&path), &progress, |_| {}).expect("simulates");
+        let threads_asking = |spare: bool, budget_bytes: usize| {
+            let progress = Threads { spare, asked_from: Default::default(), claimed: 0.into(), released: 0.into() };
+            simulate_split(&path, cutter, &mut relief_slices(&path), budget_bytes, &progress, |_| {})
+                .expect("simulates");
+            let claimed = progress.claimed.load(std::sync::atomic::Ordering::Relaxed);
+            assert_eq!(claimed, progress.released.load(std::sync::atomic::Ordering::Relaxed), "a core kept");
             let asked = progress.asked_from.lock().expect("not poisoned").len();
             asked
         };
-        assert_eq!(threads_asking(false), 1, "no spare core: the calling thread alone");
-        assert_eq!(threads_asking(true), if threads() > 1 { 2 } else { 1 });
+        let ample = usize::MAX;
+        assert_eq!(threads_asking(false, ample), 1, "no spare core: the calling thread alone");
+        assert_eq!(threads_asking(true, ample), if threads() > 1 { 2 } else { 1 });
+        let one_stock = relief_slices(&path).most_memory_bytes();
+        assert_eq!(threads_asking(true, 2 * one_stock - 1), 1, "two stocks do not fit the budget");
     }
 }

@@ -195,6 +195,12 @@ impl Stack {
         Ok(Stack { slices })
     }
 
+    /// Memory the slices' rasters may come to, bytes: a raster each (as the budget
+    /// counts them, see [`super::budget`]).
+    pub fn most_memory_bytes(&self) -> usize {
+        self.slices.len().saturating_mul(self.raster(self.len() - 1).memory_bytes())
+    }
+
     /// Memory the slices' rasters take, bytes (a shared stock counts once).
     pub fn memory_bytes(&self) -> usize {
         self.slices.iter().filter_map(|s| s.own.as_ref()).map(|s| s.raster.memory_bytes()).sum()

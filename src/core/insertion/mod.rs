@@ -45,7 +45,7 @@ use crate::core::medial::{
 };
 use crate::core::pocketing::{contour_parallel, PocketingSpec};
 use crate::core::process::parallel;
-use crate::core::progress::Progress;
+use crate::core::progress::{Progress, Stage};
 use crate::core::toolpath::{section_events, Event, EventKind, Section, Toolpath, Units};
 use crate::core::CoreError;
 use cleared::ClearedZone as Zone;
@@ -58,6 +58,14 @@ pub const PLANNED_PATH_GROWTH: f64 = 4.0;
 
 /// Most rounds of treatment.
 pub const MAX_ROUNDS: usize = 3;
+
+/// The share of a plan's progress its base path's check reports (about a fifth of the
+/// slot box's time).
+pub const BASE_CHECK_PROGRESS: f64 = 0.2;
+
+/// The share of the progress still to come that a round's verification reports: a round
+/// after it takes its share of what is left, so the progress never goes back.
+pub const ROUND_PROGRESS_SHARE: f64 = 0.875;
 
 /// Overloaded samples within this many tool radii of a branch count on it.
 pub const AXIS_DISTANCE_RADII: f64 = 1.0;
@@ -300,7 +308,8 @@ fn plan_rounds(
     // on every core: its simulations take one each. Otherwise the plan is the job, and each
     // simulation takes both.
     let cores = if sampled.is_some() { Cores::One } else { Cores::Two };
-    let mut before = verify::check_engagement(&base, &analysis, &base_roles, cores, progress, |s| {
+    let base_stage = Stage { inner: progress, from: 0.0, span: BASE_CHECK_PROGRESS };
+    let mut before = verify::check_engagement(&base, &analysis, &base_roles, cores, &base_stage, |s| {
         if let Some(o) = observer.as_deref_mut() {
             o.base(s);
         }
@@ -335,8 +344,11 @@ fn plan_rounds(
     // intervals it adds, merges or widens (the treatment depends on nothing else).
     let mut treated: HashMap<TreatedKey, Vec<Stretch>> = HashMap::new();
     let mut rounds = 0;
+    let mut reported = BASE_CHECK_PROGRESS;
     loop {
         rounds += 1;
+        let round_stage = Stage { inner: progress, from: reported, span: (1.0 - reported) * ROUND_PROGRESS_SHARE };
+        reported += round_stage.span;
         let keyed: Vec<(TreatedKey, &CriticalInterval)> = intervals
             .iter()
             .map(|c| {
@@ -380,7 +392,7 @@ fn plan_rounds(
             let checks = scope.spawn(|| {
                 path_checks::check_path(pocket, &boundary, spec, stretches.len(), &per_level, &levels, &path)
             });
-            let after = verify::check_engagement(&path, &verifying, &roles, cores, progress, |s| {
+            let after = verify::check_engagement(&path, &verifying, &roles, cores, &round_stage, |s| {
                 if let Some(g) = geometry.as_mut() {
                     g.samples.push(SampleGeometry::of(s, default_rpm));
                 }

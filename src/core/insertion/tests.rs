@@ -366,3 +366,26 @@ fn the_plans_checks_on_two_cores_give_every_sample_an_analysis_on_one_core_gives
         }
     }
 }
+
+/// Every fraction reported.
+struct Reports(std::sync::Mutex<Vec<f64>>);
+
+impl Progress for Reports {
+    fn report(&self, fraction: f64) {
+        self.0.lock().expect("not poisoned").push(fraction);
+    }
+    fn cancelled(&self) -> bool {
+        false
+    }
+}
+
+#[test]
+fn a_plans_progress_rises_through_its_base_check_and_verification_and_never_goes_back() {
+    let reports = Reports(std::sync::Mutex::new(Vec::new()));
+    plan_insertion(&box_with_slot(12.0), &spec(-10.0), None, &reports).expect("plans");
+    let reports = reports.0.into_inner().expect("not poisoned");
+    assert!(reports.windows(2).all(|w| w[0] <= w[1]), "the progress went back");
+    assert!(reports.iter().all(|f| (0.0..=1.0).contains(f)));
+    assert!(reports.iter().any(|&f| f > 0.0 && f < BASE_CHECK_PROGRESS), "the base check reports");
+    assert!(reports.iter().any(|&f| f > 0.5), "the verification reports");
+}

@@ -44,8 +44,9 @@ pub struct Shares<'a> {
     span: f64,
     /// Per part, its fraction (f64 bits).
     parts: Vec<AtomicU64>,
-    /// The highest fraction reported (f64 bits).
-    reported: AtomicU64,
+    /// The highest fraction reported; held while reporting, so that two parts never
+    /// report out of order.
+    reported: Mutex<f64>,
 }
 
 impl<'a> Shares<'a> {
@@ -55,7 +56,7 @@ impl<'a> Shares<'a> {
             from,
             span,
             parts: (0..count.max(1)).map(|_| AtomicU64::new(0)).collect(),
-            reported: AtomicU64::new(0),
+            reported: Mutex::new(0.0),
         }
     }
 
@@ -79,9 +80,9 @@ impl Progress for Part<'_> {
         }
         let mean =
             s.parts.iter().map(|p| f64::from_bits(p.load(Ordering::Relaxed))).sum::<f64>() / s.parts.len() as f64;
-        // Positive f64s order as their bits do.
-        let previous = s.reported.fetch_max(mean.to_bits(), Ordering::Relaxed);
-        if mean.to_bits() > previous {
+        let mut reported = s.reported.lock().unwrap_or_else(|p| p.into_inner());
+        if mean > *reported {
+            *reported = mean;
             s.inner.report(s.from + mean * s.span);
         }
     }
@@ -90,8 +91,12 @@ impl Progress for Part<'_> {
         self.shares.inner.cancelled()
     }
 
-    fn spare_core(&self) -> bool {
-        self.shares.inner.spare_core()
+    fn claim_spare_core(&self) -> bool {
+        self.shares.inner.claim_spare_core()
+    }
+
+    fn release_core(&self) {
+        self.shares.inner.release_core()
     }
 }
 

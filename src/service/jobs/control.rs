@@ -19,8 +19,9 @@ pub struct JobControl {
     time_limit: Option<Duration>,
     /// When the job has run for as long as a job may (none: no limit).
     deadline: Option<Instant>,
-    /// How many jobs this replica runs now, this one among them (none: not counted).
-    running_jobs: Option<Arc<AtomicUsize>>,
+    /// The cores this replica's jobs take now: one per running job, this one among them,
+    /// and the second cores of their split simulations (none: not counted).
+    busy_cores: Option<Arc<AtomicUsize>>,
 }
 
 impl Progress for JobControl {
@@ -32,10 +33,20 @@ impl Progress for JobControl {
         self.cancel.load(Ordering::Relaxed) || self.shutdown.load(Ordering::Relaxed) || self.timed_out()
     }
 
-    /// A core is spare while fewer jobs run than the machine has cores: each job takes one,
-    /// and one left over may take a second.
-    fn spare_core(&self) -> bool {
-        self.running_jobs.as_ref().is_none_or(|running| running.load(Ordering::Relaxed) < threads())
+    /// Takes a core while the replica's jobs and the cores they took are fewer than the
+    /// machine's cores: each job has one, and a free one may go to a job's split
+    /// simulation until it gives it back.
+    fn claim_spare_core(&self) -> bool {
+        let Some(busy) = self.busy_cores.as_ref() else {
+            return true;
+        };
+        busy.fetch_update(Ordering::AcqRel, Ordering::Acquire, |n| (n < threads()).then_some(n + 1)).is_ok()
+    }
+
+    fn release_core(&self) {
+        if let Some(busy) = self.busy_cores.as_ref() {
+            busy.fetch_sub(1, Ordering::AcqRel);
+        }
     }
 }
 
@@ -49,14 +60,15 @@ impl JobControl {
             progress_bits: AtomicU64::new(0f64.to_bits()),
             time_limit,
             deadline: time_limit.and_then(|limit| Instant::now().checked_add(limit)),
-            running_jobs: None,
+            busy_cores: None,
         }
     }
 
-    /// The control, knowing how many jobs run beside it from `running` (the count of
-    /// running jobs, this one among them), which it reads for [`Progress::spare_core`].
-    pub fn counted_in(self, running: Arc<AtomicUsize>) -> JobControl {
-        JobControl { running_jobs: Some(running), ..self }
+    /// The control, taking its second cores ([`Progress::claim_spare_core`]) from `busy`:
+    /// the cores the replica's jobs take, one per running job (its queue counts them) and
+    /// the second cores claimed.
+    pub fn counted_in(self, busy: Arc<AtomicUsize>) -> JobControl {
+        JobControl { busy_cores: Some(busy), ..self }
     }
 
     /// Asks the job to stop: the core sees it cancelled at its next check.
@@ -129,13 +141,17 @@ mod tests {
     }
 
     #[test]
-    fn a_job_has_a_spare_core_only_while_fewer_jobs_run_than_the_machine_has_cores() {
+    fn a_job_takes_a_second_core_only_while_one_is_free_and_gives_it_back() {
         let shutdown = Arc::new(AtomicBool::new(false));
-        assert!(JobControl::new(false, shutdown.clone(), None).spare_core(), "a job not counted may take any core");
-        let running = Arc::new(AtomicUsize::new(1));
-        let job = JobControl::new(false, shutdown, None).counted_in(running.clone());
-        assert_eq!(job.spare_core(), threads() > 1);
-        running.store(threads(), Ordering::Relaxed);
-        assert!(!job.spare_core(), "every core has a job");
+        assert!(JobControl::new(false, shutdown.clone(), None).claim_spare_core(), "a job not counted may take any");
+        // Every core but one has a job (this one among them).
+        let busy = Arc::new(AtomicUsize::new(threads() - 1));
+        let job = JobControl::new(false, shutdown, None).counted_in(busy.clone());
+        assert!(job.claim_spare_core(), "the last free core");
+        assert!(!job.claim_spare_core(), "no core left");
+        assert_eq!(busy.load(Ordering::Relaxed), threads());
+        job.release_core();
+        assert_eq!(busy.load(Ordering::Relaxed), threads() - 1);
+        assert!(job.claim_spare_core(), "free again");
     }
 }

@@ -34,8 +34,9 @@ struct Inner {
     stopping: watch::Sender<bool>,
     finished: broadcast::Sender<String>,
     running: Mutex<HashMap<String, Arc<JobControl>>>,
-    /// How many jobs run now (the jobs' controls read it, see [`JobControl::counted_in`]).
-    running_jobs: Arc<AtomicUsize>,
+    /// The cores the running jobs take: one each, and the second cores their split
+    /// simulations claim (see [`JobControl::counted_in`]).
+    busy_cores: Arc<AtomicUsize>,
     shutdown: Arc<AtomicBool>,
     workers: Mutex<Vec<JoinHandle<()>>>,
     /// Longest a job may run (none: no limit).
@@ -80,7 +81,7 @@ impl JobQueue {
                 stopping: watch::channel(false).0,
                 finished,
                 running: Mutex::new(HashMap::new()),
-                running_jobs: Arc::new(AtomicUsize::new(0)),
+                busy_cores: Arc::new(AtomicUsize::new(0)),
                 shutdown: Arc::new(AtomicBool::new(false)),
                 workers: Mutex::new(Vec::new()),
                 time_limit,
@@ -258,12 +259,29 @@ async fn worker_loop(inner: Arc<Inner>, n: usize, interactive_only: bool) {
     tracing::debug!(worker = n, "worker stopped");
 }
 
+/// The core a running job takes, counted among the busy cores until it is dropped (when
+/// the job ends, or its worker's future is dropped or unwinds).
+struct CoreTaken(Arc<AtomicUsize>);
+
+impl CoreTaken {
+    fn take(busy: &Arc<AtomicUsize>) -> CoreTaken {
+        busy.fetch_add(1, Ordering::AcqRel);
+        CoreTaken(busy.clone())
+    }
+}
+
+impl Drop for CoreTaken {
+    fn drop(&mut self) {
+        self.0.fetch_sub(1, Ordering::AcqRel);
+    }
+}
+
 async fn run_one(inner: &Arc<Inner>, row: store::Claimed) {
     let id = row.id.clone();
     let control = JobControl::new(row.cancel_requested, inner.shutdown.clone(), inner.time_limit);
-    let control = Arc::new(control.counted_in(inner.running_jobs.clone()));
+    let control = Arc::new(control.counted_in(inner.busy_cores.clone()));
     inner.running.lock().unwrap_or_else(|p| p.into_inner()).insert(id.clone(), control.clone());
-    inner.running_jobs.fetch_add(1, Ordering::Relaxed);
+    let core = CoreTaken::take(&inner.busy_cores);
     let recorded = match execution::execute(&inner.pool, &inner.lease, &row, control, inner.stock_memory_bytes).await {
         Ok(recorded) => recorded,
         Err(e) => {
@@ -271,7 +289,7 @@ async fn run_one(inner: &Arc<Inner>, row: store::Claimed) {
             false
         }
     };
-    inner.running_jobs.fetch_sub(1, Ordering::Relaxed);
+    drop(core);
     inner.running.lock().unwrap_or_else(|p| p.into_inner()).remove(&id);
     if recorded {
         notify::send(&inner.pool, Event::Finished, &id).await;
