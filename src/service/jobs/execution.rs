@@ -106,8 +106,13 @@ pub async fn execute(
             _ = tick.tick() => {
                 let p = control.progress();
                 if (p - last).abs() > f64::EPSILON {
-                    last = p;
-                    store::set_progress(pool, lease, id, p).await?;
+                    // Progress is told on a best-effort basis: a store that cannot take it now
+                    // (a lock, a dropped connection) must not abandon a computation that runs
+                    // on, uncancellable and uncounted; it is told again at the next tick.
+                    match store::set_progress(pool, lease, id, p).await {
+                        Ok(()) => last = p,
+                        Err(e) => tracing::warn!(job = %id, error = %e, "could not store the job's progress"),
+                    }
                 }
             }
         }
