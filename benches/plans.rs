@@ -3,7 +3,8 @@
 //!
 //! Every case is a job as the API runs it: the request is checked and resolved against a
 //! freshly migrated and seeded database (`kinds::accept`, not timed), then the worker's
-//! part is timed (`kinds::run`: the computation, the result, the program and the scene).
+//! part is timed (`kinds::run`: the computation, the result, the program and the scene),
+//! with the control of a job alone on the service (it claims the other cores while free).
 //! The cases:
 //! - `tiger`: tiger.nc analysed with the 6 mm square end mill at 0.05 mm in its stock of
 //!   tiger.camotics (the yardstick; timed before and after the others, the faster counts);
@@ -23,15 +24,16 @@
 
 use dieplan::core::analysis::geometry::SampleGeometry;
 use dieplan::core::analysis::DEFAULT_STOCK_MEMORY_BYTES;
-use dieplan::core::progress::NoProgress;
 use dieplan::service::auth::Caller;
+use dieplan::service::jobs::control::JobControl;
 use dieplan::service::jobs::kind::Submission;
 use dieplan::service::jobs::kinds;
 use dieplan::service::jobs::model::JobKind;
 use serde_json::{json, Value};
 use sha2::{Digest, Sha256};
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Arc;
 use std::time::Instant;
 
 mod fixtures;
@@ -115,8 +117,12 @@ fn time(case: &Prepared, runs: usize) -> (f64, Value, String) {
     let mut result = Value::Null;
     let mut program = None;
     for _ in 0..runs {
+        // The control of a job alone on the service: it claims the machine's other cores
+        // as the queue's worker lets it.
+        let busy_cores = Arc::new(AtomicUsize::new(1));
+        let control = JobControl::new(false, Arc::new(AtomicBool::new(false)), None).counted_in(busy_cores);
         let start = Instant::now();
-        let out = kinds::run(case.kind, &case.input, &case.prepared, &NoProgress, DEFAULT_STOCK_MEMORY_BYTES)
+        let out = kinds::run(case.kind, &case.input, &case.prepared, &control, DEFAULT_STOCK_MEMORY_BYTES)
             .unwrap_or_else(|e| panic!("{}: {e}", case.label));
         best = best.min(start.elapsed().as_secs_f64());
         result = out.result;

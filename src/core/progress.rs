@@ -9,10 +9,11 @@ pub trait Progress: Sync {
     /// `true` once the caller wants the computation to stop.
     fn cancelled(&self) -> bool;
 
-    /// Takes a second core for this computation when one is free now, `true` if it did:
-    /// work that can be split over two cores at some extra cost (see
-    /// [`crate::core::analysis::split`]) is split only then, and gives the core back with
-    /// [`Progress::release_core`]. A job's control takes one only while its replica's jobs
+    /// Takes one more core for this computation when one is free now, `true` if it did:
+    /// parts that can run side by side ([`crate::core::process::parallel::map`]) and a
+    /// simulation that can be split over two cores at some extra cost
+    /// ([`crate::core::analysis::split`]) take more cores only so, and give each back with
+    /// [`Progress::release_core`]. A job's control gives one only while its replica's jobs
     /// and the cores they took already are fewer than the machine's cores; with no one to
     /// ask (tests, benchmarks, the CLI), there is always one.
     fn claim_spare_core(&self) -> bool {

@@ -10,7 +10,7 @@
 
 use super::engine::{simulate, simulate_range, Cutter, SampleRange, SampleResult};
 use super::stack::Stack;
-use crate::core::process::parallel::{threads, Shares};
+use crate::core::process::parallel::{ClaimedCores, Shares};
 use crate::core::progress::{Progress, Stage};
 use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
@@ -60,20 +60,11 @@ pub fn simulate_split(
     let buffered_bytes = total.saturating_sub(at).saturating_mul(std::mem::size_of::<SampleResult>());
     let two_stocks = slices.most_memory_bytes().saturating_mul(2);
     let fits = total >= MIN_SPLIT_SAMPLES && buffered_bytes <= MAX_SPLIT_BUFFER_BYTES && two_stocks <= budget_bytes;
-    if !fits || threads() < 2 || !progress.claim_spare_core() {
+    let second = ClaimedCores::claim(progress, usize::from(fits));
+    if second.count() == 0 {
         return simulate(path, cutter, slices, progress, sink);
     }
-    let _second = SecondCore(progress);
     simulate_split_at(path, cutter, slices, at, progress, sink)
-}
-
-/// The second core a split simulation took, given back when it ends (or unwinds).
-struct SecondCore<'a>(&'a dyn Progress);
-
-impl Drop for SecondCore<'_> {
-    fn drop(&mut self) {
-        self.0.release_core();
-    }
 }
 
 /// [`simulate`] on two threads, the second measuring from sample `at` on (see the module).
@@ -112,6 +103,7 @@ mod tests {
     use super::*;
     use crate::core::analysis::profile::Profile;
     use crate::core::analysis::test_paths::{feed_move, relief_program, relief_slices, sample_bits};
+    use crate::core::process::parallel::threads;
     use crate::core::progress::NoProgress;
     use crate::core::toolpath::{Motion, Move, Plane, P3};
 

@@ -362,7 +362,7 @@ fn plan_rounds(
         // its interval alone.
         let untreated: Vec<&(TreatedKey, &CriticalInterval)> =
             keyed.iter().filter(|(key, _)| !treated.contains_key(key)).collect();
-        let treatments = parallel::map(&untreated, |_, (key, c)| {
+        let treatments = parallel::map(progress, &untreated, |_, (key, c)| {
             let spec_here = if key.3 { &wide } else { spec };
             treatments::treat_interval(&axis.branches[c.branch], c, &boundary, pocket, spec_here)
         });

@@ -265,7 +265,7 @@ pub fn evaluate(
     let originals: Vec<usize> = layers.iter().filter(|l| l.copy_of.is_none()).map(|l| l.index).collect();
     // The distinct layers side by side, one per core.
     let shares = Shares::new(progress, 0.0, OPTIMISATION_SHARE, originals.len());
-    let results = parallel::map(&originals, |k, &i| {
+    let results = parallel::map(progress, &originals, |k, &i| {
         let part = shares.part(k);
         part.checkpoint()?;
         optimise_layer(&layers[i], candidate, &spec, &part)

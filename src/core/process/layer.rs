@@ -112,7 +112,7 @@ pub fn plan_layers_on_cells(
     }
     let originals: Vec<usize> = (0..n).filter(|&i| like[i].is_none()).collect();
     let shares = Shares::new(progress, 0.0, 1.0, originals.len());
-    let planned = parallel::map(&originals, |k, &index| {
+    let planned = parallel::map(progress, &originals, |k, &index| {
         let spec = layer_spec(cavity, index, candidate, options, cell_mm);
         let part = shares.part(k);
         part.checkpoint()?;

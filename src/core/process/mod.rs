@@ -259,7 +259,7 @@ fn choose_and_tune(
     let (screen_share, full_from) = if screening { (SCREENING_SHARE, SCREENING_SHARE) } else { (0.0, 0.0) };
     let shares = parallel::Shares::new(progress, 0.0, screen_share, reachable.len());
     let estimates: Vec<Option<screen::Estimate>> = if screening {
-        let found = parallel::map(&reachable, |i, &k| {
+        let found = parallel::map(progress, &reachable, |i, &k| {
             let layered = input.layers_for(candidates[k].roughing.ad_mm, candidates[k].intermediate.ad_mm)?;
             screen::estimate(&layered, &candidates[k], options, &shares.part(i))
         });

@@ -1,21 +1,58 @@
-//! Independent parts of a plan (candidates, layers) run on every core: scoped threads take
+//! Independent parts of a plan (candidates, layers) run side by side: scoped threads take
 //! the parts in order from a shared counter, so a slow part does not hold up the others.
-//! Progress is the mean of the parts' own fractions; cancelling reaches every part through
-//! its checkpoints.
+//! A computation runs on as many cores as its job is given: its own, and the spare ones it
+//! claims ([`Progress::claim_spare_core`]) while they are free, so that jobs running
+//! together share the machine's cores instead of each taking all of them (and their parts'
+//! memory with them). Progress is the mean of the parts' own fractions; cancelling reaches
+//! every part through its checkpoints.
 
 use crate::core::progress::Progress;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::Mutex;
 
-/// Threads a plan uses: one per core.
+/// The machine's cores: the most threads one computation runs on.
 pub fn threads() -> usize {
     std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
 }
 
-/// `f(index, item)` for each of `items`, on up to [`threads`] threads; the results in the
-/// order of `items`. A panic in `f` is a panic here.
-pub fn map<T: Sync, R: Send>(items: &[T], f: impl Fn(usize, &T) -> R + Sync) -> Vec<R> {
-    let workers = threads().min(items.len());
+/// Cores claimed from a computation's progress beside the one it runs on, given back when
+/// dropped.
+pub struct ClaimedCores<'a> {
+    progress: &'a dyn Progress,
+    count: usize,
+}
+
+impl<'a> ClaimedCores<'a> {
+    /// Claims up to `wanted` spare cores from `progress`, one at a time, while it gives
+    /// them (and the machine has them: never more than [`threads`] − 1).
+    pub fn claim(progress: &'a dyn Progress, wanted: usize) -> ClaimedCores<'a> {
+        let mut claimed = ClaimedCores { progress, count: 0 };
+        while claimed.count < wanted.min(threads().saturating_sub(1)) && progress.claim_spare_core() {
+            claimed.count += 1;
+        }
+        claimed
+    }
+
+    /// How many were claimed.
+    pub fn count(&self) -> usize {
+        self.count
+    }
+}
+
+impl Drop for ClaimedCores<'_> {
+    fn drop(&mut self) {
+        for _ in 0..self.count {
+            self.progress.release_core();
+        }
+    }
+}
+
+/// `f(index, item)` for each of `items`, on one thread and as many more as `progress` gives
+/// spare cores for (see [`ClaimedCores`]; at most one thread per item); the results in
+/// the order of `items`. A panic in `f` is a panic here.
+pub fn map<T: Sync, R: Send>(progress: &dyn Progress, items: &[T], f: impl Fn(usize, &T) -> R + Sync) -> Vec<R> {
+    let extra = ClaimedCores::claim(progress, items.len().saturating_sub(1));
+    let workers = 1 + extra.count();
     if workers <= 1 {
         return items.iter().enumerate().map(|(i, t)| f(i, t)).collect();
     }
@@ -124,7 +161,7 @@ mod tests {
     #[test]
     fn parallel_results_come_back_in_the_order_of_the_items() {
         let items: Vec<u64> = (0..23).collect();
-        let out = map(&items, |i, x| {
+        let out = map(&crate::core::progress::NoProgress, &items, |i, x| {
             assert_eq!(i as u64, *x);
             (0..=*x).sum::<u64>()
         });
@@ -143,5 +180,47 @@ mod tests {
         assert!(!shares.part(1).cancelled());
         r.cancel.store(true, Ordering::Relaxed);
         assert!(shares.part(0).checkpoint().is_err() && shares.part(1).checkpoint().is_err());
+    }
+
+    /// Progress that gives `free` spare cores, and records the threads its parts ran on.
+    struct Cores {
+        free: AtomicUsize,
+        claimed: AtomicUsize,
+        ran_on: Mutex<std::collections::HashSet<std::thread::ThreadId>>,
+    }
+
+    impl Progress for Cores {
+        fn report(&self, _fraction: f64) {}
+        fn cancelled(&self) -> bool {
+            false
+        }
+        fn claim_spare_core(&self) -> bool {
+            let taken = self.free.fetch_update(Ordering::Relaxed, Ordering::Relaxed, |n| n.checked_sub(1)).is_ok();
+            self.claimed.fetch_add(usize::from(taken), Ordering::Relaxed);
+            taken
+        }
+        fn release_core(&self) {
+            self.free.fetch_add(1, Ordering::Relaxed);
+        }
+    }
+
+    #[test]
+    fn parts_run_on_as_many_threads_as_cores_are_given_and_the_cores_are_given_back() {
+        let items: Vec<u32> = (0..8).collect();
+        for free in [0, 1, 5] {
+            let cores =
+                Cores { free: AtomicUsize::new(free), claimed: 0.into(), ran_on: Mutex::new(Default::default()) };
+            let out = map(&cores, &items, |_, x| {
+                cores.ran_on.lock().expect("not poisoned").insert(std::thread::current().id());
+                // Long enough for every worker to take a part.
+                std::thread::sleep(std::time::Duration::from_millis(5));
+                x * 2
+            });
+            assert_eq!(out, items.iter().map(|x| x * 2).collect::<Vec<_>>());
+            let claimed = cores.claimed.load(Ordering::Relaxed);
+            assert_eq!(claimed, free.min(threads() - 1), "claimed with {free} free");
+            assert!(cores.ran_on.lock().expect("not poisoned").len() <= 1 + claimed);
+            assert_eq!(cores.free.load(Ordering::Relaxed), free, "every core given back");
+        }
     }
 }
