@@ -1,8 +1,9 @@
-//! How a long computation reports progress and learns that it should stop.
+//! How a long computation reports progress, learns that it should stop, and learns how
+//! many cores it may take.
 
 use crate::core::CoreError;
 
-/// Progress sink and cancellation source handed to long computations.
+/// Progress sink, cancellation source and giver of spare cores handed to long computations.
 pub trait Progress: Sync {
     /// Reports the finished fraction, 0..=1.
     fn report(&self, fraction: f64);

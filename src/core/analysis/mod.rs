@@ -30,6 +30,7 @@ pub mod slice_probes;
 pub mod slice_radii;
 pub mod slices;
 pub mod split;
+pub use split::Cores;
 pub mod stack;
 #[cfg(test)]
 pub mod test_paths;
@@ -287,15 +288,6 @@ pub fn analyze_from(
     sink: impl FnMut(&engine::SampleResult),
 ) -> Result<(Analysis, Stack), CoreError> {
     analyze_on(path, spec, start, Cores::One, progress, sink)
-}
-
-/// How many cores one simulation runs on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Cores {
-    /// On the calling thread.
-    One,
-    /// Split over two threads ([`split`]), when the path is long enough.
-    Two,
 }
 
 /// [`analyze_from`] without a kept stock, simulating on both cores (see [`split`]): the

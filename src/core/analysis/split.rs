@@ -15,6 +15,16 @@ use crate::core::progress::{Progress, Stage};
 use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 
+/// How many cores one simulation runs on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Cores {
+    /// On the calling thread.
+    One,
+    /// Split over two threads ([`simulate_split`]), when the path is long enough and a
+    /// second core is spare.
+    Two,
+}
+
 /// The share of the samples the calling thread simulates; the second thread replays their
 /// updates and simulates the rest. A trochoid program's first samples (its trochoids) cost
 /// the most, and replaying one costs up to half of simulating it: half of the samples

@@ -59,9 +59,9 @@ pub const PLANNED_PATH_GROWTH: f64 = 4.0;
 /// Most rounds of treatment.
 pub const MAX_ROUNDS: usize = 3;
 
-/// The share of a plan's progress its base path's check reports (about a fifth of the
-/// slot box's time).
-pub const BASE_CHECK_PROGRESS: f64 = 0.2;
+/// The share of a plan's progress its base path's check reports (its share of the slot
+/// box's time: 55 of 400 ms).
+pub const BASE_CHECK_PROGRESS: f64 = 0.15;
 
 /// The share of the progress still to come that a round's verification reports: a round
 /// after it takes its share of what is left, so the progress never goes back.

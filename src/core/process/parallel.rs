@@ -33,9 +33,20 @@ impl<'a> ClaimedCores<'a> {
         claimed
     }
 
+    /// No core claimed (of `progress`).
+    pub fn none(progress: &'a dyn Progress) -> ClaimedCores<'a> {
+        ClaimedCores { progress, count: 0 }
+    }
+
     /// How many were claimed.
     pub fn count(&self) -> usize {
         self.count
+    }
+
+    /// The claimed cores one by one, each given back when it is dropped.
+    pub fn one_by_one(mut self) -> impl Iterator<Item = ClaimedCores<'a>> {
+        let (progress, count) = (self.progress, std::mem::take(&mut self.count));
+        (0..count).map(move |_| ClaimedCores { progress, count: 1 })
     }
 }
 
@@ -49,26 +60,28 @@ impl Drop for ClaimedCores<'_> {
 
 /// `f(index, item)` for each of `items`, on one thread and as many more as `progress` gives
 /// spare cores for (see [`ClaimedCores`]; at most one thread per item); the results in
-/// the order of `items`. A panic in `f` is a panic here.
+/// the order of `items`. Each thread beside the first gives its core back as soon as no
+/// part is left for it to take. A panic in `f` is a panic here.
 pub fn map<T: Sync, R: Send>(progress: &dyn Progress, items: &[T], f: impl Fn(usize, &T) -> R + Sync) -> Vec<R> {
-    let extra = ClaimedCores::claim(progress, items.len().saturating_sub(1));
-    let workers = 1 + extra.count();
-    if workers <= 1 {
+    let claimed = ClaimedCores::claim(progress, items.len().saturating_sub(1));
+    if claimed.count() == 0 {
         return items.iter().enumerate().map(|(i, t)| f(i, t)).collect();
     }
     let next = AtomicUsize::new(0);
     let slots: Vec<Mutex<Option<R>>> = items.iter().map(|_| Mutex::new(None)).collect();
-    std::thread::scope(|scope| {
-        for _ in 0..workers {
-            scope.spawn(|| loop {
-                let i = next.fetch_add(1, Ordering::Relaxed);
-                let Some(item) = items.get(i) else { break };
-                let result = f(i, item);
-                if let Ok(mut slot) = slots[i].lock() {
-                    *slot = Some(result);
-                }
-            });
+    let work = |_core: ClaimedCores| loop {
+        let i = next.fetch_add(1, Ordering::Relaxed);
+        let Some(item) = items.get(i) else { break };
+        let result = f(i, item);
+        if let Ok(mut slot) = slots[i].lock() {
+            *slot = Some(result);
         }
+    };
+    std::thread::scope(|scope| {
+        for core in claimed.one_by_one() {
+            scope.spawn(move || work(core));
+        }
+        work(ClaimedCores::none(progress));
     });
     slots.into_iter().filter_map(|s| s.into_inner().ok().flatten()).collect()
 }
@@ -205,7 +218,7 @@ mod tests {
     }
 
     #[test]
-    fn parts_run_on_as_many_threads_as_cores_are_given_and_the_cores_are_given_back() {
+    fn parts_run_on_no_more_threads_than_cores_are_given_and_every_core_is_given_back() {
         let items: Vec<u32> = (0..8).collect();
         for free in [0, 1, 5] {
             let cores =

@@ -68,7 +68,8 @@ pub fn estimate(
         Err(reason) => return Ok(Err(reason)),
     };
     let passes = layers.iter().all(|l| l.insertion.verification.passed);
-    let evaluation = evaluate(&layers, candidate, &coarse, 1.0, &crate::core::progress::NoProgress);
+    let rest = crate::core::progress::Stage { inner: progress, from: stage.span, span: 1.0 - stage.span };
+    let evaluation = evaluate(&layers, candidate, &coarse, 1.0, &rest);
     Ok(super::unplannable_unless_cancelled(evaluation)?.map(|e| Estimate { cost: e.cost.total, passes, spacing_mm }))
 }
 

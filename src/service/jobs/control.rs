@@ -20,7 +20,7 @@ pub struct JobControl {
     /// When the job has run for as long as a job may (none: no limit).
     deadline: Option<Instant>,
     /// The cores this replica's jobs take now: one per running job, this one among them,
-    /// and the second cores of their split simulations (none: not counted).
+    /// and the spare cores their computations claimed (none: not counted).
     busy_cores: Option<Arc<AtomicUsize>>,
 }
 
@@ -33,9 +33,9 @@ impl Progress for JobControl {
         self.cancel.load(Ordering::Relaxed) || self.shutdown.load(Ordering::Relaxed) || self.timed_out()
     }
 
-    /// Takes a core while the replica's jobs and the cores they took are fewer than the
-    /// machine's cores: each job has one, and a free one may go to a job's split
-    /// simulation until it gives it back.
+    /// Takes a core while the replica's jobs and the cores they claimed are fewer than the
+    /// machine's cores: each job has one, and a free one may go to a job's parts side by
+    /// side or its split simulation until they give it back.
     fn claim_spare_core(&self) -> bool {
         let Some(busy) = self.busy_cores.as_ref() else {
             return true;
@@ -45,7 +45,10 @@ impl Progress for JobControl {
 
     fn release_core(&self) {
         if let Some(busy) = self.busy_cores.as_ref() {
-            busy.fetch_sub(1, Ordering::AcqRel);
+            // A core given back that was never taken is a bug; the count stays at 0 then
+            // rather than wrapping round (which would refuse every later claim).
+            let given_back = busy.fetch_update(Ordering::AcqRel, Ordering::Acquire, |n| n.checked_sub(1));
+            debug_assert!(given_back.is_ok(), "a core given back that was never taken");
         }
     }
 }
@@ -64,9 +67,9 @@ impl JobControl {
         }
     }
 
-    /// The control, taking its second cores ([`Progress::claim_spare_core`]) from `busy`:
+    /// The control, taking its spare cores ([`Progress::claim_spare_core`]) from `busy`:
     /// the cores the replica's jobs take, one per running job (its queue counts them) and
-    /// the second cores claimed.
+    /// the spare cores claimed.
     pub fn counted_in(self, busy: Arc<AtomicUsize>) -> JobControl {
         JobControl { busy_cores: Some(busy), ..self }
     }

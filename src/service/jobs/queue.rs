@@ -34,8 +34,8 @@ struct Inner {
     stopping: watch::Sender<bool>,
     finished: broadcast::Sender<String>,
     running: Mutex<HashMap<String, Arc<JobControl>>>,
-    /// The cores the running jobs take: one each, and the second cores their split
-    /// simulations claim (see [`JobControl::counted_in`]).
+    /// The cores the running jobs take: one each, and the spare cores their computations
+    /// claim (see [`JobControl::counted_in`]).
     busy_cores: Arc<AtomicUsize>,
     shutdown: Arc<AtomicBool>,
     workers: Mutex<Vec<JoinHandle<()>>>,
