@@ -6,7 +6,7 @@
 //! [`super::analyze_from`] would, in the same order, so nothing it computes changes.
 
 use super::engine::SampleResult;
-use super::{analyze_from, analyze_split, Analysis, AnalysisSpec, Cores, Stack};
+use super::{analyze_split, Analysis, AnalysisSpec, Stack};
 use crate::core::progress::Progress;
 use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
@@ -56,13 +56,11 @@ fn consume_all(from_simulation: &Receiver<Vec<SampleResult>>, consume: &mut impl
     }
 }
 
-/// [`analyze_from`] without a kept stock, simulating on `cores` (see [`analyze_split`]) and
-/// handing every sample to `consume` on another thread, in the order of the simulation;
+/// [`analyze_split`] (on a second core when one is spare), handing every sample to `consume` on another thread, in the order of the simulation;
 /// returns when `consume` has seen them all. A panic of `consume` is raised here.
 pub fn analyze_handing_off(
     path: &Toolpath,
     spec: &AnalysisSpec,
-    cores: Cores,
     progress: &dyn Progress,
     mut consume: impl FnMut(&SampleResult) + Send,
 ) -> Result<(Analysis, Stack), CoreError> {
@@ -71,10 +69,7 @@ pub fn analyze_handing_off(
         let consumer = scope.spawn(move || consume_all(&from_simulation, &mut consume));
         let mut batcher =
             Batcher { batch: Vec::with_capacity(HANDOFF_BATCH_SAMPLES), to_consumer, consumer_gone: false };
-        let simulated = match cores {
-            Cores::One => analyze_from(path, spec, None, progress, |r| batcher.add(r)),
-            Cores::Two => analyze_split(path, spec, progress, |r| batcher.add(r)),
-        };
+        let simulated = analyze_split(path, spec, progress, |r| batcher.add(r));
         batcher.send();
         // Dropping the sender ends the consumer's loop once it has taken every batch.
         drop(batcher);
@@ -123,13 +118,11 @@ mod tests {
         let mut direct = Vec::new();
         let alone = analyze_with(&path, &spec, &NoProgress, |r| direct.push(sample_bits(r))).expect("simulates");
         assert!(direct.len() > crate::core::analysis::split::MIN_SPLIT_SAMPLES, "only {} samples", direct.len());
-        for cores in [Cores::One, Cores::Two] {
-            let mut handed = Vec::new();
-            let (beside, _) = analyze_handing_off(&path, &spec, cores, &NoProgress, |r| handed.push(sample_bits(r)))
-                .expect("simulates");
-            assert!(handed == direct, "the samples handed off differ from the simulation's ({cores:?})");
-            assert_eq!(alone, beside);
-        }
+        let mut handed = Vec::new();
+        let (beside, _) =
+            analyze_handing_off(&path, &spec, &NoProgress, |r| handed.push(sample_bits(r))).expect("simulates");
+        assert!(handed == direct, "the samples handed off differ from the simulation's");
+        assert_eq!(alone, beside);
     }
 
     #[test]
@@ -137,7 +130,7 @@ mod tests {
         let (path, spec) = (zig_zag(3), block_spec());
         let outcome = std::panic::catch_unwind(|| {
             let mut seen = 0;
-            analyze_handing_off(&path, &spec, Cores::One, &NoProgress, |_| {
+            analyze_handing_off(&path, &spec, &NoProgress, |_| {
                 seen += 1;
                 assert!(seen < HANDOFF_BATCH_SAMPLES / 2, "the consumer fails");
             })

@@ -30,7 +30,6 @@ pub mod slice_probes;
 pub mod slice_radii;
 pub mod slices;
 pub mod split;
-pub use split::Cores;
 pub mod stack;
 #[cfg(test)]
 pub mod test_paths;
@@ -287,26 +286,26 @@ pub fn analyze_from(
     progress: &dyn Progress,
     sink: impl FnMut(&engine::SampleResult),
 ) -> Result<(Analysis, Stack), CoreError> {
-    analyze_on(path, spec, start, Cores::One, progress, sink)
+    analyze_on(path, spec, start, false, progress, sink)
 }
 
-/// [`analyze_from`] without a kept stock, simulating on both cores (see [`split`]): the
-/// same analysis, samples and stock.
+/// [`analyze_from`] without a kept stock, on a second core too when one is spare (see
+/// [`split`]): the same analysis, samples and stock.
 pub fn analyze_split(
     path: &Toolpath,
     spec: &AnalysisSpec,
     progress: &dyn Progress,
     sink: impl FnMut(&engine::SampleResult),
 ) -> Result<(Analysis, Stack), CoreError> {
-    analyze_on(path, spec, None, Cores::Two, progress, sink)
+    analyze_on(path, spec, None, true, progress, sink)
 }
 
-/// [`analyze_from`], simulating on `cores`.
+/// [`analyze_from`], split over two cores when `split` and [`split::simulate_split`] can.
 fn analyze_on(
     path: &Toolpath,
     spec: &AnalysisSpec,
     start: Option<&KeptStock>,
-    cores: Cores,
+    split: bool,
     progress: &dyn Progress,
     mut sink: impl FnMut(&engine::SampleResult),
 ) -> Result<(Analysis, Stack), CoreError> {
@@ -373,11 +372,9 @@ fn analyze_on(
         builder.add(r);
         sink(r);
     };
-    match cores {
-        Cores::One => simulate(path, cutter, &mut slices, &simulation_stage, take)?,
-        Cores::Two => {
-            split::simulate_split(path, cutter, &mut slices, spec.stock_memory_bytes, &simulation_stage, take)?
-        }
+    match split {
+        false => simulate(path, cutter, &mut slices, &simulation_stage, take)?,
+        true => split::simulate_split(path, cutter, &mut slices, spec.stock_memory_bytes, &simulation_stage, take)?,
     }
     progress.report(1.0);
     let report = builder.finish();

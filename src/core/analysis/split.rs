@@ -15,16 +15,6 @@ use crate::core::progress::{Progress, Stage};
 use crate::core::toolpath::Toolpath;
 use crate::core::CoreError;
 
-/// How many cores one simulation runs on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Cores {
-    /// On the calling thread.
-    One,
-    /// Split over two threads ([`simulate_split`]), when the path is long enough and a
-    /// second core is spare.
-    Two,
-}
-
 /// The share of the samples the calling thread simulates; the second thread replays their
 /// updates and simulates the rest. A trochoid program's first samples (its trochoids) cost
 /// the most, and replaying one costs up to half of simulating it: half of the samples
@@ -74,15 +64,17 @@ pub fn simulate_split(
     if second.count() == 0 {
         return simulate(path, cutter, slices, progress, sink);
     }
-    simulate_split_at(path, cutter, slices, at, progress, sink)
+    simulate_split_at(path, cutter, slices, at, second, progress, sink)
 }
 
-/// [`simulate`] on two threads, the second measuring from sample `at` on (see the module).
+/// [`simulate`] on two threads, the second measuring from sample `at` on (see the module) on
+/// `second_core`, which it gives back when it is done.
 fn simulate_split_at(
     path: &Toolpath,
     cutter: Cutter,
     slices: &mut Stack,
     at: usize,
+    second_core: ClaimedCores,
     progress: &dyn Progress,
     mut sink: impl FnMut(&SampleResult),
 ) -> Result<(), CoreError> {
@@ -94,9 +86,11 @@ fn simulate_split_at(
     let first_progress = Stage { inner: &first_share, from: 0.0, span: total as f64 / at.max(1) as f64 };
     let later = SampleRange { measure_from: at, stop_at: usize::MAX };
     let second = std::thread::scope(|scope| {
-        let second = scope.spawn(|| {
+        let rest = &mut rest;
+        let second = scope.spawn(move || {
+            let _core = second_core;
             let mut results = Vec::with_capacity(total.saturating_sub(at));
-            simulate_range(path, cutter, &mut rest, &second_share, later, |r| results.push(*r)).map(|()| results)
+            simulate_range(path, cutter, rest, &second_share, later, |r| results.push(*r)).map(|()| results)
         });
         let first = SampleRange { measure_from: 0, stop_at: at };
         let simulated = simulate_range(path, cutter, slices, &first_progress, first, &mut sink);
@@ -166,7 +160,8 @@ mod tests {
             for at in [split_sample(n), n / 7, n / 3 + 1, 9 * n / 10, 0, n, 2 * n] {
                 let mut split = relief_slices(&path);
                 let mut found = Vec::new();
-                simulate_split_at(&path, cutter(n), &mut split, at, &NoProgress, |r| found.push(sample_bits(r)))
+                let core = ClaimedCores::none(&NoProgress);
+                simulate_split_at(&path, cutter(n), &mut split, at, core, &NoProgress, |r| found.push(sample_bits(r)))
                     .expect("simulates");
                 assert!(found == expected, "the samples differ, split at {at} of {n}");
                 for k in 0..whole.len() {

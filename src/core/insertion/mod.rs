@@ -34,7 +34,7 @@ pub use spec::{
 pub use verify::{EngagementCheck, Overload, Spot, Verification, MAX_LISTED_OVERLOADS};
 
 use crate::core::analysis::geometry::{PathGeometry, SampleGeometry};
-use crate::core::analysis::{AnalysisSpec, Cores, Stack, StockRegion};
+use crate::core::analysis::{AnalysisSpec, Stack, StockRegion};
 use crate::core::conditions::feed_mm_min;
 use crate::core::cycles::setup::DEFAULT_PLUNGE_FEED_RATIO;
 use crate::core::cycles::z_levels;
@@ -304,12 +304,8 @@ fn plan_rounds(
     let r = spec.r_mm();
     let empty = Zone::new(r);
     let base_roles = verify::MoveRoles { entry: &[], zcut: &[], zcut_zone: &empty };
-    // A plan keeping its samples runs as one of a job's layers or candidates, side by side
-    // on every core: its simulations take one each. Otherwise the plan is the job, and each
-    // simulation takes both.
-    let cores = if sampled.is_some() { Cores::One } else { Cores::Two };
     let base_stage = Stage { inner: progress, from: 0.0, span: BASE_CHECK_PROGRESS };
-    let mut before = verify::check_engagement(&base, &analysis, &base_roles, cores, &base_stage, |s| {
+    let mut before = verify::check_engagement(&base, &analysis, &base_roles, &base_stage, |s| {
         if let Some(o) = observer.as_deref_mut() {
             o.base(s);
         }
@@ -392,7 +388,7 @@ fn plan_rounds(
             let checks = scope.spawn(|| {
                 path_checks::check_path(pocket, &boundary, spec, stretches.len(), &per_level, &levels, &path)
             });
-            let after = verify::check_engagement(&path, &verifying, &roles, cores, &round_stage, |s| {
+            let after = verify::check_engagement(&path, &verifying, &roles, &round_stage, |s| {
                 if let Some(g) = geometry.as_mut() {
                     g.samples.push(SampleGeometry::of(s, default_rpm));
                 }

@@ -7,7 +7,7 @@ use crate::core::analysis::engine::SampleResult;
 use crate::core::analysis::handoff::analyze_handing_off;
 use crate::core::analysis::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE_BINS};
 use crate::core::analysis::sampling::point_on;
-use crate::core::analysis::{AnalysisSpec, Cores, Stack};
+use crate::core::analysis::{AnalysisSpec, Stack};
 use crate::core::geometry::{Pocket, Point};
 use crate::core::medial::Boundary;
 use crate::core::progress::Progress;
@@ -168,13 +168,12 @@ pub struct MoveRoles<'a> {
 /// Simulates `path` and sorts its samples into the z-cut passes, ramps, the full-depth moves
 /// crossing the z-cut regions and the rest (which must stay under the limit), listing the
 /// stretches of the last two above it with their lines and handing every sample to `sink`
-/// too. The simulation runs on `cores`; the sorting and `sink` run beside it, on a thread
-/// of their own (see [`analyze_handing_off`]).
+/// too. The simulation takes a second core when one is spare; the sorting and `sink` run
+/// beside it, on a thread of their own (see [`analyze_handing_off`]).
 pub fn check_engagement(
     path: &Toolpath,
     analysis: &AnalysisSpec,
     roles: &MoveRoles,
-    cores: Cores,
     progress: &dyn Progress,
     mut sink: impl FnMut(&SampleResult) + Send,
 ) -> Result<EngagementOutcome, CoreError> {
@@ -198,7 +197,7 @@ pub fn check_engagement(
     let mut open: Option<Overload> = None;
     let total_length_mm: f64 = path.moves.iter().map(move_length).sum();
     let mut collector = SampleCollector::new(total_length_mm, DRAWING_SAMPLE_BINS);
-    let (simulated, stack) = analyze_handing_off(path, analysis, cores, progress, |r| {
+    let (simulated, stack) = analyze_handing_off(path, analysis, progress, |r| {
         sink(r);
         if r.sample.rapid {
             collector.add(r);
