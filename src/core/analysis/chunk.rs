@@ -248,11 +248,15 @@ impl Chunk {
         if cut > 0 {
             // The deepest slice cut is cut apart from the one below, and so is a slice cut at
             // another radius than the one below; a slice above that is alike with the one
-            // below, at its radius, takes the update with it.
+            // below, at its radius, takes the update with it, and one that no probe tells
+            // from it shares its stock again (from the deepest up, so a run of such slices
+            // shares one).
             stack.separate(cut - 1);
-            for k in 0..cut - 1 {
+            for k in (0..cut - 1).rev() {
                 if !same(k, k + 1) {
                     stack.separate(k);
+                } else {
+                    stack.rejoin_when_alike(k);
                 }
             }
         }

@@ -383,6 +383,7 @@ mod tests {
                 let mut slices = relief_slices(&path);
                 if separate {
                     (0..slices.len()).for_each(|k| slices.separate(k));
+                    slices.never_rejoin = true;
                 }
                 let mut results = Vec::new();
                 simulate(&path, relief_cutter(model), &mut slices, &NoProgress, |r| {

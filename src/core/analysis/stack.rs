@@ -21,14 +21,38 @@ use crate::core::CoreError;
 pub struct Slice {
     pub z_bottom: f64,
     pub z_top: f64,
-    /// Its own stock, or `None` while it holds exactly the cells of the slice below.
+    /// Its own stock, or `None` while it holds exactly the cells of the slice below (or
+    /// cells no probe tells from them, see [`Stack::rejoin_when_alike`]).
     own: Option<SliceStock>,
+    /// When its own stock is next compared with the one below.
+    rejoin: RejoinTries,
+}
+
+/// A slice with its own stock cut with the one below is compared with it at most once
+/// every this many updates after a comparison failed, the wait doubling with each one up
+/// to [`MAX_REJOIN_WAIT`]. (**Assumed**: a comparison mostly stops at the material counts
+/// per block, a hundredth of an update's work; one that reads every cell costs about as
+/// much as two updates of a trochoid's loop.)
+pub const FIRST_REJOIN_WAIT: u32 = 1;
+/// The longest wait between two comparisons of a slice with the one below, updates.
+pub const MAX_REJOIN_WAIT: u32 = 32;
+
+/// The comparisons of a slice's own stock with the one below.
+#[derive(Debug, Clone, Copy, Default)]
+struct RejoinTries {
+    /// Updates still to go before the next comparison.
+    wait: u32,
+    /// The wait after the next comparison that fails.
+    next_wait: u32,
 }
 
 /// The slices of a layer, top first; the last always has its own stock.
 #[derive(Clone)]
 pub struct Stack {
     slices: Vec<Slice>,
+    /// Tests compare simulations with and without slices sharing a stock again.
+    #[cfg(test)]
+    pub(crate) never_rejoin: bool,
 }
 
 impl std::fmt::Debug for Stack {
@@ -49,10 +73,15 @@ impl Stack {
                 z_top: levels.get(k).copied().unwrap_or(0.0),
                 z_bottom: levels.get(k + 1).copied().unwrap_or(0.0),
                 own: None,
+                rejoin: RejoinTries::default(),
             })
             .collect();
         slices[n - 1].own = Some(SliceStock::new(raster));
-        Stack { slices }
+        Stack {
+            slices,
+            #[cfg(test)]
+            never_rejoin: false,
+        }
     }
 
     /// Builds the slices between `levels` with material painted by `paint` (whose error it
@@ -138,6 +167,45 @@ impl Stack {
         }
     }
 
+    /// Makes slice `k` (not the last) share the stock of the slice below again when no probe
+    /// can tell the two stocks apart ([`Raster::probes_alike`]): an update that cuts both is
+    /// then applied once, and the simulation goes on exactly as with the two. A slice is
+    /// cut apart where a ramp or a z-cut pass reaches it before the slice below, and most
+    /// often the passes that follow down to the one below leave the two alike again (a
+    /// trochoid program's approach helix keeps its four slices apart for the whole program
+    /// otherwise). The comparison is made at most once every so many calls after one
+    /// failed ([`FIRST_REJOIN_WAIT`], doubling up to [`MAX_REJOIN_WAIT`]), so that slices
+    /// apart for long cost little. Returns `true` when the slice shares the stock below.
+    pub fn rejoin_when_alike(&mut self, k: usize) -> bool {
+        if self.alike_below(k) {
+            return true;
+        }
+        #[cfg(test)]
+        if self.never_rejoin {
+            return false;
+        }
+        let tries = &mut self.slices[k].rejoin;
+        if tries.wait > 0 {
+            tries.wait -= 1;
+            return false;
+        }
+        let (upper, lower) = (self.raster(k), self.raster(k + 1));
+
+        if !upper.probes_alike(lower) {
+            let tries = &mut self.slices[k].rejoin;
+            tries.wait = tries.next_wait.max(FIRST_REJOIN_WAIT);
+            tries.next_wait = (tries.wait * 2).min(MAX_REJOIN_WAIT);
+            return false;
+        }
+        let upper_version = upper.version();
+
+        self.slices[k].own = None;
+        self.slices[k].rejoin = RejoinTries::default();
+        // What was read from either stock (kept with its version) is read again.
+        self.stock_mut(k).raster.take_version_past(upper_version);
+        true
+    }
+
     /// Slice `k`'s own stock, separated from the slices below first.
     pub fn own(&mut self, k: usize) -> &mut SliceStock {
         self.separate(k);
@@ -190,9 +258,14 @@ impl Stack {
                 false => None,
             };
             let z_top = levels.get(k).copied().unwrap_or(0.0);
-            slices.push(Slice { z_top, z_bottom: levels.get(k + 1).copied().unwrap_or(0.0), own });
+            let z_bottom = levels.get(k + 1).copied().unwrap_or(0.0);
+            slices.push(Slice { z_top, z_bottom, own, rejoin: RejoinTries::default() });
         }
-        Ok(Stack { slices })
+        Ok(Stack {
+            slices,
+            #[cfg(test)]
+            never_rejoin: false,
+        })
     }
 
     /// Memory the slices' rasters may come to, bytes: a raster each (as the budget
@@ -210,8 +283,12 @@ impl Stack {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::core::analysis::engine::{simulate, Cutter};
+    use crate::core::analysis::profile::Profile;
     use crate::core::analysis::region::{paint, StockRegion};
+    use crate::core::analysis::test_paths::{feed_move, sample_bits};
     use crate::core::progress::NoProgress;
+    use crate::core::toolpath::{Toolpath, Units, P3};
 
     fn block() -> Stack {
         let rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 20.0, y_max: 20.0 };
@@ -250,5 +327,57 @@ mod tests {
         assert_eq!(stack.cut_at(-1.0), 1);
         assert_eq!(stack.cut_at(-2.0), 1);
         assert_eq!(stack.cut_at(-5.0), 3);
+    }
+
+    /// A ramp down through the block's slices along y = 10, back up, a pass at full depth
+    /// along the same line (which leaves the slices the ramp cut apart alike again), then
+    /// passes at full depth across the block.
+    fn ramp_then_passes() -> Toolpath {
+        let mut moves = Vec::new();
+        let mut at = P3::new(-3.0, 10.0, 0.0);
+        let ends = [
+            P3::new(15.0, 10.0, -5.5),
+            P3::new(23.0, 10.0, -5.5),
+            P3::new(23.0, 10.0, 1.0),
+            P3::new(-3.0, 10.0, 1.0),
+            P3::new(-3.0, 10.0, -5.5),
+            P3::new(23.0, 10.0, -5.5),
+            P3::new(23.0, 14.0, -5.5),
+            P3::new(-3.0, 14.0, -5.5),
+            P3::new(-3.0, 18.0, -5.5),
+            P3::new(23.0, 18.0, -5.5),
+        ];
+        for end in ends {
+            moves.push(feed_move(at, end, moves.len()));
+            at = end;
+        }
+        Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] }
+    }
+
+    #[test]
+    fn slices_a_ramp_cut_apart_share_one_stock_again_once_alike_and_every_sample_is_the_same() {
+        let path = ramp_then_passes();
+        let cutter = Cutter {
+            profile: Profile::cylinder(2.0),
+            flutes: 2,
+            default_spindle_rpm: Some(9600.0),
+            force_model: Some(crate::core::fixtures::seed_001_ten_mm()),
+            spacing_mm: 0.05,
+            total_samples: 1,
+        };
+        let run = |rejoin: bool| {
+            let mut stack = block();
+            stack.never_rejoin = !rejoin;
+            let mut samples = Vec::new();
+            simulate(&path, cutter, &mut stack, &NoProgress, |r| samples.push(sample_bits(r))).expect("simulates");
+            (samples, stack)
+        };
+        let ((joined, rejoined), (apart, separate)) = (run(true), run(false));
+        assert!(joined == apart, "a sample differs where slices share a stock again");
+        assert!((0..separate.len() - 1).all(|k| !separate.alike_below(k)), "the ramp left a slice alike");
+        assert!((0..rejoined.len() - 1).all(|k| rejoined.alike_below(k)), "a slice kept a stock of its own");
+        for k in 0..separate.len() {
+            assert!(rejoined.raster(k).probes_alike(separate.raster(k)), "slice {k} holds another stock");
+        }
     }
 }

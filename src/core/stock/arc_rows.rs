@@ -55,10 +55,11 @@ impl ArcRows {
         self.found = true;
         let reach = SDF_CLAMP_CELLS * grid.cell_mm;
         let (arc, outer, inner) = (&self.arc, self.r + reach, self.r - reach);
+        let x_range = arc.bounds(outer).0;
         for j in self.rows.0..self.rows.1 {
             let y = grid.row_y(j);
             let inside = arc.row_inside(y, inner);
-            for (lo, hi) in arc.row_cover(y, outer).iter() {
+            for (lo, hi) in arc.row_cover_within(y, outer, x_range).iter() {
                 let (from, to) = grid.cell_range(lo, hi);
                 let mut at = from;
                 for (l, h) in inside.iter() {

@@ -37,27 +37,25 @@ impl<const N: usize> RowIntervals<N> {
     }
 
     /// Adds [lo, hi] (ignored when empty), merged with the intervals it meets. Every
-    /// caller adds at most `N` intervals.
+    /// caller adds at most `N` intervals. The intervals are kept sorted and disjoint, so
+    /// those [lo, hi] meets are a run: it takes their place.
     fn add(&mut self, lo: f64, hi: f64) {
         if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
             return;
         }
+        let len = self.len;
+        let first = self.spans[..len].iter().take_while(|s| s.1 < lo).count();
+        let met = self.spans[first..len].iter().take_while(|s| s.0 <= hi).count();
         let (mut lo, mut hi) = (lo, hi);
-        let mut kept = [(0.0, 0.0); N];
-        let mut n = 0;
-        for &(l, h) in &self.spans[..self.len] {
-            if h < lo || l > hi {
-                kept[n] = (l, h);
-                n += 1;
-            } else {
-                lo = lo.min(l);
-                hi = hi.max(h);
-            }
+        if met > 0 {
+            lo = lo.min(self.spans[first].0);
+            hi = hi.max(self.spans[first + met - 1].1);
         }
-        kept[n] = (lo, hi);
-        kept[..=n].sort_by(|x, y| x.0.total_cmp(&y.0));
-        self.spans = kept;
-        self.len = n + 1;
+        // The intervals after the run move to follow the merged one.
+        let after = first + met;
+        self.spans.copy_within(after..len, first + 1);
+        self.spans[first] = (lo, hi);
+        self.len = first + 1 + (len - after);
     }
 
     pub fn iter(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
@@ -131,8 +129,13 @@ impl ArcSweep {
     /// x-intervals on the line at `y` that hold every point within `reach` of the arc
     /// (and some more: the ring of the arc's circle, within the arc's rectangle).
     pub fn row_cover(&self, y: f64, reach: f64) -> RowIntervals<2> {
+        self.row_cover_within(y, reach, self.bounds(reach).0)
+    }
+
+    /// [`ArcSweep::row_cover`], with the x range of the arc's rectangle for `reach`
+    /// ([`ArcSweep::bounds`]) found once for all rows.
+    pub fn row_cover_within(&self, y: f64, reach: f64, (x_lo, x_hi): (f64, f64)) -> RowIntervals<2> {
         let mut out = RowIntervals::new();
-        let ((x_lo, x_hi), _) = self.bounds(reach);
         for (lo, hi) in self.ring(y, (self.radius_mm - reach).max(0.0), self.radius_mm + reach).iter() {
             out.add(lo.max(x_lo), hi.min(x_hi));
         }

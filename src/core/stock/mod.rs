@@ -10,6 +10,7 @@
 //! [`Raster::clear_capsule_rows`]). Such a value underestimates the distance to the
 //! material that is left, which is all that is read from it.
 
+mod alike;
 mod along;
 mod arc_rows;
 mod arc_sweep;
