@@ -28,8 +28,9 @@ pub struct Sample {
 /// Position on `m` at parameter `t` ∈ [0, 1] (a fraction of its length), and its XY
 /// tangent (not normalised).
 pub fn point_on(m: &Move, t: f64) -> (P3, (f64, f64)) {
-    match m.motion {
-        Motion::Rapid | Motion::Linear => {
+    match ArcPoints::of(m) {
+        Some(arc) => arc.at(t),
+        None => {
             let p = P3::new(
                 m.start.x + (m.end.x - m.start.x) * t,
                 m.start.y + (m.end.y - m.start.y) * t,
@@ -37,19 +38,47 @@ pub fn point_on(m: &Move, t: f64) -> (P3, (f64, f64)) {
             );
             (p, (m.end.x - m.start.x, m.end.y - m.start.y))
         }
-        Motion::Arc { center, clockwise, plane, turns } => {
-            let (s, e, c) = in_plane(m.start, m.end, center, plane);
-            let a0 = (s.1 - c.1).atan2(s.0 - c.0);
-            let sweep = arc_sweep(s, e, c, clockwise, turns);
-            let r = (s.0 - c.0).hypot(s.1 - c.1);
-            let a = a0 + sweep * t;
-            let (u, v) = (c.0 + r * a.cos(), c.1 + r * a.sin());
-            let axial = s.2 + (e.2 - s.2) * t;
-            let du = (-r * a.sin() * sweep, r * a.cos() * sweep);
-            let d_axial = e.2 - s.2;
-            let (p, d) = from_plane((u, v, axial), (du.0, du.1, d_axial), plane);
-            (p, (d.0, d.1))
-        }
+    }
+}
+
+/// What places the points of an arc move, found once for all its points (the angles and
+/// the radius need an arc tangent and a root each, which samples would find again).
+#[derive(Debug, Clone, Copy)]
+struct ArcPoints {
+    /// Start, end and centre in the arc's plane.
+    s: (f64, f64, f64),
+    e: (f64, f64, f64),
+    c: (f64, f64, f64),
+    plane: Plane,
+    /// Angle of the start about the centre, the angle swept (signed) and the radius.
+    a0: f64,
+    sweep: f64,
+    r: f64,
+}
+
+impl ArcPoints {
+    /// The arc of `m`, unless it is a line or a rapid.
+    fn of(m: &Move) -> Option<ArcPoints> {
+        let Motion::Arc { center, clockwise, plane, turns } = m.motion else {
+            return None;
+        };
+        let (s, e, c) = in_plane(m.start, m.end, center, plane);
+        let a0 = (s.1 - c.1).atan2(s.0 - c.0);
+        let sweep = arc_sweep(s, e, c, clockwise, turns);
+        let r = (s.0 - c.0).hypot(s.1 - c.1);
+        Some(ArcPoints { s, e, c, plane, a0, sweep, r })
+    }
+
+    /// The point at parameter `t` and its XY tangent, as [`point_on`].
+    fn at(&self, t: f64) -> (P3, (f64, f64)) {
+        let ArcPoints { s, e, c, plane, a0, sweep, r } = *self;
+        let a = a0 + sweep * t;
+        let (u, v) = (c.0 + r * a.cos(), c.1 + r * a.sin());
+        let axial = s.2 + (e.2 - s.2) * t;
+        let du = (-r * a.sin() * sweep, r * a.cos() * sweep);
+        let d_axial = e.2 - s.2;
+        let (p, d) = from_plane((u, v, axial), (du.0, du.1, d_axial), plane);
+        (p, (d.0, d.1))
     }
 }
 
@@ -146,9 +175,13 @@ pub fn for_each_sample(
         let step_mm = len / steps as f64;
         // A straight move has one heading.
         let straight = matches!(m.motion, Motion::Rapid | Motion::Linear).then(|| unit_heading(point_on(m, 1.0).1));
+        let arc = ArcPoints::of(m);
         for k in 1..=steps {
             let t = k as f64 / steps as f64;
-            let (p, d) = point_on(m, t);
+            let (p, d) = match &arc {
+                Some(arc) => arc.at(t),
+                None => point_on(m, t),
+            };
             let heading = straight.unwrap_or_else(|| unit_heading(d));
             let sample = Sample {
                 p,

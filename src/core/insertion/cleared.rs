@@ -14,7 +14,7 @@ use crate::core::feed::split::sub_move;
 use crate::core::geometry::Point;
 use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Motion, Move, P3};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 /// Spacing of the air test along a move, mm.
 pub const AIR_TEST_STEP_MM: f64 = 0.1;
@@ -30,14 +30,16 @@ pub const SAME_LEVEL_MM: f64 = 1e-6;
 #[derive(Debug, Default, Clone)]
 pub struct ClearedZone {
     cell_mm: f64,
-    cells: HashMap<(i64, i64), Vec<(Point, f64)>>,
+    /// (Looked up at every sample of a verification: hashed by the fast hash of the
+    /// compiler, not a hash that resists chosen keys; the keys are the zone's own cells.)
+    cells: FxHashMap<(i64, i64), Vec<(Point, f64)>>,
     count: usize,
 }
 
 impl ClearedZone {
     /// An empty zone whose lookup grid has cells of `cell_mm`.
     pub fn new(cell_mm: f64) -> ClearedZone {
-        ClearedZone { cell_mm, cells: HashMap::new(), count: 0 }
+        ClearedZone { cell_mm, cells: FxHashMap::default(), count: 0 }
     }
 
     fn key(&self, x: f64, y: f64) -> (i64, i64) {
