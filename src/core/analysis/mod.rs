@@ -29,6 +29,7 @@ pub mod scan_memory;
 pub mod slice_probes;
 pub mod slice_radii;
 pub mod slices;
+pub mod spare_buffer;
 pub mod split;
 pub mod stack;
 #[cfg(test)]

@@ -28,16 +28,35 @@ pub struct Sample {
 /// Position on `m` at parameter `t` ∈ [0, 1] (a fraction of its length), and its XY
 /// tangent (not normalised).
 pub fn point_on(m: &Move, t: f64) -> (P3, (f64, f64)) {
-    match ArcPoints::of(m) {
-        Some(arc) => arc.at(t),
-        None => {
-            let p = P3::new(
-                m.start.x + (m.end.x - m.start.x) * t,
-                m.start.y + (m.end.y - m.start.y) * t,
-                m.start.z + (m.end.z - m.start.z) * t,
-            );
-            (p, (m.end.x - m.start.x, m.end.y - m.start.y))
+    MovePoints::of(m).at(t)
+}
+
+/// Places points along one move as [`point_on`] does, with what all its points share found
+/// once (an arc's angles and radius need three arc tangents and a root): for loops over
+/// the points of a move.
+#[derive(Debug, Clone, Copy)]
+pub struct MovePoints<'a> {
+    m: &'a Move,
+    arc: Option<ArcPoints>,
+}
+
+impl<'a> MovePoints<'a> {
+    pub fn of(m: &'a Move) -> MovePoints<'a> {
+        MovePoints { m, arc: ArcPoints::of(m) }
+    }
+
+    /// The point at parameter `t` ∈ [0, 1] and its XY tangent, exactly as [`point_on`].
+    pub fn at(&self, t: f64) -> (P3, (f64, f64)) {
+        if let Some(arc) = &self.arc {
+            return arc.at(t);
         }
+        let m = self.m;
+        let p = P3::new(
+            m.start.x + (m.end.x - m.start.x) * t,
+            m.start.y + (m.end.y - m.start.y) * t,
+            m.start.z + (m.end.z - m.start.z) * t,
+        );
+        (p, (m.end.x - m.start.x, m.end.y - m.start.y))
     }
 }
 
@@ -175,13 +194,10 @@ pub fn for_each_sample(
         let step_mm = len / steps as f64;
         // A straight move has one heading.
         let straight = matches!(m.motion, Motion::Rapid | Motion::Linear).then(|| unit_heading(point_on(m, 1.0).1));
-        let arc = ArcPoints::of(m);
+        let points = MovePoints::of(m);
         for k in 1..=steps {
             let t = k as f64 / steps as f64;
-            let (p, d) = match &arc {
-                Some(arc) => arc.at(t),
-                None => point_on(m, t),
-            };
+            let (p, d) = points.at(t);
             let heading = straight.unwrap_or_else(|| unit_heading(d));
             let sample = Sample {
                 p,

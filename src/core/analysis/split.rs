@@ -6,9 +6,11 @@
 //! exactly the stock the simulation holds where the first part
 //! ends, and simulates the rest from there, while the calling thread simulates the first
 //! part. The samples are handed on in the order of the path, the second part's once the
-//! first part's are; the stock left is the second thread's, the whole path's.
+//! first part's are (meanwhile they wait in a buffer kept from one simulation to the next,
+//! see [`super::spare_buffer`]); the stock left is the second thread's, the whole path's.
 
 use super::engine::{simulate, simulate_range, Cutter, SampleRange, SampleResult};
+use super::spare_buffer;
 use super::stack::Stack;
 use crate::core::process::parallel::{ClaimedCores, Shares};
 use crate::core::progress::{Progress, Stage};
@@ -17,11 +19,11 @@ use crate::core::CoreError;
 
 /// The share of the samples the calling thread simulates; the second thread replays their
 /// updates and simulates the rest. A trochoid program's first samples (its trochoids) cost
-/// the most, and replaying one costs up to half of simulating it: half of the samples
-/// balanced the two threads' instructions on the slot box and the case-study cavity layer
-/// (callgrind), where the share of equal samples and a replay at a quarter (0.57) left the
-/// calling thread with 5–10 % more than the other's.
-pub const FIRST_PART_SHARE: f64 = 0.5;
+/// the most, and replaying one costs up to half of simulating it. Measured side by side on
+/// the slot box and the case-study cavity layer (the bench's verification simulations,
+/// shares 0.44 to 0.52), 0.46 finished first: the calling thread also hands the samples on
+/// as they come.
+pub const FIRST_PART_SHARE: f64 = 0.46;
 
 /// Paths of fewer samples are simulated on one core: the copy of the stock and the thread
 /// would cost more than they spare (**assumed**: a tenth of the slot box's base path; a
@@ -89,7 +91,7 @@ fn simulate_split_at(
         let rest = &mut rest;
         let second = scope.spawn(move || {
             let _core = second_core;
-            let mut results = Vec::with_capacity(total.saturating_sub(at));
+            let mut results = spare_buffer::take(total.saturating_sub(at));
             simulate_range(path, cutter, rest, &second_share, later, |r| results.push(*r)).map(|()| results)
         });
         let first = SampleRange { measure_from: 0, stop_at: at };
@@ -98,6 +100,7 @@ fn simulate_split_at(
         simulated.and(second)
     })?;
     second.iter().for_each(sink);
+    spare_buffer::give_back(second);
     *slices = rest;
     Ok(())
 }

@@ -64,14 +64,18 @@ const RADIUS_MATCH_MM: f64 = 1e-6;
 pub fn insertion_scene(pocket: &Pocket, spec: &InsertionSpec, plan: &InsertionPlan) -> Scene {
     let layers = level_layers(spec.z_top_mm, &plan.levels_mm);
     let d = &plan.drawing;
-    let base = traced(BASE_PATH, &d.base_path, Some(&d.base_samples), Vec::new(), &layers);
-    let planned = traced(
-        PLANNED_PATH,
-        &plan.toolpath,
-        Some(&d.planned_samples),
-        vec![(Quantity::Feed, move_feeds(&plan.toolpath))],
-        &layers,
-    );
+    // The two paths are drawn side by side: each is a pass over its moves and samples.
+    let (base, planned) = std::thread::scope(|scope| {
+        let base = scope.spawn(|| traced(BASE_PATH, &d.base_path, Some(&d.base_samples), Vec::new(), &layers));
+        let planned = traced(
+            PLANNED_PATH,
+            &plan.toolpath,
+            Some(&d.planned_samples),
+            vec![(Quantity::Feed, move_feeds(&plan.toolpath))],
+            &layers,
+        );
+        (base.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)), planned)
+    });
     let at = |z: f64| layer_of(z, &layers);
     let limit = spec.alpha_limit_deg;
     let diameter = spec.tool.diameter_mm;

@@ -17,7 +17,7 @@
 //! no recursion.
 
 use super::scene::{LayerInfo, Quantity, Run, ScenePath};
-use crate::core::analysis::sampling::point_on;
+use crate::core::analysis::sampling::MovePoints;
 use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Motion, Move, Plane, Toolpath, P3};
 use std::collections::BTreeMap;
@@ -295,8 +295,9 @@ impl Tracer {
         }
         let mut s_prev = s_start;
         let mut from = m.start;
+        let points = MovePoints::of(m);
         for (k, &t) in ts.iter().enumerate() {
-            let p = if k + 1 == ts.len() { m.end } else { point_on(m, t).0 };
+            let p = if k + 1 == ts.len() { m.end } else { points.at(t).0 };
             let s = s_start + length * t;
             let mut values = [None; QUANTITIES];
             for &(slot, _, ref qv) in slots {

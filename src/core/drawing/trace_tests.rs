@@ -1,6 +1,7 @@
 //! Tests of [`super::trace_path`].
 
 use super::*;
+use crate::core::analysis::sampling::point_on;
 use crate::core::analysis::sampling::{for_each_sample, move_curvatures};
 use crate::core::toolpath::{Motion, Move, Plane, Toolpath, Units, P3};
 use proptest::prelude::*;

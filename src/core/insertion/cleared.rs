@@ -129,9 +129,10 @@ fn is_level_feed(m: &Move, z: f64) -> bool {
 fn split_by_air(m: &Move, zone: &ClearedZone) -> Vec<(Move, bool)> {
     let len = move_length(m);
     let n = (len / AIR_TEST_STEP_MM).ceil().max(1.0) as usize;
+    let points = crate::core::analysis::sampling::MovePoints::of(m);
     let air: Vec<bool> = (0..=n)
         .map(|i| {
-            let (p, _) = crate::core::analysis::sampling::point_on(m, i as f64 / n as f64);
+            let (p, _) = points.at(i as f64 / n as f64);
             zone.is_air(xy(p))
         })
         .collect();

@@ -3,7 +3,7 @@
 //! centre position whose clearance is at least `r + allowance`). It gives the area each
 //! treatment removes and the check that nothing reachable is left.
 
-use crate::core::analysis::sampling::point_on;
+use crate::core::analysis::sampling::{point_on, MovePoints};
 use crate::core::geometry::{Pocket, Point};
 use crate::core::medial::Boundary;
 use crate::core::stock::{ArcSweep, Capsule, MAX_ARC_SWEEP_RAD};
@@ -231,8 +231,9 @@ impl Coverage {
             };
             let n = (length / step).ceil().max(1.0) as usize;
             let mut previous: Option<Point> = None;
+            let points = MovePoints::of(m);
             for k in 0..=n {
-                let (p, _) = point_on(m, k as f64 / n as f64);
+                let (p, _) = points.at(k as f64 / n as f64);
                 let here = Point::new(p.x, p.y);
                 if p.z > z_max_mm {
                     previous = None;

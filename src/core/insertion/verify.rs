@@ -6,7 +6,7 @@ use super::cleared::ClearedZone;
 use crate::core::analysis::engine::SampleResult;
 use crate::core::analysis::handoff::analyze_handing_off;
 use crate::core::analysis::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE_BINS};
-use crate::core::analysis::sampling::point_on;
+use crate::core::analysis::sampling::MovePoints;
 use crate::core::analysis::{AnalysisSpec, Stack};
 use crate::core::geometry::{Pocket, Point};
 use crate::core::medial::Boundary;
@@ -294,11 +294,12 @@ pub fn check_gouges(
         }
         let length = move_length(m);
         let n = (length / GOUGE_STEP_MM).ceil().max(1.0) as usize;
+        let points = MovePoints::of(m);
         for k in 0..=n {
             if k > 0 {
                 travelled_mm += length / n as f64;
             }
-            let (p, _) = point_on(m, k as f64 / n as f64);
+            let (p, _) = points.at(k as f64 / n as f64);
             if p.z >= z_top_mm {
                 continue;
             }
