@@ -180,11 +180,23 @@ pub fn pitch_for_limit(
     alpha_limit_deg: f64,
     max_pitch_mm: f64,
 ) -> Option<f64> {
+    pitch_for_limit_remembering(rho_prev_mm, rho_at, r_mm, alpha_limit_deg, max_pitch_mm, &mut PeakMemo::default())
+}
+
+/// [`pitch_for_limit`], taking the peaks of loops found before from `memo` and leaving the
+/// new ones there.
+pub fn pitch_for_limit_remembering(
+    rho_prev_mm: f64,
+    rho_at: impl Fn(f64) -> f64,
+    r_mm: f64,
+    alpha_limit_deg: f64,
+    max_pitch_mm: f64,
+    memo: &mut PeakMemo,
+) -> Option<f64> {
     if alpha_limit_deg >= 180.0 {
         return Some(max_pitch_mm);
     }
-    let mut hint = 0;
-    let mut over = |p: f64| loop_peak_deg(rho_prev_mm, rho_at(p), p, r_mm, &mut hint) - alpha_limit_deg;
+    let mut over = |p: f64| memo.peak_deg(rho_prev_mm, rho_at(p), p, r_mm) - alpha_limit_deg;
     let over_max = over(max_pitch_mm);
     if over_max <= 0.0 {
         return Some(max_pitch_mm);
@@ -197,6 +209,38 @@ pub fn pitch_for_limit(
         return None;
     }
     Some(zero_crossing(MIN_PITCH_MM, over_min, max_pitch_mm, over_max, PITCH_TOLERANCE_MM, over).at_most_zero)
+}
+
+/// Most loop peaks a [`PeakMemo`] keeps; past them it starts afresh (**assumed**: a hundred
+/// times the evaluations of the slot box's longest trochoid, 243 loops).
+pub const MAX_REMEMBERED_PEAKS: usize = 1 << 20;
+
+/// The peak engagements found for loops (by the bits of the previous loop's radius, the
+/// loop's radius, the pitch and the tool's radius). A trochoid of equal loops (a slot of
+/// even width) searches the same pitches loop after loop: each peak is then found once. A
+/// peak does not depend on where its search started, so a remembered one is the one the
+/// search would find.
+#[derive(Debug, Default)]
+pub struct PeakMemo {
+    peaks: rustc_hash::FxHashMap<[u64; 4], f64>,
+    /// Where the last search peaked (see [`loop_peak_deg`]).
+    hint: usize,
+}
+
+impl PeakMemo {
+    /// The peak (deg) of [`loop_engagement_deg`] for these loops, remembered or found.
+    fn peak_deg(&mut self, rho_prev_mm: f64, rho_mm: f64, pitch_mm: f64, r_mm: f64) -> f64 {
+        let key = [rho_prev_mm.to_bits(), rho_mm.to_bits(), pitch_mm.to_bits(), r_mm.to_bits()];
+        if let Some(&peak) = self.peaks.get(&key) {
+            return peak;
+        }
+        let peak = loop_peak_deg(rho_prev_mm, rho_mm, pitch_mm, r_mm, &mut self.hint);
+        if self.peaks.len() >= MAX_REMEMBERED_PEAKS {
+            self.peaks.clear();
+        }
+        self.peaks.insert(key, peak);
+        peak
+    }
 }
 
 #[cfg(test)]
@@ -216,6 +260,18 @@ mod tests {
         assert!(loop_engagement_deg(5.0, 5.0, 0.5, 5.0) < loop_engagement_deg(2.0, 2.0, 0.5, 5.0));
         assert!(loop_engagement_deg(1.0, 1.0, 0.2, 5.0) < loop_engagement_deg(1.0, 1.0, 0.5, 5.0));
         assert!(approx_eq(loop_engagement_deg(1.0, 1.0, 0.0, 5.0), 0.0, 1e-9));
+    }
+
+    #[test]
+    fn pitches_found_with_remembered_peaks_are_the_pitches_found_afresh() {
+        let mut memo = PeakMemo::default();
+        // Equal loops, then loops growing with the pitch, then equal loops again.
+        for (k, rho) in [1.0, 1.0, 1.0, 1.2, 1.5, 1.0, 1.0].into_iter().enumerate() {
+            let grow = if k == 4 { 0.3 } else { 0.0 };
+            let remembered = pitch_for_limit_remembering(rho, |p| rho + grow * p, 5.0, 38.0, 0.5, &mut memo);
+            let afresh = pitch_for_limit(rho, |p| rho + grow * p, 5.0, 38.0, 0.5);
+            assert_eq!(remembered.map(f64::to_bits), afresh.map(f64::to_bits), "loop {k}");
+        }
     }
 
     #[test]

@@ -9,7 +9,7 @@
 //! slot along the axis, repeated at the reduced axial depth. Where the tool does not fit at
 //! all (R < r + allowance) nothing is cut.
 
-use super::pitch::pitch_for_limit;
+use super::pitch::{pitch_for_limit_remembering, PeakMemo};
 use super::spec::{InsertionSpec, LoopSize, PITCH_DESIGN_MARGIN_DEG};
 use crate::core::cycles::guide::Guide;
 use crate::core::cycles::trochoid::LoopPlan;
@@ -219,20 +219,23 @@ fn plan_trochoid(
     let mut s_mm = vec![0.0];
     let mut rho_mm = vec![rho_at(0.0)];
     let (mut p_min, mut p_max) = (f64::INFINITY, 0.0_f64);
+    let mut peaks = PeakMemo::default();
     while s_mm[s_mm.len() - 1] < length - LENGTH_EPS_MM {
         let s = s_mm[s_mm.len() - 1];
         let rho = rho_mm[rho_mm.len() - 1];
         let mut max_p = spec.max_pitch_for_loop_mm(rho).min(length - s);
         max_p = max_p.min(spec.max_pitch_for_loop_mm(rho_at(s + max_p)));
-        let p = pitch_for_limit(rho, |p| rho_at(s + p), r, design_limit, max_p).ok_or_else(|| {
-            CoreError::unsolvable(
-                "alpha_limit_deg",
-                format!(
-                    "no trochoid pitch keeps the engagement under {}° with loops of ρ = {rho:.3} mm (r = {r} mm)",
-                    spec.alpha_limit_deg
-                ),
-            )
-        })?;
+        let p = pitch_for_limit_remembering(rho, |p| rho_at(s + p), r, design_limit, max_p, &mut peaks).ok_or_else(
+            || {
+                CoreError::unsolvable(
+                    "alpha_limit_deg",
+                    format!(
+                        "no trochoid pitch keeps the engagement under {}° with loops of ρ = {rho:.3} mm (r = {r} mm)",
+                        spec.alpha_limit_deg
+                    ),
+                )
+            },
+        )?;
         if s + p < length - LENGTH_EPS_MM || s_mm.len() == 1 {
             p_min = p_min.min(p);
         }
