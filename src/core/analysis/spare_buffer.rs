@@ -1,45 +1,45 @@
-//! The buffer a split simulation's second part holds its samples in until the first part's
-//! are handed on (see [`super::split`]), kept from one simulation to the next. A buffer taken
-//! fresh from the system costs a page fault for every 4 KiB the samples fill: the slot box's
-//! second part fills 43 MB, some 10 000 faults and about 15 ms of its thread, a tenth of its
-//! time. A buffer given back is kept for the next simulation of the process, one at a time
-//! and only up to [`MAX_SPARE_BUFFER_BYTES`], so an idle service holds at most that much.
+//! The batches a split simulation's second part hands its samples over in (see
+//! [`super::split`]), kept from one simulation to the next. The batches wait while the first
+//! part is simulated: memory taken fresh from the system costs a page fault for every 4 KiB
+//! they fill (the slot box's second part fills 43 MB: some 10 000 faults and about 15 ms of
+//! its thread, a tenth of its time). Batches given back are kept for the next simulation of
+//! the process, up to [`MAX_SPARE_BUFFER_BYTES`], so an idle service holds at most that much.
 
 use super::engine::SampleResult;
 use std::sync::{Mutex, MutexGuard};
 
-/// The largest buffer kept for the next simulation, bytes (**assumed**: a few trochoid
-/// programs' second parts; a larger buffer is let go, and the next simulation that needs one
-/// takes it fresh).
+/// Samples a batch holds (a megabyte: large enough that handing one over costs little per
+/// sample, small enough that the hand-on follows the second thread closely).
+pub const BATCH_SAMPLES: usize = 4096;
+
+/// Most memory the batches kept for the next simulation take, bytes (**assumed**: a few
+/// trochoid programs' second parts; beyond it batches given back are let go, and the next
+/// simulation that needs more takes them fresh).
 pub const MAX_SPARE_BUFFER_BYTES: usize = 64 << 20;
 
-/// The buffer kept, empty (none: no capacity).
-static SPARE: Mutex<Vec<SampleResult>> = Mutex::new(Vec::new());
+/// Batches kept at most.
+const MAX_SPARE_BATCHES: usize = MAX_SPARE_BUFFER_BYTES / (BATCH_SAMPLES * std::mem::size_of::<SampleResult>());
 
-fn spare() -> MutexGuard<'static, Vec<SampleResult>> {
-    // A buffer holds no state that a panic elsewhere could leave half made.
+/// The batches kept, empty.
+static SPARE: Mutex<Vec<Vec<SampleResult>>> = Mutex::new(Vec::new());
+
+fn spare() -> MutexGuard<'static, Vec<Vec<SampleResult>>> {
+    // Empty batches hold no state that a panic elsewhere could leave half made.
     SPARE.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
-/// An empty buffer for at least `capacity` samples: the one kept, grown if need be, or a
-/// fresh one.
-pub fn take(capacity: usize) -> Vec<SampleResult> {
-    let mut buffer = std::mem::take(&mut *spare());
-    buffer.clear();
-    buffer.reserve(capacity);
-    buffer
+/// An empty batch for [`BATCH_SAMPLES`] samples: one kept, or a fresh one.
+pub fn take() -> Vec<SampleResult> {
+    spare().pop().unwrap_or_else(|| Vec::with_capacity(BATCH_SAMPLES))
 }
 
-/// Keeps `buffer`, emptied, for the next simulation, unless it is larger than
-/// [`MAX_SPARE_BUFFER_BYTES`] or the one kept is as large.
-pub fn give_back(mut buffer: Vec<SampleResult>) {
-    buffer.clear();
-    if buffer.capacity().saturating_mul(std::mem::size_of::<SampleResult>()) > MAX_SPARE_BUFFER_BYTES {
-        return;
-    }
+/// Keeps `batch`, emptied, for the next simulation, unless [`MAX_SPARE_BUFFER_BYTES`] of
+/// batches are kept already.
+pub fn give_back(mut batch: Vec<SampleResult>) {
+    batch.clear();
     let mut kept = spare();
-    if buffer.capacity() > kept.capacity() {
-        *kept = buffer;
+    if kept.len() < MAX_SPARE_BATCHES && batch.capacity() >= BATCH_SAMPLES {
+        kept.push(batch);
     }
 }
 
@@ -48,17 +48,49 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_buffer_given_back_is_taken_again_empty_and_one_too_large_is_let_go() {
-        // (Other tests' simulations may take and give back buffers meanwhile: only what
+    fn a_batch_given_back_is_taken_again_empty_and_no_more_than_the_limit_are_kept() {
+        // (Other tests' simulations may take and give back batches meanwhile: only what
         // holds whatever they do is checked.)
-        let taken = take(1000);
-        assert!(taken.is_empty() && taken.capacity() >= 1000);
+        let mut taken = take();
+        assert!(taken.is_empty() && taken.capacity() >= BATCH_SAMPLES);
+        taken.push(any_sample());
         give_back(taken);
-        let again = take(10);
-        assert!(again.is_empty() && again.capacity() >= 10);
+        let again = take();
+        assert!(again.is_empty() && again.capacity() >= BATCH_SAMPLES);
         give_back(again);
-        let too_large = MAX_SPARE_BUFFER_BYTES / std::mem::size_of::<SampleResult>() + 1;
-        give_back(Vec::with_capacity(too_large));
-        assert!(spare().capacity() < too_large, "a buffer larger than the limit is kept");
+        for _ in 0..MAX_SPARE_BATCHES + 3 {
+            give_back(Vec::with_capacity(BATCH_SAMPLES));
+        }
+        assert!(spare().len() <= MAX_SPARE_BATCHES, "more batches kept than the limit");
+    }
+
+    /// A sample of no path (its figures do not matter here).
+    fn any_sample() -> SampleResult {
+        let sample = crate::core::analysis::sampling::Sample {
+            p: crate::core::toolpath::P3::new(0.0, 0.0, 0.0),
+            heading: (1.0, 0.0),
+            step_mm: 0.05,
+            move_index: 0,
+            line: 1,
+            feed_mm_min: 0.0,
+            spindle_rpm: None,
+            rapid: false,
+            curvature: crate::core::curvature::PointCurvature::STRAIGHT,
+        };
+        SampleResult {
+            sample,
+            s_mm: 0.0,
+            contact: Default::default(),
+            arc_length_mm: 0.0,
+            ad_mm: 0.0,
+            t_m_um: 0.0,
+            contact_radius_mm: 0.0,
+            force_n: None,
+            plunge: false,
+            force_extrapolated: false,
+            coded: None,
+            cutting_point_ratio: 1.0,
+            centre_radius_mm: f64::INFINITY,
+        }
     }
 }

@@ -6,8 +6,9 @@
 //! exactly the stock the simulation holds where the first part
 //! ends, and simulates the rest from there, while the calling thread simulates the first
 //! part. The samples are handed on in the order of the path, the second part's once the
-//! first part's are (meanwhile they wait in a buffer kept from one simulation to the next,
-//! see [`super::spare_buffer`]); the stock left is the second thread's, the whole path's.
+//! first part's are: they come over in batches as the second thread makes them (batches
+//! kept from one simulation to the next, see [`super::spare_buffer`]), and wait only while
+//! the first part is simulated. The stock left is the second thread's, the whole path's.
 
 use super::engine::{simulate, simulate_range, Cutter, SampleRange, SampleResult};
 use super::spare_buffer;
@@ -19,11 +20,11 @@ use crate::core::CoreError;
 
 /// The share of the samples the calling thread simulates; the second thread replays their
 /// updates and simulates the rest. A trochoid program's first samples (its trochoids) cost
-/// the most, and replaying one costs up to half of simulating it. Measured side by side on
-/// the slot box and the case-study cavity layer (the bench's verification simulations,
-/// shares 0.44 to 0.52), 0.46 finished first: the calling thread also hands the samples on
-/// as they come.
-pub const FIRST_PART_SHARE: f64 = 0.46;
+/// the most, and replaying one costs up to half of simulating it; and the calling thread
+/// hands on the first part's samples as they come, then the second part's while the second
+/// thread finishes. Measured side by side on the slot box (shares 0.40 to 0.52, each the
+/// fastest of twelve runs), 0.43 to 0.46 finished first.
+pub const FIRST_PART_SHARE: f64 = 0.44;
 
 /// Paths of fewer samples are simulated on one core: the copy of the stock and the thread
 /// would cost more than they spare (**assumed**: a tenth of the slot box's base path; a
@@ -87,20 +88,40 @@ fn simulate_split_at(
     // The first thread reports its samples against the whole path's: scaled to its part.
     let first_progress = Stage { inner: &first_share, from: 0.0, span: total as f64 / at.max(1) as f64 };
     let later = SampleRange { measure_from: at, stop_at: usize::MAX };
-    let second = std::thread::scope(|scope| {
+    // The second part's samples go over in batches, in order, as they are made: once the
+    // calling thread has handed on the first part's, it hands these on while the second
+    // thread still simulates.
+    let (to_caller, from_second) = std::sync::mpsc::channel::<Vec<SampleResult>>();
+    std::thread::scope(|scope| {
         let rest = &mut rest;
         let second = scope.spawn(move || {
             let _core = second_core;
-            let mut results = spare_buffer::take(total.saturating_sub(at));
-            simulate_range(path, cutter, rest, &second_share, later, |r| results.push(*r)).map(|()| results)
+            let mut batch = spare_buffer::take();
+            let simulated = simulate_range(path, cutter, rest, &second_share, later, |r| {
+                batch.push(*r);
+                if batch.len() == spare_buffer::BATCH_SAMPLES {
+                    // (The caller stopped taking them only when its own part failed.)
+                    let _ = to_caller.send(std::mem::replace(&mut batch, spare_buffer::take()));
+                }
+            });
+            if !batch.is_empty() {
+                let _ = to_caller.send(batch);
+            }
+            simulated
         });
         let first = SampleRange { measure_from: 0, stop_at: at };
         let simulated = simulate_range(path, cutter, slices, &first_progress, first, &mut sink);
+        if simulated.is_ok() {
+            // Until the second thread ends (its sender goes with it).
+            for batch in from_second.iter() {
+                batch.iter().for_each(&mut sink);
+                spare_buffer::give_back(batch);
+            }
+        }
+        drop(from_second);
         let second = second.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic));
         simulated.and(second)
     })?;
-    second.iter().for_each(sink);
-    spare_buffer::give_back(second);
     *slices = rest;
     Ok(())
 }
