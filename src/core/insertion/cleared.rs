@@ -73,7 +73,7 @@ impl ClearedZone {
 
     /// `true` when a tool centred at `p` touches no material.
     pub fn is_air(&self, p: Point) -> bool {
-        self.cells.get(&self.key(p.x, p.y)).is_some_and(|discs| discs.iter().any(|(c, r)| c.distance_mm(p) <= *r))
+        self.cells.get(&self.key(p.x, p.y)).is_some_and(|discs| discs.iter().any(|&(c, r)| within(c, p, r)))
     }
 
     /// `true` when every point of the segment `a`–`b` is air (tested every [`AIR_TEST_STEP_MM`]).
@@ -123,6 +123,26 @@ fn is_level_feed(m: &Move, z: f64) -> bool {
         && (m.start.z - z).abs() <= SAME_LEVEL_MM
         && (m.end.z - z).abs() <= SAME_LEVEL_MM
         && !matches!(m.motion, Motion::Arc { plane, .. } if plane != crate::core::toolpath::Plane::Xy)
+}
+
+/// Squared distances this close (relatively) to a squared radius are compared by the distance
+/// itself: far above the rounding of either.
+const SQUARED_MARGIN: f64 = 1e-9;
+
+/// `true` when `p` lies within `r_mm` of `c` (`c.distance_mm(p) <= r_mm`), told by the
+/// squared distance wherever it decides beyond rounding: a cell of a zone holds dozens of
+/// overlapping discs (a trochoid's loops, a z-cut stretch's steps), and every sample of a
+/// verification asks.
+fn within(c: Point, p: Point, r_mm: f64) -> bool {
+    let (dx, dy) = (p.x - c.x, p.y - c.y);
+    let (d2, r2) = (dx * dx + dy * dy, r_mm * r_mm);
+    if d2 < r2 * (1.0 - SQUARED_MARGIN) {
+        return true;
+    }
+    if d2 > r2 * (1.0 + SQUARED_MARGIN) {
+        return false;
+    }
+    c.distance_mm(p) <= r_mm
 }
 
 /// Splits a level feed move into pieces, each tagged `true` when it is all air.
@@ -233,6 +253,21 @@ pub fn trim_path(path: &[Move], zone: &ClearedZone, relink: &Relink) -> (Vec<Mov
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_point_is_within_a_disc_exactly_when_its_distance_is_at_most_the_radius() {
+        let c = Point::new(1.25, -3.5);
+        for k in 0..2000 {
+            let angle = f64::from(k) * 0.137;
+            for r in [0.3, 2.0, 5.0] {
+                // Points at the radius, and a rounding either side of it.
+                for d in [r, r * (1.0 - 1e-15), r * (1.0 + 1e-15), r * 0.5, r * 1.5] {
+                    let p = Point::new(c.x + d * angle.cos(), c.y + d * angle.sin());
+                    assert_eq!(within(c, p, r), c.distance_mm(p) <= r, "{p:?} against {r}");
+                }
+            }
+        }
+    }
 
     /// A feed fast enough that feeding 40 mm through the air beats a hop.
     const FAST_FEED_MM_MIN: f64 = 5000.0;
