@@ -41,6 +41,7 @@ pub struct MovePoints<'a> {
 }
 
 impl<'a> MovePoints<'a> {
+    /// The points of `m`.
     pub fn of(m: &'a Move) -> MovePoints<'a> {
         MovePoints { m, arc: ArcPoints::of(m) }
     }

@@ -23,6 +23,7 @@ const MAX_SPARE_BATCHES: usize = MAX_SPARE_BUFFER_BYTES / (BATCH_SAMPLES * std::
 /// The batches kept, empty.
 static SPARE: Mutex<Vec<Vec<SampleResult>>> = Mutex::new(Vec::new());
 
+/// The batches kept, locked.
 fn spare() -> MutexGuard<'static, Vec<Vec<SampleResult>>> {
     // Empty batches hold no state that a panic elsewhere could leave half made.
     SPARE.lock().unwrap_or_else(|poisoned| poisoned.into_inner())

@@ -9,7 +9,11 @@
 //! its z-cut passes are all one stock until those passes reach them. A slice gets its own
 //! copy ([`Stack::separate`]) just before the first update that cuts it and not the slice
 //! below; a copy behaves exactly as the stock it was taken from (same cells, same versions,
-//! same remembered capsule), so the simulation is the same as with a raster per slice.
+//! same remembered capsule), so the simulation is the same as with a raster per slice. A
+//! slice cut apart shares the stock below again once no probe can tell the two apart
+//! ([`Stack::rejoin_when_alike`]): they may differ only in the stale distances of air with
+//! no material beside it, which no probe reads, so every sample is still the same. (The
+//! stock kept for a later job then holds the lower slice's stale distances in those cells.)
 
 use super::kept::{KeptSlice, KeptStock, Source};
 use super::slices::{SliceStock, Z_CONTACT_EPS_MM};
@@ -28,11 +32,12 @@ pub struct Slice {
     rejoin: RejoinTries,
 }
 
-/// A slice with its own stock cut with the one below is compared with it at most once
-/// every this many updates after a comparison failed, the wait doubling with each one up
+/// After a comparison of a slice's own stock with the one below failed, this many updates
+/// that cut both pass before the next comparison, the wait doubling after each failure up
 /// to [`MAX_REJOIN_WAIT`]. (**Assumed**: a comparison mostly stops at the material counts
-/// per block, a hundredth of an update's work; one that reads every cell costs about as
-/// much as two updates of a trochoid's loop.)
+/// per block, a hundredth of an update's work; one that reads every cell, where the counts
+/// agree and a cell tells the two apart, costs about as much as two updates of the slot
+/// box's trochoid loops, and more on a larger raster.)
 pub const FIRST_REJOIN_WAIT: u32 = 1;
 /// The longest wait between two comparisons of a slice with the one below, updates.
 pub const MAX_REJOIN_WAIT: u32 = 32;
@@ -121,7 +126,7 @@ impl Stack {
     }
 
     /// `true` while slice `k` shares the stock of the slice below it: the two hold the same
-    /// cells.
+    /// cells (or cells no probe tells apart, see [`Stack::rejoin_when_alike`]).
     pub fn alike_below(&self, k: usize) -> bool {
         self.slices[k].own.is_none()
     }
@@ -173,9 +178,9 @@ impl Stack {
     /// cut apart where a ramp or a z-cut pass reaches it before the slice below, and most
     /// often the passes that follow down to the one below leave the two alike again (a
     /// trochoid program's approach helix keeps its four slices apart for the whole program
-    /// otherwise). The comparison is made at most once every so many calls after one
-    /// failed ([`FIRST_REJOIN_WAIT`], doubling up to [`MAX_REJOIN_WAIT`]), so that slices
-    /// apart for long cost little. Returns `true` when the slice shares the stock below.
+    /// otherwise). After a comparison failed, the next calls wait ([`FIRST_REJOIN_WAIT`]
+    /// of them, doubling up to [`MAX_REJOIN_WAIT`]), so that slices apart for long cost
+    /// little. Returns `true` when the slice shares the stock below.
     pub fn rejoin_when_alike(&mut self, k: usize) -> bool {
         if self.alike_below(k) {
             return true;

@@ -211,9 +211,11 @@ pub fn pitch_for_limit_remembering(
     Some(zero_crossing(MIN_PITCH_MM, over_min, max_pitch_mm, over_max, PITCH_TOLERANCE_MM, over).at_most_zero)
 }
 
-/// Most loop peaks a [`PeakMemo`] keeps; past them it starts afresh (**assumed**: a hundred
-/// times the evaluations of the slot box's longest trochoid, 243 loops).
-pub const MAX_REMEMBERED_PEAKS: usize = 1 << 20;
+/// Most loop peaks a [`PeakMemo`] keeps; past them it starts afresh (**assumed**: a loop's
+/// search evaluates a few dozen pitches, and equal loops need only the last loop's; 4096
+/// entries take about 200 kB, where a trochoid of ever new loops would otherwise fill the
+/// map without bound).
+pub const MAX_REMEMBERED_PEAKS: usize = 1 << 12;
 
 /// The peak engagements found for loops (by the bits of the previous loop's radius, the
 /// loop's radius, the pitch and the tool's radius). A trochoid of equal loops (a slot of

@@ -8,10 +8,8 @@
 //! material beside it again: two rasters that differ only in such cells answer every probe
 //! alike now, and after any update applied to both.
 
+use super::capsule::WORD_CELLS;
 use super::Raster;
-
-/// Cells compared at once.
-const WORD_CELLS: usize = 8;
 
 impl Raster {
     /// `true` when every probe gives the same answer on `self` and `other` (same grid): the
@@ -44,9 +42,7 @@ impl Raster {
         if v > 0 || w > 0 {
             return false;
         }
-        let (i, j) = (k % self.nx, k / self.nx);
-        let rows = j.saturating_sub(1)..=(j + 1).min(self.ny - 1);
-        !rows.into_iter().any(|b| (i.saturating_sub(1)..=(i + 1).min(self.nx - 1)).any(|a| self.f[b * self.nx + a] > 0))
+        !self.material_beside(k % self.nx, k / self.nx)
     }
 
     /// Makes the raster's version newer than `other`'s and its own: what was read from

@@ -43,7 +43,7 @@ impl Raster {
     }
 
     /// `true` when one of the eight cells around (i, j) is in material.
-    fn material_beside(&self, i: usize, j: usize) -> bool {
+    pub(super) fn material_beside(&self, i: usize, j: usize) -> bool {
         let nx = self.nx;
         (j.saturating_sub(1)..=(j + 1).min(self.ny - 1))
             .any(|b| (i.saturating_sub(1)..=(i + 1).min(nx - 1)).any(|a| self.f[b * nx + a] > 0))

@@ -10,8 +10,9 @@ use super::{Raster, BLOCK_CELLS, DEGENERATE_SEGMENT_MM, FULL};
 /// A capsule whose direction has an x component below this is treated as parallel to
 /// the rows when its start line is located.
 const MIN_ROW_SLOPE: f64 = 1e-6;
-/// Cells compared at once when skipping runs of "far outside" cells.
-const WORD_CELLS: usize = 8;
+/// Cells compared at once when skipping runs of "far outside" cells (and when comparing
+/// rasters, see [`super::alike`]).
+pub(super) const WORD_CELLS: usize = 8;
 /// Eight "far outside" cells as one word.
 const FAR_OUTSIDE_WORD: u64 = u64::from_ne_bytes([(-FULL) as u8; WORD_CELLS]);
 // A tile's stretch of a row is one word and lies in one block of material counts.
