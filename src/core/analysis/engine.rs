@@ -341,19 +341,8 @@ fn evaluate(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::core::analysis::test_paths::{relief_program, relief_slices};
+    use crate::core::analysis::test_paths::{relief_cutter, relief_program, relief_slices};
     use crate::core::progress::NoProgress;
-
-    fn relief_cutter(force_model: Option<ForceModel>) -> Cutter {
-        Cutter {
-            profile: Profile::cylinder(2.0),
-            flutes: 2,
-            default_spindle_rpm: Some(9600.0),
-            force_model,
-            spacing_mm: 0.05,
-            total_samples: 1,
-        }
-    }
 
     #[test]
     fn every_slice_keeps_its_material_inside_the_material_of_the_slice_below() {

@@ -130,7 +130,7 @@ fn simulate_split_at(
 mod tests {
     use super::*;
     use crate::core::analysis::profile::Profile;
-    use crate::core::analysis::test_paths::{feed_move, relief_program, relief_slices, sample_bits};
+    use crate::core::analysis::test_paths::{feed_move, relief_cutter, relief_program, relief_slices, sample_bits};
     use crate::core::process::parallel::threads;
     use crate::core::progress::NoProgress;
     use crate::core::toolpath::{Motion, Move, Plane, P3};
@@ -222,14 +222,7 @@ mod tests {
     #[test]
     fn a_simulation_takes_a_second_core_only_when_one_is_free_and_two_stocks_fit_the_budget() {
         let path = program();
-        let cutter = Cutter {
-            profile: Profile::cylinder(2.0),
-            flutes: 2,
-            default_spindle_rpm: Some(9600.0),
-            force_model: None,
-            spacing_mm: 0.05,
-            total_samples: MIN_SPLIT_SAMPLES,
-        };
+        let cutter = Cutter { total_samples: MIN_SPLIT_SAMPLES, ..relief_cutter(None) };
         let threads_asking = |spare: bool, budget_bytes: usize| {
             let progress = Threads { spare, asked_from: Default::default(), claimed: 0.into(), released: 0.into() };
             simulate_split(&path, cutter, &mut relief_slices(&path), budget_bytes, &progress, |_| {})

@@ -288,10 +288,9 @@ impl Stack {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::core::analysis::engine::{simulate, Cutter};
-    use crate::core::analysis::profile::Profile;
+    use crate::core::analysis::engine::simulate;
     use crate::core::analysis::region::{paint, StockRegion};
-    use crate::core::analysis::test_paths::{feed_move, sample_bits};
+    use crate::core::analysis::test_paths::{feed_move, relief_cutter, sample_bits};
     use crate::core::progress::NoProgress;
     use crate::core::toolpath::{Toolpath, Units, P3};
 
@@ -362,14 +361,7 @@ mod tests {
     #[test]
     fn slices_a_ramp_cut_apart_share_one_stock_again_once_alike_and_every_sample_is_the_same() {
         let path = ramp_then_passes();
-        let cutter = Cutter {
-            profile: Profile::cylinder(2.0),
-            flutes: 2,
-            default_spindle_rpm: Some(9600.0),
-            force_model: Some(crate::core::fixtures::seed_001_ten_mm()),
-            spacing_mm: 0.05,
-            total_samples: 1,
-        };
+        let cutter = relief_cutter(Some(crate::core::fixtures::seed_001_ten_mm()));
         let run = |rejoin: bool| {
             let mut stack = block();
             stack.never_rejoin = !rejoin;

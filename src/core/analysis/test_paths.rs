@@ -1,10 +1,12 @@
 //! What the simulation's tests share: feed moves and a relief program to build paths from,
 //! its painted slices, and a sample's figures bit for bit, to compare simulations.
 
-use super::engine::SampleResult;
+use super::engine::{Cutter, SampleResult};
+use super::profile::Profile;
 use super::region::{paint, StockRegion};
 use super::slices::slice_levels;
 use super::stack::Stack;
+use crate::core::force_model::ForceModel;
 use crate::core::progress::NoProgress;
 use crate::core::stock::Rect;
 use crate::core::toolpath::{Motion, Move, Toolpath, Units, P3};
@@ -27,6 +29,19 @@ pub fn relief_program() -> Toolpath {
         }
     }
     Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] }
+}
+
+/// The 4 mm two-flute square end mill the relief program's tests simulate with, at 9600
+/// rpm and 0.05 mm, with `force_model` if any.
+pub fn relief_cutter(force_model: Option<ForceModel>) -> Cutter {
+    Cutter {
+        profile: Profile::cylinder(2.0),
+        flutes: 2,
+        default_spindle_rpm: Some(9600.0),
+        force_model,
+        spacing_mm: 0.05,
+        total_samples: 1,
+    }
 }
 
 /// The slices of [`RELIEF`] for `path`, painted.
