@@ -194,10 +194,9 @@ impl Coverage {
         let i0 = ((x_lo - self.x0) / self.cell_mm - 0.5).ceil().max(0.0) as usize;
         let i1 = (((x_hi - self.x0) / self.cell_mm - 0.5).floor() + 1.0).max(0.0) as usize;
         let (i0, i1) = (i0.min(self.w), i1.min(self.w));
+        // (A select, not a branch: it runs many cells a step.)
         for o in &mut self.owner[j * self.w + i0..j * self.w + i1.max(i0)] {
-            if *o == NOBODY {
-                *o = owner;
-            }
+            *o = if *o == NOBODY { owner } else { *o };
         }
     }
 
