@@ -294,7 +294,7 @@ fn main() {
         for case in &chosen {
             reset_peak_memory();
             let (secs, result, program) = time(case, runs);
-            println!("{}: {secs:.2} s ({}; {program})", case.label, figures(case.kind, &result));
+            println!("{}: {secs:.3} s ({}; {program})", case.label, figures(case.kind, &result));
             let samples = one_candidates_samples_mb(case.kind, &case.input, &result)
                 .map_or(String::new(), |mb| format!("; one candidate's samples {mb:.0} MB, {cores} cores"));
             println!("  peak heap memory {:.0} MB{samples}", peak_memory_mb());
@@ -306,13 +306,13 @@ fn main() {
         return;
     }
     let (before, result, _) = time(&tiger, runs);
-    println!("{}: {before:.2} s ({})", tiger.label, figures(tiger.kind, &result));
+    println!("{}: {before:.3} s ({})", tiger.label, figures(tiger.kind, &result));
     run_cases();
     let (after, _, _) = time(&tiger, runs);
-    println!("{} again: {after:.2} s", tiger.label);
+    println!("{} again: {after:.3} s", tiger.label);
     let unit = before.min(after);
-    println!("ratios to one tiger.nc analysis ({unit:.2} s, the faster of the two):");
+    println!("ratios to one tiger.nc analysis ({unit:.3} s, the faster of the two):");
     for (label, secs) in timed {
-        println!("  {label}: {:.2} ×", secs / unit);
+        println!("  {label}: {:.3} ×", secs / unit);
     }
 }
