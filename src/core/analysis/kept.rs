@@ -109,8 +109,13 @@ pub fn keep(
         Some(start) => start.below.clone(),
         None => {
             let bounds = super::region::union_bounds(&spec.stock);
-            let mut raster = crate::core::stock::Raster::new(bounds, kept.grid.cell_mm);
-            super::region::paint(&mut raster, &spec.stock, &spec.open, &crate::core::progress::NoProgress)?;
+            let raster = super::painted::painted(
+                bounds,
+                kept.grid.cell_mm,
+                &spec.stock,
+                &spec.open,
+                &crate::core::progress::NoProgress,
+            )?;
             let floor = match floor {
                 Floor::At(z) => Floor::At(z.min(kept.z_bottom())),
                 Floor::Unbounded => Floor::Unbounded,

@@ -16,6 +16,7 @@ pub mod kept;
 pub mod levels;
 pub mod lines;
 pub mod outside;
+pub mod painted;
 pub mod probe;
 pub mod profile;
 pub mod recent;
@@ -343,9 +344,8 @@ fn analyze_on(
             let painting = Raster::cell_count(bounds, painted_cell) as f64 / PAINTED_CELLS_PER_SAMPLE;
             let paint_share = painting / (painting + total_samples as f64);
             let paint_stage = Stage { inner: progress, from: 0.0, span: paint_share };
-            let stack = Stack::build(&levels, bounds, painted_cell, |raster| {
-                region::paint(raster, &spec.stock, &spec.open, &paint_stage)
-            })?;
+            let raster = painted::painted(bounds, painted_cell, &spec.stock, &spec.open, &paint_stage)?;
+            let stack = Stack::new(&levels, raster);
             (stack, paint_share, spec.stock.iter().any(|r| matches!(r, StockRegion::Pocket(_))))
         }
     };
