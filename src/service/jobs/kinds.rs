@@ -243,13 +243,18 @@ fn run_kind<K: JobKindSpec>(
     let prepared = serde_json::from_str(prepared).map_err(unreadable)?;
     let Produced { result, program, baseline_program, base_program, scene, stock } =
         K::run(request, prepared, progress, stock_memory_bytes)?;
-    let result = serde_json::to_value(result).map_err(unreadable)?;
-    let scene = scene
-        .map(|s| serde_json::to_string(&s))
-        .transpose()
-        .map_err(|e| CoreError::invalid("scene", format!("drawing scene unserialisable: {e}")))?;
-    let stock = stock.as_ref().map(super::kept_stock::encode);
-    Ok(JobOutput { result, program, baseline_program, base_program, scene, stock })
+    // The kept stock is compressed beside the result's and the scene's serialisation (each
+    // a few milliseconds of a trochoids job's last, single-threaded steps).
+    let (result, scene, stock) = std::thread::scope(|scope| {
+        let stock = scope.spawn(|| stock.as_ref().map(super::kept_stock::encode));
+        let result = serde_json::to_value(result).map_err(unreadable);
+        let scene = scene
+            .map(|s| serde_json::to_string(&s))
+            .transpose()
+            .map_err(|e| CoreError::invalid("scene", format!("drawing scene unserialisable: {e}")));
+        (result, scene, stock.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
+    });
+    Ok(JobOutput { result: result?, program, baseline_program, base_program, scene: scene?, stock })
 }
 
 /// Runs a prepared job from its input as submitted and what it resolved to, each of its
