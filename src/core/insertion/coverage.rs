@@ -9,7 +9,7 @@ use crate::core::medial::Boundary;
 use crate::core::stock::{ArcSweep, Capsule, MAX_ARC_SWEEP_RAD};
 use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Motion, Move, Plane};
-use std::f64::consts::TAU;
+use std::f64::consts::{PI, TAU};
 
 /// Cells per tool radius of the coverage raster.
 pub const CELLS_PER_RADIUS: f64 = 25.0;
@@ -207,7 +207,17 @@ impl Coverage {
     /// of a cell, and a move crossing the level as capsules every half cell where it is below.
     pub fn stamp_moves(&mut self, moves: &[Move], r_mm: f64, z_max_mm: f64, owner: u16) {
         let fine = 0.5 * self.cell_mm;
-        for m in moves {
+        let mut k = 0;
+        while k < moves.len() {
+            // A trochoid loop (its cutting and return halves about one centre) closes a
+            // circle: the tool sweeps the ring about it, stamped row by row at once.
+            if let Some((circle, moves_taken)) = closed_circle(&moves[k..], z_max_mm) {
+                self.stamp_ring(circle, r_mm, owner);
+                k += moves_taken;
+                continue;
+            }
+            let m = &moves[k];
+            k += 1;
             let (start_below, end_below) = (m.start.z <= z_max_mm, m.end.z <= z_max_mm);
             if !start_below && !end_below {
                 continue;
@@ -240,6 +250,24 @@ impl Coverage {
                 }
                 self.stamp_capsule(previous.unwrap_or(here), here, r_mm, owner);
                 previous = Some(here);
+            }
+        }
+    }
+
+    /// Marks the cells whose centres lie within `r_mm` of the circle `(centre, radius)` (the
+    /// ring the tool sweeps going round it) as removed by `owner` unless already removed.
+    fn stamp_ring(&mut self, ((cx, cy), radius): ((f64, f64), f64), r_mm: f64, owner: u16) {
+        let (outer, inner) = (radius + r_mm, radius - r_mm);
+        for j in self.rows_between(cy - outer, cy + outer) {
+            let dy = self.y0 + (j as f64 + 0.5) * self.cell_mm - cy;
+            let half = (outer * outer - dy * dy).max(0.0).sqrt();
+            // The hole in the ring's middle, where the circle is wider than the tool.
+            let hole = if inner > 0.0 && dy.abs() < inner { (inner * inner - dy * dy).sqrt() } else { 0.0 };
+            if hole > 0.0 {
+                self.fill_row(j, cx - half, cx - hole, owner);
+                self.fill_row(j, cx + hole, cx + half, owner);
+            } else {
+                self.fill_row(j, cx - half, cx + half, owner);
             }
         }
     }
@@ -294,6 +322,52 @@ impl Coverage {
         }
         (area, example)
     }
+}
+
+/// Ends of arcs closing a circle may lie this far apart, and their centres and radii
+/// differ by this much, mm (a program's rounding of a loop's coordinates is coarser).
+const CLOSED_CIRCLE_TOLERANCE_MM: f64 = 1e-9;
+
+/// The circle (centre and radius) that the first moves of `moves` go round, and how many
+/// moves they are: arcs in XY one after the other, about one centre with one radius in one
+/// direction, all at one height at `z_max_mm` or below, that turn a whole turn or more
+/// together, or end where the first starts having turned more than half a turn (then a
+/// whole one: they go round one way). Along them the tool sweeps the ring about the circle,
+/// as along its pieces one by one. `None` when the first moves go round no circle.
+fn closed_circle(moves: &[Move], z_max_mm: f64) -> Option<(((f64, f64), f64), usize)> {
+    let first = moves.first()?;
+    let Motion::Arc { center, clockwise, plane: Plane::Xy, .. } = first.motion else {
+        return None;
+    };
+    let near = |a: f64, b: f64| (a - b).abs() <= CLOSED_CIRCLE_TOLERANCE_MM;
+    let radius = (first.start.x - center.x).hypot(first.start.y - center.y);
+    let level = first.start.z;
+    let on_circle = |m: &Move| match m.motion {
+        Motion::Arc { center: c, clockwise: cw, plane: Plane::Xy, .. } => {
+            cw == clockwise
+                && near(c.x, center.x)
+                && near(c.y, center.y)
+                && near((m.start.x - c.x).hypot(m.start.y - c.y), radius)
+                && near(m.start.z, level)
+                && near(m.end.z, level)
+        }
+        _ => false,
+    };
+    if level > z_max_mm || !(radius > 0.0) {
+        return None;
+    }
+    let closes = |m: &Move| near(m.end.x, first.start.x) && near(m.end.y, first.start.y);
+    let mut turned_rad = 0.0;
+    for (n, m) in moves.iter().enumerate() {
+        if !on_circle(m) {
+            return None;
+        }
+        turned_rad += move_length(m) / radius;
+        if turned_rad >= TAU || (closes(m) && turned_rad > PI) {
+            return Some((((center.x, center.y), radius), n + 1));
+        }
+    }
+    None
 }
 
 /// Squared Euclidean distance (in cells) from every cell to the nearest `true` cell
@@ -450,6 +524,56 @@ mod tests {
         let differ = swept.owner.iter().zip(&stamped.owner).filter(|(a, b)| a != b).count();
         assert!(cells(&stamped) > 10_000, "{}", cells(&stamped));
         assert!((differ as f64) < 0.01 * cells(&stamped) as f64, "{differ} of {} cells differ", cells(&stamped));
+    }
+
+    /// Arcs about `(cx, cy)` at z −5, counter-clockwise, from angle to angle (degrees).
+    fn arcs_about(cx: f64, cy: f64, rho: f64, angles_deg: &[f64]) -> Vec<Move> {
+        use crate::core::toolpath::P3;
+        let at = |deg: f64| P3::new(cx + rho * deg.to_radians().cos(), cy + rho * deg.to_radians().sin(), -5.0);
+        angles_deg
+            .windows(2)
+            .map(|w| Move {
+                motion: Motion::Arc { center: P3::new(cx, cy, -5.0), clockwise: false, plane: Plane::Xy, turns: 0 },
+                start: at(w[0]),
+                end: at(w[1]),
+                feed_mm_min: Some(1000.0),
+                spindle_rpm: None,
+                tool: None,
+                line: 0,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn arcs_that_go_round_a_circle_stamp_the_ring_their_pieces_sweep_one_by_one() {
+        let pocket = crate::core::fixtures::rounded_box(40.0, 30.0, 6.0);
+        let boundary = Boundary::of_pocket(&pocket);
+        let r = 5.0;
+        // A trochoid loop's two halves, wider and narrower than the tool; a circle of three
+        // arcs that goes round twice; arcs that stop short of a turn.
+        let cases = [
+            (arcs_about(20.0, 15.0, 7.3, &[-90.0, 90.0, 270.0]), true),
+            (arcs_about(21.1, 14.2, 1.37, &[0.0, 180.0, 360.0]), true),
+            (arcs_about(19.0, 16.0, 3.1, &[10.0, 250.0, 490.0, 730.0]), true),
+            (arcs_about(20.0, 15.0, 6.0, &[0.0, 120.0, 300.0]), false),
+        ];
+        for (moves, closes) in cases {
+            assert_eq!(closed_circle(&moves, -5.0 + 1e-6).is_some(), closes);
+            let mut ring = Coverage::new(&pocket, &boundary, r);
+            ring.stamp_moves(&moves, r, -5.0 + 1e-6, 0);
+            let mut pieces = Coverage::new(&pocket, &boundary, r);
+            for m in &moves {
+                pieces.stamp_moves(std::slice::from_ref(m), r, -5.0 + 1e-6, 0);
+            }
+            let removed = ring.owner.iter().filter(|o| **o == 0).count();
+            assert!(removed > 2_000, "{removed} cells removed");
+            assert!(ring.owner == pieces.owner, "the ring's cells are not the pieces'");
+        }
+        // Above the level, or rising, they are no ring.
+        assert!(closed_circle(&arcs_about(20.0, 15.0, 7.3, &[-90.0, 90.0, 270.0]), -6.0).is_none());
+        let mut helix = arcs_about(20.0, 15.0, 7.3, &[-90.0, 90.0, 270.0]);
+        helix[1].end.z = -4.0;
+        assert!(closed_circle(&helix, -3.0).is_none());
     }
 
     #[test]
