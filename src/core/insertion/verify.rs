@@ -299,11 +299,12 @@ pub fn check_gouges(
             if k > 0 {
                 travelled_mm += length / n as f64;
             }
-            let (p, _) = points.at(k as f64 / n as f64);
-            if p.z >= z_top_mm {
+            // (Passed over before the point is placed: neither test changes anything.)
+            if measured.is_some_and(|last| last - travelled_mm > min_margin.max(-GOUGE_TOLERANCE_MM)) {
                 continue;
             }
-            if measured.is_some_and(|last| last - travelled_mm > min_margin.max(-GOUGE_TOLERANCE_MM)) {
+            let (p, _) = points.at(k as f64 / n as f64);
+            if p.z >= z_top_mm {
                 continue;
             }
             let c = if pocket.contains(p.x, p.y) {
