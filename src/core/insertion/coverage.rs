@@ -256,7 +256,7 @@ impl Coverage {
 
     /// Marks the cells whose centres lie within `r_mm` of the circle `(centre, radius)` (the
     /// ring the tool sweeps going round it) as removed by `owner` unless already removed.
-    fn stamp_ring(&mut self, ((cx, cy), radius): ((f64, f64), f64), r_mm: f64, owner: u16) {
+    fn stamp_ring(&mut self, ((cx, cy), radius): Circle, r_mm: f64, owner: u16) {
         let (outer, inner) = (radius + r_mm, radius - r_mm);
         for j in self.rows_between(cy - outer, cy + outer) {
             let dy = self.y0 + (j as f64 + 0.5) * self.cell_mm - cy;
@@ -324,6 +324,9 @@ impl Coverage {
     }
 }
 
+/// A circle in XY: its centre and radius, mm.
+type Circle = ((f64, f64), f64);
+
 /// Ends of arcs closing a circle may lie this far apart, and their centres and radii
 /// differ by this much, mm (a program's rounding of a loop's coordinates is coarser).
 const CLOSED_CIRCLE_TOLERANCE_MM: f64 = 1e-9;
@@ -334,7 +337,7 @@ const CLOSED_CIRCLE_TOLERANCE_MM: f64 = 1e-9;
 /// together, or end where the first starts having turned more than half a turn (then a
 /// whole one: they go round one way). Along them the tool sweeps the ring about the circle,
 /// as along its pieces one by one. `None` when the first moves go round no circle.
-fn closed_circle(moves: &[Move], z_max_mm: f64) -> Option<(((f64, f64), f64), usize)> {
+fn closed_circle(moves: &[Move], z_max_mm: f64) -> Option<(Circle, usize)> {
     let first = moves.first()?;
     let Motion::Arc { center, clockwise, plane: Plane::Xy, .. } = first.motion else {
         return None;
@@ -353,7 +356,8 @@ fn closed_circle(moves: &[Move], z_max_mm: f64) -> Option<(((f64, f64), f64), us
         }
         _ => false,
     };
-    if level > z_max_mm || !(radius > 0.0) {
+    // (NaN is no radius.)
+    if level > z_max_mm || radius.is_nan() || radius <= 0.0 {
         return None;
     }
     let closes = |m: &Move| near(m.end.x, first.start.x) && near(m.end.y, first.start.y);
