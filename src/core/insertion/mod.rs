@@ -358,6 +358,7 @@ fn plan_rounds(
         // its interval alone.
         let untreated: Vec<&(TreatedKey, &CriticalInterval)> =
             keyed.iter().filter(|(key, _)| !treated.contains_key(key)).collect();
+        let coverage = path_checks::coverage_beside(pocket, spec);
         let treatments = parallel::map(progress, &untreated, |_, (key, c)| {
             let spec_here = if key.3 { &wide } else { spec };
             treatments::treat_interval(&axis.branches[c.branch], c, &boundary, pocket, spec_here)
@@ -386,7 +387,8 @@ fn plan_rounds(
         // (spent in vain when a further round follows).
         let (after, checks) = std::thread::scope(|scope| {
             let checks = scope.spawn(|| {
-                path_checks::check_path(pocket, &boundary, spec, stretches.len(), &per_level, &levels, &path)
+                let stretches = (stretches.len(), per_level.as_slice());
+                path_checks::check_path(pocket, &boundary, spec, stretches, &levels, &path, coverage)
             });
             let after = verify::check_engagement(&path, &verifying, &roles, &round_stage, |s| {
                 if let Some(g) = geometry.as_mut() {

@@ -32,20 +32,29 @@ pub struct PathChecks {
     pub first_gouge: Option<Spot>,
 }
 
+/// The coverage raster of `pocket` for the tool of `spec`, nothing removed yet, made on a
+/// thread of its own: it depends on neither path, so it is made while the treatments are
+/// planned and the path composed (where a core idles), not beside the verification.
+pub fn coverage_beside(pocket: &Pocket, spec: &InsertionSpec) -> std::thread::JoinHandle<Coverage> {
+    let (pocket, r) = (pocket.clone(), spec.r_mm());
+    std::thread::spawn(move || Coverage::new(&pocket, &Boundary::of_pocket(&pocket), r))
+}
+
 /// Checks `path`, made of `stretch_count` stretches and the base path, whose moves per level
-/// are `per_level`, at the cutting `levels`, in `pocket`.
+/// are `per_level`, at the cutting `levels`, in `pocket`, whose `coverage` raster (for the
+/// tool of `spec`, nothing removed) is being made on another thread.
 pub fn check_path(
     pocket: &Pocket,
     boundary: &Boundary,
     spec: &InsertionSpec,
-    stretch_count: usize,
-    per_level: &[LevelMoves],
+    (stretch_count, per_level): (usize, &[LevelMoves]),
     levels: &[f64],
     path: &Toolpath,
+    coverage: std::thread::JoinHandle<Coverage>,
 ) -> PathChecks {
     let r = spec.r_mm();
     let bottom = levels.iter().copied().fold(f64::INFINITY, f64::min);
-    let mut coverage = Coverage::new(pocket, boundary, r);
+    let mut coverage = coverage.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic));
     let base_owner = u16::try_from(stretch_count).unwrap_or(u16::MAX - 1);
     if let Some(last) = per_level.last() {
         for (i, moves) in last.stretch_moves.iter().enumerate() {
