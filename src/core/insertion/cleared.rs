@@ -10,11 +10,11 @@
 //! rapid, plunge in the air) where that is quicker than feeding along it, and kept otherwise.
 //! Whatever is fed through the air (kept runs and straight links) goes at the air feed.
 
+use super::cleared_zone::{AirLookup, ClearedZone};
 use crate::core::feed::split::sub_move;
 use crate::core::geometry::Point;
 use crate::core::toolpath::move_length;
 use crate::core::toolpath::{Motion, Move, P3};
-use rustc_hash::FxHashMap;
 
 /// Spacing of the air test along a move, mm.
 pub const AIR_TEST_STEP_MM: f64 = 0.1;
@@ -24,67 +24,6 @@ pub const MIN_AIR_RUN_RADII: f64 = 2.0;
 
 /// Heights closer than this are the same level, mm.
 pub const SAME_LEVEL_MM: f64 = 1e-6;
-
-/// Discs known to be cleared at one level: the tool is in the air when its centre lies in
-/// one of them.
-#[derive(Debug, Default, Clone)]
-pub struct ClearedZone {
-    cell_mm: f64,
-    /// (Looked up at every sample of a verification: hashed by the fast hash of the
-    /// compiler, not a hash that resists chosen keys; the keys are the zone's own cells.)
-    cells: FxHashMap<(i64, i64), Vec<(Point, f64)>>,
-    count: usize,
-}
-
-impl ClearedZone {
-    /// An empty zone whose lookup grid has cells of `cell_mm`.
-    pub fn new(cell_mm: f64) -> ClearedZone {
-        ClearedZone { cell_mm, cells: FxHashMap::default(), count: 0 }
-    }
-
-    fn key(&self, x: f64, y: f64) -> (i64, i64) {
-        ((x / self.cell_mm).floor() as i64, (y / self.cell_mm).floor() as i64)
-    }
-
-    /// Adds the disc of centre `c` and radius `radius_mm` (positions where the tool is in air).
-    pub fn add(&mut self, c: Point, radius_mm: f64) {
-        if radius_mm <= 0.0 {
-            return;
-        }
-        let (x0, y0) = self.key(c.x - radius_mm, c.y - radius_mm);
-        let (x1, y1) = self.key(c.x + radius_mm, c.y + radius_mm);
-        for i in x0..=x1 {
-            for j in y0..=y1 {
-                self.cells.entry((i, j)).or_default().push((c, radius_mm));
-            }
-        }
-        self.count += 1;
-    }
-
-    /// Number of discs.
-    pub fn len(&self) -> usize {
-        self.count
-    }
-
-    /// `true` when no disc was added.
-    pub fn is_empty(&self) -> bool {
-        self.count == 0
-    }
-
-    /// `true` when a tool centred at `p` touches no material.
-    pub fn is_air(&self, p: Point) -> bool {
-        self.cells.get(&self.key(p.x, p.y)).is_some_and(|discs| discs.iter().any(|&(c, r)| within(c, p, r)))
-    }
-
-    /// `true` when every point of the segment `a`–`b` is air (tested every [`AIR_TEST_STEP_MM`]).
-    fn chord_is_air(&self, a: Point, b: Point) -> bool {
-        let n = (a.distance_mm(b) / AIR_TEST_STEP_MM).ceil().max(1.0) as usize;
-        (0..=n).all(|i| {
-            let t = i as f64 / n as f64;
-            self.is_air(Point::new(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t))
-        })
-    }
-}
 
 /// How the trimmed path moves between the pieces it keeps.
 #[derive(Debug, Clone, Copy)]
@@ -125,24 +64,15 @@ fn is_level_feed(m: &Move, z: f64) -> bool {
         && !matches!(m.motion, Motion::Arc { plane, .. } if plane != crate::core::toolpath::Plane::Xy)
 }
 
-/// Squared distances this close (relatively) to a squared radius are compared by the distance
-/// itself: far above the rounding of either.
-const SQUARED_MARGIN: f64 = 1e-9;
-
-/// `true` when `p` lies within `r_mm` of `c` (`c.distance_mm(p) <= r_mm`), told by the
-/// squared distance wherever it decides beyond rounding: a cell of a zone holds dozens of
-/// overlapping discs (a trochoid's loops, a z-cut stretch's steps), and every sample of a
-/// verification asks.
-fn within(c: Point, p: Point, r_mm: f64) -> bool {
-    let (dx, dy) = (p.x - c.x, p.y - c.y);
-    let (d2, r2) = (dx * dx + dy * dy, r_mm * r_mm);
-    if d2 < r2 * (1.0 - SQUARED_MARGIN) {
-        return true;
-    }
-    if d2 > r2 * (1.0 + SQUARED_MARGIN) {
-        return false;
-    }
-    c.distance_mm(p) <= r_mm
+/// `true` when every point of the segment `a`–`b` is air in `zone` (tested every
+/// [`AIR_TEST_STEP_MM`]).
+fn chord_is_air(zone: &ClearedZone, a: Point, b: Point) -> bool {
+    let n = (a.distance_mm(b) / AIR_TEST_STEP_MM).ceil().max(1.0) as usize;
+    let mut lookup = AirLookup::new(zone);
+    (0..=n).all(|i| {
+        let t = i as f64 / n as f64;
+        lookup.is_air(Point::new(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t))
+    })
 }
 
 /// Splits a level feed move into pieces, each tagged `true` when it is all air.
@@ -150,10 +80,11 @@ fn split_by_air(m: &Move, zone: &ClearedZone) -> Vec<(Move, bool)> {
     let len = move_length(m);
     let n = (len / AIR_TEST_STEP_MM).ceil().max(1.0) as usize;
     let points = crate::core::analysis::sampling::MovePoints::of(m);
+    let mut lookup = AirLookup::new(zone);
     let air: Vec<bool> = (0..=n)
         .map(|i| {
             let (p, _) = points.at(i as f64 / n as f64);
-            zone.is_air(xy(p))
+            lookup.is_air(xy(p))
         })
         .collect();
     // Step j (from sample j to j + 1) is air when both its ends are; a piece is a run of
@@ -198,7 +129,7 @@ pub fn trim_path(path: &[Move], zone: &ClearedZone, relink: &Relink) -> (Vec<Mov
         let hop_time = 2.0 * (relink.hop_z_mm - relink.z_mm) / relink.rapid_mm_min
             + chord / relink.rapid_mm_min
             + (relink.hop_z_mm - relink.z_mm) / relink.plunge_feed_mm_min;
-        if zone.chord_is_air(xy(a), xy(b)) && chord / feed <= hop_time {
+        if chord_is_air(zone, xy(a), xy(b)) && chord / feed <= hop_time {
             out.push(Move { motion: Motion::Linear, start: a, end: b, feed_mm_min: Some(feed), ..template });
             report.links += 1;
             report.removed_mm -= chord;
@@ -253,21 +184,6 @@ pub fn trim_path(path: &[Move], zone: &ClearedZone, relink: &Relink) -> (Vec<Mov
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn a_point_is_within_a_disc_exactly_when_its_distance_is_at_most_the_radius() {
-        let c = Point::new(1.25, -3.5);
-        for k in 0..2000 {
-            let angle = f64::from(k) * 0.137;
-            for r in [0.3, 2.0, 5.0] {
-                // Points at the radius, and a rounding either side of it.
-                for d in [r, r * (1.0 - 1e-15), r * (1.0 + 1e-15), r * 0.5, r * 1.5] {
-                    let p = Point::new(c.x + d * angle.cos(), c.y + d * angle.sin());
-                    assert_eq!(within(c, p, r), c.distance_mm(p) <= r, "{p:?} against {r}");
-                }
-            }
-        }
-    }
 
     /// A feed fast enough that feeding 40 mm through the air beats a hop.
     const FAST_FEED_MM_MIN: f64 = 5000.0;

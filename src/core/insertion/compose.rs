@@ -6,7 +6,8 @@
 //! safe height. A trochoid that starts where the treatments before it at the level have
 //! already swept (several branches leave one medial-axis node) goes straight down there.
 
-use super::cleared::{trim_path, ClearedZone, Relink, TrimReport, SAME_LEVEL_MM};
+use super::cleared::{trim_path, Relink, TrimReport, SAME_LEVEL_MM};
+use super::cleared_zone::ClearedZone;
 use super::opening::OpeningStretch;
 use super::pitch::loop_exceeds;
 use super::spec::{InsertionSpec, PITCH_DESIGN_MARGIN_DEG};

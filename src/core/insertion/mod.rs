@@ -8,6 +8,7 @@
 //! mapped onto the axis again and their stretches treated too, up to [`MAX_ROUNDS`] rounds.
 
 mod cleared;
+mod cleared_zone;
 mod compose;
 mod coverage;
 mod observer;
@@ -24,7 +25,8 @@ pub(crate) mod program_tests;
 #[cfg(test)]
 mod tests;
 
-pub use cleared::{ClearedZone, TrimReport};
+pub use cleared::TrimReport;
+pub use cleared_zone::ClearedZone;
 pub use compose::{append_over, RAMP_START_ABOVE_MM};
 pub use observer::SampleObserver;
 pub use report::{InsertionPlan, Treatment, TreatmentKind};
@@ -48,7 +50,7 @@ use crate::core::process::parallel;
 use crate::core::progress::{Progress, Stage};
 use crate::core::toolpath::{section_events, Event, EventKind, Section, Toolpath, Units};
 use crate::core::CoreError;
-use cleared::ClearedZone as Zone;
+use cleared_zone::ClearedZone as Zone;
 use std::collections::HashMap;
 use treatments::Stretch;
 

@@ -2,7 +2,7 @@
 //! limit outside the reported z-cut regions, the pocket is fully cleared and no move gouges
 //! the contour or an island"), run on the finished program by the full simulation.
 
-use super::cleared::ClearedZone;
+use super::cleared_zone::{AirLookup, ClearedZone};
 use crate::core::analysis::engine::SampleResult;
 use crate::core::analysis::handoff::analyze_handing_off;
 use crate::core::analysis::samples::{PathSamples, SampleCollector, DRAWING_SAMPLE_BINS};
@@ -197,6 +197,7 @@ pub fn check_engagement(
     let mut open: Option<Overload> = None;
     let total_length_mm: f64 = path.moves.iter().map(move_length).sum();
     let mut collector = SampleCollector::new(total_length_mm, DRAWING_SAMPLE_BINS);
+    let mut zcut_zone = AirLookup::new(roles.zcut_zone);
     let (simulated, stack) = analyze_handing_off(path, analysis, progress, |r| {
         sink(r);
         if r.sample.rapid {
@@ -216,7 +217,7 @@ pub fn check_engagement(
             out.inside.add(alpha, limit);
             close(&mut open, &mut out);
         } else {
-            let crossing = roles.zcut_zone.is_air(p);
+            let crossing = zcut_zone.is_air(p);
             if crossing {
                 collector.add_with(r, true);
                 out.crossing.add(alpha, limit);
