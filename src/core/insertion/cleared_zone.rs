@@ -17,7 +17,9 @@ use rustc_hash::FxHashMap;
 /// one of them.
 #[derive(Debug, Default, Clone)]
 pub struct ClearedZone {
-    cell_mm: f64,
+    /// Lookup cells per millimetre (a disc is listed in every cell its bounding box
+    /// touches, and a point looked up in its own: any mapping does that keeps the order).
+    cells_per_mm: f64,
     /// (Looked up at every sample of a verification: hashed by the fast hash of the
     /// compiler, not a hash that resists chosen keys; the keys are the zone's own cells.)
     cells: FxHashMap<(i64, i64), Vec<(Point, f64)>>,
@@ -27,11 +29,11 @@ pub struct ClearedZone {
 impl ClearedZone {
     /// An empty zone whose lookup grid has cells of `cell_mm`.
     pub fn new(cell_mm: f64) -> ClearedZone {
-        ClearedZone { cell_mm, cells: FxHashMap::default(), count: 0 }
+        ClearedZone { cells_per_mm: 1.0 / cell_mm, cells: FxHashMap::default(), count: 0 }
     }
 
     fn key(&self, x: f64, y: f64) -> (i64, i64) {
-        ((x / self.cell_mm).floor() as i64, (y / self.cell_mm).floor() as i64)
+        (floor_index(x * self.cells_per_mm), floor_index(y * self.cells_per_mm))
     }
 
     /// Adds the disc of centre `c` and radius `radius_mm` (positions where the tool is in air).
@@ -77,6 +79,18 @@ impl ClearedZone {
     }
 }
 
+/// `t.floor() as i64`, without a call to the mathematics library (a lookup at every sample
+/// of a verification takes two).
+fn floor_index(t: f64) -> i64 {
+    let i = t as i64;
+    // (Truncation rounds negative values up.)
+    if (i as f64) > t {
+        i - 1
+    } else {
+        i
+    }
+}
+
 /// Squared distances this close (relatively) to a squared radius are compared by the distance
 /// itself: far above the rounding of either.
 const SQUARED_MARGIN: f64 = 1e-9;
@@ -113,8 +127,9 @@ pub struct AirLookup<'a> {
     discs: &'a [(Point, f64)],
     /// The disc of `discs` that held the last point in air.
     holder: Option<usize>,
-    /// The last point measured in the open, and how far it lies from every disc of `discs`
-    /// (mm; none: nothing measured in this cell).
+    /// The last point measured in the open, and how far around it every point is in the
+    /// open too: its distance to every disc of `discs`, less rounding (mm; none: nothing
+    /// measured in this cell, or too near a disc).
     open: Option<(Point, f64)>,
 }
 
@@ -125,6 +140,9 @@ impl<'a> AirLookup<'a> {
 
     /// [`ClearedZone::is_air`] at `p`.
     pub fn is_air(&mut self, p: Point) -> bool {
+        if self.zone.is_empty() {
+            return false;
+        }
         let cell = self.zone.key(p.x, p.y);
         if self.cell != Some(cell) {
             let discs = self.zone.discs_in(cell);
@@ -135,8 +153,10 @@ impl<'a> AirLookup<'a> {
                 return true;
             }
         }
-        if let Some((at, gap)) = self.open {
-            if at.distance_mm(p) < gap * (1.0 - GAP_ROUNDING_SHARE) - GAP_ROUNDING_MM {
+        if let Some((at, reach)) = self.open {
+            // (Squared: the reach gives up far more than the rounding of either side.)
+            let (dx, dy) = (p.x - at.x, p.y - at.y);
+            if dx * dx + dy * dy < reach * reach {
                 return false;
             }
         }
@@ -147,10 +167,13 @@ impl<'a> AirLookup<'a> {
                 self.open = None;
                 return true;
             }
-            gap = gap.min(c.distance_mm(p) - r);
+            let (dx, dy) = (p.x - c.x, p.y - c.y);
+            gap = gap.min((dx * dx + dy * dy).sqrt() - r);
         }
         self.holder = None;
-        self.open = Some((p, gap));
+        // How far from `p` every point is in the open too, rounding given up.
+        let reach = gap * (1.0 - GAP_ROUNDING_SHARE) - GAP_ROUNDING_MM;
+        self.open = (reach > 0.0).then_some((p, reach));
         false
     }
 }
@@ -200,6 +223,13 @@ mod tests {
                 p = Point::new(p.x + step * turn.cos(), p.y + step * turn.sin());
                 prop_assert_eq!(lookup.is_air(p), zone.is_air(p), "at {:?}", p);
             }
+        }
+    }
+
+    #[test]
+    fn a_lookup_cell_index_is_the_floor_of_the_position_in_cells() {
+        for t in [0.0, -0.0, 0.5, -0.5, 1.0, -1.0, 2.999_999, -2.000_001, 1e12, -1e12, -7.0, 7.25] {
+            assert_eq!(floor_index(t), t.floor() as i64, "{t}");
         }
     }
 
