@@ -64,9 +64,28 @@ const RADIUS_MATCH_MM: f64 = 1e-6;
 pub fn insertion_scene(pocket: &Pocket, spec: &InsertionSpec, plan: &InsertionPlan) -> Scene {
     let layers = level_layers(spec.z_top_mm, &plan.levels_mm);
     let d = &plan.drawing;
-    // The two paths are drawn side by side: each is a pass over its moves and samples.
-    let (base, planned) = std::thread::scope(|scope| {
-        let base = scope.spawn(|| traced(BASE_PATH, &d.base_path, Some(&d.base_samples), Vec::new(), &layers));
+    let at = |z: f64| layer_of(z, &layers);
+    let limit = spec.alpha_limit_deg;
+    let diameter = spec.tool.diameter_mm;
+    // The planned path's trace takes longest: the base path's, the overload marks and the
+    // chart are made beside it.
+    let (planned, (base, regions, alpha)) = std::thread::scope(|scope| {
+        let beside = scope.spawn(|| {
+            let base = traced(BASE_PATH, &d.base_path, Some(&d.base_samples), Vec::new(), &layers);
+            let mut regions = marks_of_samples(&d.base_samples, limit, diameter, BASE_PATH, at);
+            let cutting = limited(&d.planned_samples);
+            regions.extend(marks_of_samples(&cutting, limit, diameter, PLANNED_PATH, at));
+            let lines =
+                [(BASE_PATH, &d.base_samples), ("planned (ramps, approach holes and z-cut regions apart)", &cutting)];
+            let alpha = distance_chart(
+                "alpha",
+                "Engagement α before and after the insertion",
+                Quantity::Alpha,
+                &lines,
+                alpha_limit(limit),
+            );
+            (base, regions, alpha)
+        });
         let planned = traced(
             PLANNED_PATH,
             &plan.toolpath,
@@ -74,14 +93,8 @@ pub fn insertion_scene(pocket: &Pocket, spec: &InsertionSpec, plan: &InsertionPl
             vec![(Quantity::Feed, move_feeds(&plan.toolpath))],
             &layers,
         );
-        (base.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)), planned)
+        (planned, beside.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
     });
-    let at = |z: f64| layer_of(z, &layers);
-    let limit = spec.alpha_limit_deg;
-    let diameter = spec.tool.diameter_mm;
-    let mut regions = marks_of_samples(&d.base_samples, limit, diameter, BASE_PATH, at);
-    let cutting = limited(&d.planned_samples);
-    regions.extend(marks_of_samples(&cutting, limit, diameter, PLANNED_PATH, at));
     let trochoids = d
         .trochoids
         .iter()
@@ -93,14 +106,6 @@ pub fn insertion_scene(pocket: &Pocket, spec: &InsertionSpec, plan: &InsertionPl
             path: Some(PLANNED_PATH.to_string()),
         })
         .collect();
-    let lines = [(BASE_PATH, &d.base_samples), ("planned (ramps, approach holes and z-cut regions apart)", &cutting)];
-    let alpha = distance_chart(
-        "alpha",
-        "Engagement α before and after the insertion",
-        Quantity::Alpha,
-        &lines,
-        alpha_limit(limit),
-    );
     Scene {
         title: format!(
             "Trochoid insertion: {} mm end mill, {} treatments, base max α {:.1}°, planned max α {:.1}°",
