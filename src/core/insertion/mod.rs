@@ -11,6 +11,7 @@ mod cleared;
 mod cleared_zone;
 mod compose;
 mod coverage;
+mod distance_transform;
 mod observer;
 mod opening;
 mod path_checks;
