@@ -17,8 +17,7 @@
 
 use super::kept::{KeptSlice, KeptStock, Source};
 use super::slices::{SliceStock, Z_CONTACT_EPS_MM};
-use crate::core::stock::{Raster, Rect};
-use crate::core::CoreError;
+use crate::core::stock::Raster;
 
 /// One z slice of the stock.
 #[derive(Clone)]
@@ -90,13 +89,15 @@ impl Stack {
     }
 
     /// Builds the slices between `levels` with material painted by `paint` (whose error it
-    /// returns).
+    /// returns): the tests' stocks (an analysis paints its stock through
+    /// [`super::painted::painted`]).
+    #[cfg(test)]
     pub fn build(
         levels: &[f64],
-        bounds: Rect,
+        bounds: crate::core::stock::Rect,
         cell_mm: f64,
-        paint: impl FnOnce(&mut Raster) -> Result<(), CoreError>,
-    ) -> Result<Stack, CoreError> {
+        paint: impl FnOnce(&mut Raster) -> Result<(), crate::core::CoreError>,
+    ) -> Result<Stack, crate::core::CoreError> {
         let mut raster = Raster::new(bounds, cell_mm);
         paint(&mut raster)?;
         Ok(Stack::new(levels, raster))
@@ -292,6 +293,7 @@ mod tests {
     use crate::core::analysis::region::{paint, StockRegion};
     use crate::core::analysis::test_paths::{feed_move, relief_cutter, sample_bits};
     use crate::core::progress::NoProgress;
+    use crate::core::stock::Rect;
     use crate::core::toolpath::{Toolpath, Units, P3};
 
     fn block() -> Stack {

@@ -391,6 +391,7 @@ fn plan_rounds(
         let (after, checks) = std::thread::scope(|scope| {
             let checks = scope.spawn(|| {
                 let stretches = (stretches.len(), per_level.as_slice());
+                let coverage = coverage.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic));
                 path_checks::check_path(pocket, &boundary, spec, stretches, &levels, &path, coverage)
             });
             let after = verify::check_engagement(&path, &verifying, &roles, &round_stage, |s| {

@@ -41,8 +41,8 @@ pub fn coverage_beside(pocket: &Pocket, spec: &InsertionSpec) -> std::thread::Jo
 }
 
 /// Checks `path`, made of `stretch_count` stretches and the base path, whose moves per level
-/// are `per_level`, at the cutting `levels`, in `pocket`, whose `coverage` raster (for the
-/// tool of `spec`, nothing removed) is being made on another thread.
+/// are `per_level`, at the cutting `levels`, in `pocket`, starting from its `coverage`
+/// raster for the tool of `spec` with nothing removed.
 pub fn check_path(
     pocket: &Pocket,
     boundary: &Boundary,
@@ -50,11 +50,10 @@ pub fn check_path(
     (stretch_count, per_level): (usize, &[LevelMoves]),
     levels: &[f64],
     path: &Toolpath,
-    coverage: std::thread::JoinHandle<Coverage>,
+    mut coverage: Coverage,
 ) -> PathChecks {
     let r = spec.r_mm();
     let bottom = levels.iter().copied().fold(f64::INFINITY, f64::min);
-    let mut coverage = coverage.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic));
     let base_owner = u16::try_from(stretch_count).unwrap_or(u16::MAX - 1);
     if let Some(last) = per_level.last() {
         for (i, moves) in last.stretch_moves.iter().enumerate() {

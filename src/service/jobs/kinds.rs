@@ -246,13 +246,14 @@ fn run_kind<K: JobKindSpec>(
     // The kept stock is compressed beside the result's and the scene's serialisation (each
     // a few milliseconds of a trochoids job's last, single-threaded steps).
     let (result, scene, stock) = std::thread::scope(|scope| {
-        let stock = scope.spawn(|| stock.as_ref().map(super::kept_stock::encode));
+        let stock = stock.as_ref().map(|kept| scope.spawn(|| super::kept_stock::encode(kept)));
         let result = serde_json::to_value(result).map_err(unreadable);
         let scene = scene
             .map(|s| serde_json::to_string(&s))
             .transpose()
             .map_err(|e| CoreError::invalid("scene", format!("drawing scene unserialisable: {e}")));
-        (result, scene, stock.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
+        let stock = stock.map(|encoding| encoding.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)));
+        (result, scene, stock)
     });
     Ok(JobOutput { result: result?, program, baseline_program, base_program, scene: scene?, stock })
 }
