@@ -8,7 +8,7 @@
 //! none has any. Slices still alike share one stock (see [`super::stack`]).
 
 pub use super::levels::{slice_levels, LAYER_LEVEL_SHARE, MAX_SLICES, MIN_SLICE_MM};
-use crate::core::stock::{ArcRows, BlockRange, CapsuleRows, Raster};
+use crate::core::stock::{ArcRows, BlockRange, CapsuleRows, Raster, WriteMark};
 
 /// A tool tip this close to a slice top does not cut the slice, mm.
 pub const Z_CONTACT_EPS_MM: f64 = 1e-6;
@@ -40,6 +40,20 @@ pub struct TakenCapsule {
 impl SliceStock {
     pub fn new(raster: Raster) -> SliceStock {
         SliceStock { raster, empty: None, material_at: None, last_capsule: None }
+    }
+
+    /// Makes this stock `source` again, in the memory it holds: with `since`, a copy of
+    /// `source` taken when `source`'s raster handed out the mark, only the cells written
+    /// since ([`Raster::copy_written_since`]); without, every cell.
+    pub fn copy_from(&mut self, source: &SliceStock, since: Option<WriteMark>) {
+        match since {
+            Some(mark) => {
+                self.raster.copy_written_since(&source.raster, mark);
+            }
+            None => self.raster.copy_from(&source.raster),
+        }
+        let SliceStock { raster: _, empty, material_at, last_capsule } = source;
+        (self.empty, self.material_at, self.last_capsule) = (*empty, *material_at, *last_capsule);
     }
 
     /// Applies capsule number `serial` to the raster ([`Raster::clear_capsule_rows`]),

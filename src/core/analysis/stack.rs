@@ -17,18 +17,43 @@
 
 use super::kept::{KeptSlice, KeptStock, Source};
 use super::slices::{SliceStock, Z_CONTACT_EPS_MM};
-use crate::core::stock::Raster;
+use crate::core::stock::{Raster, WriteMark};
 
 /// One z slice of the stock.
-#[derive(Clone)]
 pub struct Slice {
     pub z_bottom: f64,
     pub z_top: f64,
     /// Its own stock, or `None` while it holds exactly the cells of the slice below (or
     /// cells no probe tells from them, see [`Stack::rejoin_when_alike`]).
     own: Option<SliceStock>,
+    /// Numbers its own stock among the stocks the stack's slices were given (see [`Spare`]).
+    birth: u64,
     /// When its own stock is next compared with the one below.
     rejoin: RejoinTries,
+    /// While it shares the stock below: the stock it held, to be cut apart again.
+    spare: Option<Spare>,
+}
+
+impl Clone for Slice {
+    /// Without its spare stock, which only spares work.
+    fn clone(&self) -> Slice {
+        let Slice { z_bottom, z_top, own, birth, rejoin, spare: _ } = self;
+        Slice { z_bottom: *z_bottom, z_top: *z_top, own: own.clone(), birth: *birth, rejoin: *rejoin, spare: None }
+    }
+}
+
+/// The stock a slice held when it shared the stock below again: cells no probe tells from
+/// the shared stock's. When the slice is cut apart again while the same stock is shared,
+/// only the blocks written to the shared stock since are copied into it
+/// ([`SliceStock::copy_from`]), not the whole raster: along a trochoid program a slice is
+/// cut apart and joined again dozens of times, its loops writing a few blocks in between.
+struct Spare {
+    stock: SliceStock,
+    /// The slice whose stock was shared, and that stock's birth.
+    holder: usize,
+    holder_birth: u64,
+    /// The shared stock's writes when it was shared again.
+    mark: WriteMark,
 }
 
 /// After a comparison of a slice's own stock with the one below failed, this many updates
@@ -54,6 +79,14 @@ struct RejoinTries {
 #[derive(Clone)]
 pub struct Stack {
     slices: Vec<Slice>,
+    /// Stocks given to slices so far (see [`Slice::birth`]).
+    births: u64,
+    /// Tests compare simulations with and without a slice cut apart again taking the cells
+    /// written since it was joined alone, and count how often it did.
+    #[cfg(test)]
+    pub(crate) full_copies: bool,
+    #[cfg(test)]
+    caught_up: usize,
     /// Tests compare simulations with and without slices sharing a stock again.
     #[cfg(test)]
     pub(crate) never_rejoin: bool,
@@ -77,12 +110,19 @@ impl Stack {
                 z_top: levels.get(k).copied().unwrap_or(0.0),
                 z_bottom: levels.get(k + 1).copied().unwrap_or(0.0),
                 own: None,
+                birth: 0,
                 rejoin: RejoinTries::default(),
+                spare: None,
             })
             .collect();
         slices[n - 1].own = Some(SliceStock::new(raster));
         Stack {
             slices,
+            births: 0,
+            #[cfg(test)]
+            full_copies: false,
+            #[cfg(test)]
+            caught_up: 0,
             #[cfg(test)]
             never_rejoin: false,
         }
@@ -165,12 +205,33 @@ impl Stack {
         areas
     }
 
-    /// Gives slice `k` its own copy of the stock it shares, if it shares one.
+    /// Gives slice `k` its own copy of the stock it shares, if it shares one: into its
+    /// spare stock, if it has one, and of the blocks written since alone where the spare
+    /// was taken from the same stock (see [`Spare`]).
     pub fn separate(&mut self, k: usize) {
-        if self.slices[k].own.is_none() {
-            let copy = self.stock(k).clone();
-            self.slices[k].own = Some(copy);
+        if self.slices[k].own.is_some() {
+            return;
         }
+        let holder = self.holder(k);
+        let spare = self.slices[k].spare.take();
+        let source = self.slices[holder].own.as_ref().expect("the holder has its own stock");
+        let copy = match spare {
+            Some(mut spare) => {
+                let same = spare.holder == holder && spare.holder_birth == self.slices[holder].birth;
+                #[cfg(test)]
+                let same = same && !self.full_copies;
+                #[cfg(test)]
+                {
+                    self.caught_up += usize::from(same);
+                }
+                spare.stock.copy_from(source, same.then_some(spare.mark));
+                spare.stock
+            }
+            None => source.clone(),
+        };
+        self.births += 1;
+        self.slices[k].birth = self.births;
+        self.slices[k].own = Some(copy);
     }
 
     /// Makes slice `k` (not the last) share the stock of the slice below again when no probe
@@ -204,8 +265,12 @@ impl Stack {
             return false;
         }
         let upper_version = upper.version();
-
-        self.slices[k].own = None;
+        let holder = self.holder(k + 1);
+        let shared = self.slices[holder].own.as_mut().expect("the holder has its own stock");
+        let mark = shared.raster.mark_writes();
+        let holder_birth = self.slices[holder].birth;
+        let stock = self.slices[k].own.take().expect("a slice not alike with the one below has its own stock");
+        self.slices[k].spare = Some(Spare { stock, holder, holder_birth, mark });
         self.slices[k].rejoin = RejoinTries::default();
         // What was read from either stock (kept with its version) is read again.
         self.stock_mut(k).raster.take_version_past(upper_version);
@@ -265,10 +330,15 @@ impl Stack {
             };
             let z_top = levels.get(k).copied().unwrap_or(0.0);
             let z_bottom = levels.get(k + 1).copied().unwrap_or(0.0);
-            slices.push(Slice { z_top, z_bottom, own, rejoin: RejoinTries::default() });
+            slices.push(Slice { z_top, z_bottom, own, birth: 0, rejoin: RejoinTries::default(), spare: None });
         }
         Ok(Stack {
             slices,
+            births: 0,
+            #[cfg(test)]
+            full_copies: false,
+            #[cfg(test)]
+            caught_up: 0,
             #[cfg(test)]
             never_rejoin: false,
         })
@@ -280,9 +350,11 @@ impl Stack {
         self.slices.len().saturating_mul(self.raster(self.len() - 1).memory_bytes())
     }
 
-    /// Memory the slices' rasters take, bytes (a shared stock counts once).
+    /// Memory the slices' rasters take, bytes (a shared stock counts once), with the spare
+    /// stocks of slices that share one (at most a raster per slice in all).
     pub fn memory_bytes(&self) -> usize {
-        self.slices.iter().filter_map(|s| s.own.as_ref()).map(|s| s.raster.memory_bytes()).sum()
+        let stocks = self.slices.iter().filter_map(|s| s.own.as_ref().or(s.spare.as_ref().map(|spare| &spare.stock)));
+        stocks.map(|s| s.raster.memory_bytes()).sum()
     }
 }
 
@@ -377,6 +449,49 @@ mod tests {
         assert!((0..rejoined.len() - 1).all(|k| rejoined.alike_below(k)), "a slice kept a stock of its own");
         for k in 0..separate.len() {
             assert!(rejoined.raster(k).probes_alike(separate.raster(k)), "slice {k} holds another stock");
+        }
+    }
+
+    /// Ramps down through the block's slices along three lines, each followed by a pass at
+    /// full depth along it: each ramp cuts the slices apart, each pass joins them again.
+    fn ramps_and_passes() -> Toolpath {
+        let mut moves = Vec::new();
+        let mut at = P3::new(-3.0, 4.0, 1.0);
+        for y in [4.0, 9.0, 14.0] {
+            let ends = [
+                P3::new(-3.0, y, 1.0),
+                P3::new(15.0, y, -5.5),
+                P3::new(23.0, y, -5.5),
+                P3::new(23.0, y, 1.0),
+                P3::new(-3.0, y, 1.0),
+                P3::new(-3.0, y, -5.5),
+                P3::new(23.0, y, -5.5),
+                P3::new(23.0, y, 1.0),
+            ];
+            for end in ends {
+                moves.push(feed_move(at, end, moves.len()));
+                at = end;
+            }
+        }
+        Toolpath { moves, events: vec![], source_units: Units::Mm, warnings: vec![] }
+    }
+
+    #[test]
+    fn a_slice_cut_apart_again_takes_the_blocks_written_since_it_was_joined_and_every_sample_is_the_same() {
+        let path = ramps_and_passes();
+        let cutter = relief_cutter(Some(crate::core::fixtures::seed_001_ten_mm()));
+        let run = |full_copies: bool| {
+            let mut stack = block();
+            stack.full_copies = full_copies;
+            let mut samples = Vec::new();
+            simulate(&path, cutter, &mut stack, &NoProgress, |r| samples.push(sample_bits(r))).expect("simulates");
+            (samples, stack)
+        };
+        let ((caught_up, stack), (copied, full)) = (run(false), run(true));
+        assert!(stack.caught_up >= 2 && full.caught_up == 0, "{} slices caught up", stack.caught_up);
+        assert!(caught_up == copied, "a sample differs where slices cut apart again take the blocks written");
+        for k in 0..stack.len() {
+            assert!(stack.raster(k).probes_alike(full.raster(k)), "slice {k} holds another stock");
         }
     }
 }

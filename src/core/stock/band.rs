@@ -96,6 +96,7 @@ impl Raster {
         }
         if changed {
             self.version += 1;
+            self.written_in_row(j, from, to);
         }
     }
 

@@ -118,6 +118,7 @@ impl Raster {
                 let lost = cells.iter().filter(|&&v| v > 0).count();
                 cells.fill(-FULL);
                 self.version += 1;
+                self.written_at(i, j);
                 if lost > 0 {
                     self.blocks[(j / BLOCK_CELLS) * self.bx + i / BLOCK_CELLS] -= lost as u32;
                     self.tiles.lose(i, j, lost);
@@ -146,6 +147,7 @@ impl Raster {
             }
             self.blocks[(j0 / BLOCK_CELLS) * self.bx + i / BLOCK_CELLS] -= u32::from(lost);
             self.version += 1;
+            self.written_at(i, j0);
             t += 1;
         }
     }

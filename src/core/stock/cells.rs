@@ -104,6 +104,7 @@ impl Raster {
         raster.ny = grid.ny;
         raster.bx = grid.nx.div_ceil(super::BLOCK_CELLS);
         raster.blocks = vec![0; raster.bx * grid.ny.div_ceil(super::BLOCK_CELLS)];
+        raster.written = super::Written::new(raster.blocks.len());
         raster.f = cells;
         raster.recount();
         Ok(raster)

@@ -24,6 +24,7 @@ mod compare;
 #[cfg(test)]
 mod test_blocks;
 mod tiles;
+mod written;
 
 pub use arc_rows::ArcRows;
 pub use arc_sweep::{ArcSweep, MAX_ARC_SWEEP_RAD};
@@ -33,6 +34,8 @@ pub use cells::{resample, Grid};
 pub use compare::CellRect;
 pub use tiles::Certified;
 use tiles::Tiles;
+pub use written::WriteMark;
+use written::Written;
 
 /// Distances are clamped to this many cells either side of the boundary. A probe
 /// interpolates the 2 × 2 cells around its point; where the boundary crosses them, each
@@ -114,6 +117,8 @@ pub struct Raster {
     end_disc_cleared: bool,
     /// Counts the writes: what was read from the raster holds while it is unchanged.
     version: u64,
+    /// Which blocks were written since each mark (see [`Raster::copy_written_since`]).
+    written: Written,
     /// Tests compare capsule updates with and without leaving tiles alone, and with band
     /// cells taken one by one.
     #[cfg(test)]
@@ -140,6 +145,7 @@ impl Raster {
             tiles: Tiles::new(nx, ny),
             end_disc_cleared: false,
             version: 0,
+            written: Written::new(nx.div_ceil(BLOCK_CELLS) * ny.div_ceil(BLOCK_CELLS)),
             #[cfg(test)]
             update_every_cell: false,
             #[cfg(test)]
@@ -290,6 +296,8 @@ impl Raster {
         mut stopped: impl FnMut(f64) -> bool,
     ) -> bool {
         self.end_disc_cleared = false;
+        // (Before any cell: a painting stopped part of the way wrote some.)
+        self.written.stamp_all();
         let (nx, ny) = (self.nx, self.ny);
         let rows_done = |pass: usize, j: usize| (pass * ny + j) as f64 / (2 * ny) as f64;
         let mut inside = vec![false; nx * ny];

@@ -70,7 +70,7 @@ impl Certified {
 }
 
 /// Per-tile counts of one raster.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct Tiles {
     /// Tiles per row and per column.
     tx: usize,
@@ -91,6 +91,23 @@ pub struct Tiles {
 
 /// Tiles per word of [`Tiles::holding`].
 const TILES_PER_WORD: usize = u64::BITS as usize;
+
+impl Clone for Tiles {
+    fn clone(&self) -> Tiles {
+        let mut copy = Tiles { material: Vec::new(), mixed: Vec::new(), holding: Vec::new(), ..*self };
+        copy.clone_from(self);
+        copy
+    }
+
+    /// Into the memory this one holds.
+    fn clone_from(&mut self, source: &Tiles) {
+        let Tiles { tx, ty, material, mixed, stride, holding, words } = source;
+        (self.tx, self.ty, self.stride, self.words) = (*tx, *ty, *stride, *words);
+        self.material.clone_from(material);
+        self.mixed.clone_from(mixed);
+        self.holding.clone_from(holding);
+    }
+}
 
 impl Tiles {
     /// Counts for an all-air raster of `nx` × `ny` cells.
