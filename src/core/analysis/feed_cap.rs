@@ -7,10 +7,9 @@ use crate::core::toolpath::{Motion, Toolpath};
 
 /// `path` with every feed above `max_feed_mm_min` lowered to it, and a warning naming
 /// how many moves and the first line, when there are any.
-pub fn cap_feeds(path: &Toolpath, max_feed_mm_min: f64) -> (Toolpath, Option<String>) {
-    let mut capped = path.clone();
+pub fn cap_feeds(mut path: Toolpath, max_feed_mm_min: f64) -> (Toolpath, Option<String>) {
     let (mut count, mut first) = (0usize, None);
-    for m in capped.moves.iter_mut().filter(|m| !matches!(m.motion, Motion::Rapid)) {
+    for m in path.moves.iter_mut().filter(|m| !matches!(m.motion, Motion::Rapid)) {
         if let Some(f) = m.feed_mm_min.filter(|f| *f > max_feed_mm_min) {
             count += 1;
             first.get_or_insert((m.line, f));
@@ -22,7 +21,7 @@ pub fn cap_feeds(path: &Toolpath, max_feed_mm_min: f64) -> (Toolpath, Option<Str
             "{count} feed move(s) program more than the machine's maximum feed of {max_feed_mm_min} mm/min (the first F{f} on line {line}): their chip thickness, force and wear are computed at the maximum, as the machine runs them"
         )
     });
-    (capped, warning)
+    (path, warning)
 }
 
 #[cfg(test)]
@@ -47,11 +46,11 @@ mod tests {
             source_units: Units::Mm,
             warnings: vec![],
         };
-        let (capped, warning) = cap_feeds(&path, 15_000.0);
+        let (capped, warning) = cap_feeds(path.clone(), 15_000.0);
         let feeds: Vec<f64> = capped.moves.iter().filter_map(|m| m.feed_mm_min).collect();
         assert_eq!(feeds, vec![1000.0, 15_000.0, 15_000.0]);
         let warning = warning.expect("a warning");
         assert!(warning.contains("2 feed move(s)") && warning.contains("line 4"), "{warning}");
-        assert!(cap_feeds(&path, 1e7).1.is_none());
+        assert!(cap_feeds(path, 1e7).1.is_none());
     }
 }

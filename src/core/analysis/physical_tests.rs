@@ -46,7 +46,7 @@ const BLOCK: Rect = Rect { x_min: 0.0, y_min: 0.0, x_max: 100.0, y_max: 40.0 };
 
 #[test]
 fn an_f9991300_slot_on_a_15000_mm_min_machine_cuts_at_the_machines_feed_and_is_flagged() {
-    let (capped, warning) = cap_feeds(&slot(9_991_300.0), 15_000.0);
+    let (capped, warning) = cap_feeds(slot(9_991_300.0), 15_000.0);
     assert!(warning.is_some_and(|w| w.contains("line 5")));
     let a = analyze(&capped, &spec(BLOCK), &NoProgress).expect("analyses");
     let s = &a.summary;

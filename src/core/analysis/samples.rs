@@ -101,7 +101,18 @@ impl SampleCollector {
     }
 
     pub fn finish(self) -> PathSamples {
-        let mut out = PathSamples::default();
+        let n = self.bins.iter().flatten().count();
+        let mut out = PathSamples {
+            s_mm: Vec::with_capacity(n),
+            xy: Vec::with_capacity(n),
+            z: Vec::with_capacity(n),
+            line: Vec::with_capacity(n),
+            index: Vec::with_capacity(n),
+            exempt: Vec::with_capacity(n),
+            alpha_deg: Vec::with_capacity(n),
+            force_n: Vec::with_capacity(n),
+            feed_mm_min: Vec::with_capacity(n),
+        };
         for k in self.bins.into_iter().flatten() {
             out.s_mm.push(k.s_mm);
             out.xy.push(k.xy);

@@ -155,9 +155,10 @@ impl PathSetup {
         let read = read_program(program, context)?;
         Ok(match self.max_feed_mm_min {
             Some(max) => {
-                let (mut capped, warning) = cap_feeds(&read.path, max);
+                let ReadProgram { path, map } = read;
+                let (mut capped, warning) = cap_feeds(path, max);
                 capped.warnings.extend(warning);
-                ReadProgram { path: capped, ..read }
+                ReadProgram { path: capped, map }
             }
             None => read,
         })
