@@ -318,18 +318,19 @@ impl AngleTable {
         let mut unknown = !known & points(0, COARSE_POINTS);
         let look_ahead = site.line.map_or(0.0, |l| l.ahead_cells.min(AHEAD_CELLS));
         for pass in [unknown & self.anchors, unknown] {
-            let mut todo = pass;
+            // The points of the pass not known yet, lowest first: a probe certified far from
+            // the boundary decides its neighbours, which drop out at once (not passed over
+            // one by one).
+            let mut todo = pass & !known;
             while todo != 0 {
                 let m = todo.trailing_zeros() as usize;
-                todo &= todo - 1;
-                if known & (1 << m) != 0 {
-                    continue;
-                }
                 let (material, level) = self.certified_material(raster, site, m * COARSE_STEP);
                 let reach = self.skip(level);
                 let (lo, hi) = (m.saturating_sub(reach), (m + reach).min(COARSE_POINTS));
+                // (Point m among them: it was not known.)
                 let decided = points(lo, hi) & !known;
                 known |= decided;
+                todo &= !known;
                 state = if material { state | decided } else { state & !decided };
                 let Some((mem, travel)) = memory.as_mut() else {
                     continue;
