@@ -99,7 +99,7 @@ const SQUARED_MARGIN: f64 = 1e-9;
 /// squared distance wherever it decides beyond rounding: a cell of a zone holds dozens of
 /// overlapping discs (a trochoid's loops, a z-cut stretch's steps), and every sample of a
 /// verification asks.
-pub fn within(c: Point, p: Point, r_mm: f64) -> bool {
+fn within(c: Point, p: Point, r_mm: f64) -> bool {
     let (dx, dy) = (p.x - c.x, p.y - c.y);
     let (d2, r2) = (dx * dx + dy * dy, r_mm * r_mm);
     if d2 < r2 * (1.0 - SQUARED_MARGIN) {

@@ -32,6 +32,7 @@ const CLEARANCE_REACH_MARGIN_MM: f64 = 1e-9;
 pub const NOBODY: u16 = u16::MAX;
 
 /// The pocket's raster.
+#[derive(Clone)]
 pub struct Coverage {
     x0: f64,
     y0: f64,

@@ -342,6 +342,10 @@ fn plan_rounds(
     // The stretches of each interval treated so far: a later round treats again only the
     // intervals it adds, merges or widens (the treatment depends on nothing else).
     let mut treated: HashMap<TreatedKey, Vec<Stretch>> = HashMap::new();
+    // The coverage raster with nothing removed depends on neither path: it is made once,
+    // beside the first round's treatments, and every round's checks start from a copy.
+    let mut making_coverage = Some(path_checks::coverage_beside(pocket, spec));
+    let mut blank_coverage: Option<coverage::Coverage> = None;
     let mut rounds = 0;
     let mut reported = BASE_CHECK_PROGRESS;
     loop {
@@ -361,7 +365,6 @@ fn plan_rounds(
         // its interval alone.
         let untreated: Vec<&(TreatedKey, &CriticalInterval)> =
             keyed.iter().filter(|(key, _)| !treated.contains_key(key)).collect();
-        let coverage = path_checks::coverage_beside(pocket, spec);
         let treatments = parallel::map(progress, &untreated, |_, (key, c)| {
             let spec_here = if key.3 { &wide } else { spec };
             treatments::treat_interval(&axis.branches[c.branch], c, &boundary, pocket, spec_here)
@@ -386,12 +389,17 @@ fn plan_rounds(
         if let Some(o) = observer.as_deref_mut() {
             o.restart();
         }
+        let coverage = match making_coverage.take() {
+            Some(making) => {
+                blank_coverage.insert(making.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic))).clone()
+            }
+            None => blank_coverage.clone().expect("made in the first round"),
+        };
         // The path's geometric checks need no simulation: they run beside the verification
         // (spent in vain when a further round follows).
         let (after, checks) = std::thread::scope(|scope| {
             let checks = scope.spawn(|| {
                 let stretches = (stretches.len(), per_level.as_slice());
-                let coverage = coverage.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic));
                 path_checks::check_path(pocket, &boundary, spec, stretches, &levels, &path, coverage)
             });
             let after = verify::check_engagement(&path, &verifying, &roles, &round_stage, |s| {
